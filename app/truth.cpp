@@ -1,0 +1,64 @@
+#include "app/truth.hpp"
+
+#include <algorithm>
+
+#include "io/input_error.hpp"
+#include "io/tum.hpp"
+
+namespace msislab::app {
+
+Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration) {
+  Truth truth;
+  if (files.truth_trajectory) {
+    const std::vector<io::TumPose> poses = io::read_tum(*files.truth_trajectory);
+    truth.kind = "simulation";
+    for (const io::TumPose& p : poses) truth.positions.push_back({p.t_s, {p.x_m, p.y_m}});
+    truth.first_pose = Pose2(poses.front().x_m, poses.front().y_m, poses.front().yaw_rad);
+    truth.depth_m = -poses.front().z_m;
+  } else if (files.gps) {
+    truth.kind = "gps";
+    truth.positions = io::load_gps_fixes(files, calibration);
+  }
+  return truth;
+}
+
+namespace {
+/// Heading reading nearest to t_s.
+double heading_at(const std::vector<HeadingReading>& heading, double t_s) {
+  auto it = std::lower_bound(heading.begin(), heading.end(), t_s,
+                             [](const HeadingReading& h, double t) { return h.t_s < t; });
+  if (it == heading.end()) return heading.back().yaw_rad;
+  if (it != heading.begin() && t_s - std::prev(it)->t_s < it->t_s - t_s) --it;
+  return it->yaw_rad;
+}
+}  // namespace
+
+StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
+                         const std::string& dataset_dir, double heading_sigma_rad) {
+  if (navigation.heading.empty()) io::fail_file(dataset_dir, "the MRU log has no heading rows");
+  const double t_heading0 = navigation.heading.front().t_s;
+  StampedPose start;
+  // The start is exact by definition (every method starts on the truth); a tiny variance keeps the
+  // covariance positive definite.
+  start.pose.cov = Eigen::Vector3d(1e-9, 1e-9, heading_sigma_rad * heading_sigma_rad).asDiagonal();
+  if (truth.first_pose) {
+    start.t_s = truth.positions.front().t_s;
+    start.pose.mean = *truth.first_pose;
+    start.pose.cov(2, 2) = 1e-9;
+    return start;
+  }
+  auto fix = std::find_if(truth.positions.begin(), truth.positions.end(),
+                          [&](const PositionFix& f) { return f.t_s >= t_heading0; });
+  if (fix == truth.positions.end()) {
+    if (!truth.kind.empty()) io::fail_file(dataset_dir, "no GPS fix after the first MRU heading");
+    start.t_s = t_heading0;
+    start.pose.mean = Pose2(0.0, 0.0, navigation.heading.front().yaw_rad);
+    return start;
+  }
+  start.t_s = fix->t_s;
+  start.pose.mean =
+      Pose2(fix->p_world_m.x(), fix->p_world_m.y(), heading_at(navigation.heading, fix->t_s));
+  return start;
+}
+
+}  // namespace msislab::app

@@ -1,0 +1,29 @@
+// The truth of a dataset: simulation truth (truth/trajectory.tum) when present, else the GPS log.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/dataset.hpp"
+#include "slam/evaluation.hpp"
+#include "slam/navigation.hpp"
+
+namespace msislab::app {
+
+struct Truth {
+  std::string kind;  ///< "simulation", "gps" or empty when the dataset has none
+  std::vector<PositionFix> positions;
+  std::optional<Pose2> first_pose;  ///< simulation truth has yaw; GPS does not
+  double depth_m = 0.0;             ///< vehicle depth for the TUM z (0 when unknown)
+};
+
+Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);
+
+/// Where every method starts: the first truth pose (GPS: first fix once heading is available,
+/// heading from the MRU), else the origin at the first heading reading. Throws io::InputError when
+/// the navigation log has no heading at all.
+StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
+                         const std::string& dataset_dir, double heading_sigma_rad);
+
+}  // namespace msislab::app

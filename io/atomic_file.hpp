@@ -1,0 +1,16 @@
+// Writes a file under a temporary name and renames it into place when complete, so a reader never
+// sees a half-written output.
+#pragma once
+
+#include <functional>
+#include <ostream>
+#include <string>
+
+namespace msislab::io {
+
+/// Calls write(stream) on "path.tmp-PID", then renames it to path. On any failure the temporary
+/// is removed and InputError names the path.
+void write_file_atomically(const std::string& path,
+                           const std::function<void(std::ostream&)>& write);
+
+}  // namespace msislab::io

@@ -1,0 +1,114 @@
+#include "io/config_yaml.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/yaml_fields.hpp"
+
+namespace msislab::io {
+
+namespace {
+constexpr double kDegToRad = M_PI / 180.0;
+
+void require_positive(YamlMap& map, const std::string& key, double value) {
+  if (!(value > 0.0)) map.fail(key, "must be > 0, got " + std::to_string(value));
+}
+
+void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
+  map.number("dvl_sigma_mps", c.dvl_sigma_mps);
+  double heading_sigma_deg = c.heading_sigma_rad / kDegToRad;
+  if (map.number("heading_sigma_deg", heading_sigma_deg)) {
+    c.heading_sigma_rad = heading_sigma_deg * kDegToRad;
+  }
+  map.number("accel_sigma_mps2", c.accel_sigma_mps2);
+  map.number("yaw_accel_sigma_radps2", c.yaw_accel_sigma_radps2);
+  map.number("initial_velocity_sigma_mps", c.initial_velocity_sigma_mps);
+  map.number("initial_yaw_rate_sigma_radps", c.initial_yaw_rate_sigma_radps);
+  map.number("dvl_gate_chi2", c.dvl_gate_chi2);
+  require_positive(map, "dvl_sigma_mps", c.dvl_sigma_mps);
+  require_positive(map, "heading_sigma_deg", c.heading_sigma_rad);
+  require_positive(map, "accel_sigma_mps2", c.accel_sigma_mps2);
+  require_positive(map, "yaw_accel_sigma_radps2", c.yaw_accel_sigma_radps2);
+  require_positive(map, "initial_velocity_sigma_mps", c.initial_velocity_sigma_mps);
+  require_positive(map, "initial_yaw_rate_sigma_radps", c.initial_yaw_rate_sigma_radps);
+  map.finish();
+}
+
+std::vector<TimeSegment> read_segments(YamlMap map) {
+  std::vector<TimeSegment> segments;
+  for (const std::string& name : map.keys()) {
+    std::vector<double> window;
+    map.numbers(name, window);
+    if (window.size() != 2 || !(window[0] < window[1])) {
+      map.fail(name, "expected [begin_s, end_s] with begin_s < end_s");
+    }
+    segments.push_back({name, window[0], window[1]});
+  }
+  return segments;
+}
+}  // namespace
+
+Calibration read_calibration(const std::string& path) {
+  YamlMap root(load_yaml_file(path), path, "");
+  Calibration c;
+  YamlMap mru = root.map("mru");
+  mru.number("yaw_offset_deg", c.mru.yaw_offset_deg);
+  mru.finish();
+  YamlMap dvl = root.map("dvl");
+  dvl.number("yaw_deg", c.dvl.yaw_deg);
+  dvl.number("x_m", c.dvl.x_m);
+  dvl.number("y_m", c.dvl.y_m);
+  dvl.finish();
+  YamlMap sonar = root.map("sonar");
+  sonar.number("x_m", c.sonar.x_m);
+  sonar.number("y_m", c.sonar.y_m);
+  double bearing_offset_deg = c.sonar.bearing_offset_rad / kDegToRad;
+  if (sonar.number("bearing_offset_deg", bearing_offset_deg)) {
+    c.sonar.bearing_offset_rad = bearing_offset_deg * kDegToRad;
+  }
+  if (sonar.number("bearing_sign", c.sonar.bearing_sign) && std::abs(c.sonar.bearing_sign) != 1.0) {
+    sonar.fail("bearing_sign", "must be 1 or -1");
+  }
+  sonar.finish();
+  YamlMap frame = root.map("frame");
+  frame.number("origin_latitude_deg", c.frame.origin_latitude_deg);
+  frame.number("origin_longitude_deg", c.frame.origin_longitude_deg);
+  if (std::abs(c.frame.origin_latitude_deg) > 84.0) {
+    frame.fail("origin_latitude_deg", "outside the UTM range [-84, 84]");
+  }
+  if (std::abs(c.frame.origin_longitude_deg) > 180.0) {
+    frame.fail("origin_longitude_deg", "outside [-180, 180]");
+  }
+  frame.finish();
+  root.finish();
+  return c;
+}
+
+void write_calibration(const std::string& path, const Calibration& c) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << std::setprecision(17);
+    out << "# Sensor mounts and local frame (docs/formats.md).\n"
+        << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg << "\n"
+        << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
+        << "\n  y_m: " << c.dvl.y_m << "\n"
+        << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
+        << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
+        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n"
+        << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
+        << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
+  });
+}
+
+SlamConfig read_slam_config(const std::string& path) {
+  YamlMap root(load_yaml_file(path), path, "");
+  SlamConfig config;
+  read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
+  config.segments = read_segments(root.map("segments"));
+  root.finish();
+  return config;
+}
+
+}  // namespace msislab::io

@@ -1,0 +1,142 @@
+#include "io/yaml_fields.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+
+#include "io/input_error.hpp"
+
+namespace msislab::io {
+
+YAML::Node load_yaml_file(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) fail_file(path, "cannot open: no such file");
+  try {
+    return YAML::LoadFile(path);
+  } catch (const YAML::ParserException& e) {
+    fail_at(path, static_cast<std::size_t>(e.mark.line + 1), "malformed YAML: " + e.msg);
+  } catch (const YAML::BadFile&) {
+    fail_file(path, "cannot open");
+  }
+}
+
+bool parse_finite(const std::string& text, double& out) {
+  const char* begin = text.data();
+  const char* end = begin + text.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, out);
+  return ec == std::errc() && ptr == end && std::isfinite(out);
+}
+
+YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string prefix)
+    : node_(node), file_(std::move(file)), prefix_(std::move(prefix)) {
+  if (node_ && !node_.IsNull() && !node_.IsMap()) {
+    const std::string where = prefix_.empty() ? "the document" : "key '" + prefix_ + "'";
+    fail_at(file_, static_cast<std::size_t>(node_.Mark().line + 1),
+            where + ": expected a mapping of keys");
+  }
+}
+
+std::string YamlMap::path_of(const std::string& key) const {
+  return prefix_.empty() ? key : prefix_ + "." + key;
+}
+
+void YamlMap::fail_node(const YAML::Node& at, const std::string& key,
+                        const std::string& what) const {
+  const int line = at ? at.Mark().line : (node_ ? node_.Mark().line : -1);
+  const std::string msg = "key '" + path_of(key) + "': " + what;
+  if (line >= 0) fail_at(file_, static_cast<std::size_t>(line + 1), msg);
+  fail_file(file_, msg);
+}
+
+void YamlMap::fail(const std::string& key, const std::string& what) const {
+  fail_node(has(key) ? node_[key] : YAML::Node(), key, what);
+}
+
+bool YamlMap::has(const std::string& key) const {
+  return node_ && node_.IsMap() && node_[key].IsDefined();
+}
+
+YAML::Node YamlMap::node(const std::string& key) {
+  read_.insert(key);
+  return has(key) ? node_[key] : YAML::Node();
+}
+
+bool YamlMap::number(const std::string& key, double& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  if (!value.IsScalar() || !parse_finite(value.Scalar(), out)) {
+    fail_node(value, key,
+              "expected a finite number, got '" +
+                  (value.IsScalar() ? value.Scalar() : std::string("a structure")) + "'");
+  }
+  return true;
+}
+
+double YamlMap::required_number(const std::string& key) {
+  double out = 0.0;
+  if (!number(key, out)) fail(key, "is required");
+  return out;
+}
+
+bool YamlMap::integer(const std::string& key, long long& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  const std::string text = value.IsScalar() ? value.Scalar() : "";
+  const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+  if (text.empty() || ec != std::errc() || ptr != text.data() + text.size()) {
+    fail_node(value, key, "expected an integer, got '" + text + "'");
+  }
+  return true;
+}
+
+bool YamlMap::text(const std::string& key, std::string& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  if (!value.IsScalar()) fail_node(value, key, "expected a text value");
+  out = value.Scalar();
+  return true;
+}
+
+bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  if (!value.IsSequence()) fail_node(value, key, "expected a list of numbers");
+  out.clear();
+  for (const YAML::Node& item : value) {
+    double x = 0.0;
+    if (!item.IsScalar() || !parse_finite(item.Scalar(), x)) {
+      fail_node(item, key, "expected finite numbers in the list");
+    }
+    out.push_back(x);
+  }
+  return true;
+}
+
+YamlMap YamlMap::map(const std::string& key) {
+  read_.insert(key);
+  return YamlMap(has(key) ? node_[key] : YAML::Node(), file_, path_of(key));
+}
+
+std::vector<std::string> YamlMap::keys() const {
+  std::vector<std::string> out;
+  if (!node_ || !node_.IsMap()) return out;
+  for (const auto& item : node_) out.push_back(item.first.Scalar());
+  return out;
+}
+
+void YamlMap::finish() const {
+  if (!node_ || !node_.IsMap()) return;
+  for (const auto& item : node_) {
+    const std::string key = item.first.Scalar();
+    if (read_.count(key)) continue;
+    std::string known;
+    for (const std::string& k : read_) known += (known.empty() ? "" : ", ") + k;
+    fail_node(item.first, key, "unknown key (known here: " + known + ")");
+  }
+}
+
+}  // namespace msislab::io

@@ -1,0 +1,58 @@
+// Strict reading of YAML mappings into plain structs: every key read is checked for type and
+// finiteness, and finish() rejects keys nobody read, so typos fail with "FILE:LINE: key 'a.b':
+// ...". Internal to io/: nothing outside this module includes yaml-cpp.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <set>
+#include <string>
+#include <vector>
+
+namespace msislab::io {
+
+/// Loads a YAML file; a missing file or a syntax error becomes an InputError naming the file/line.
+YAML::Node load_yaml_file(const std::string& path);
+
+class YamlMap {
+ public:
+  /// node must be a mapping (or null/absent, read as empty). `prefix` is the dotted key path.
+  YamlMap(const YAML::Node& node, std::string file, std::string prefix);
+
+  bool has(const std::string& key) const;
+  /// Reads a finite number into out if the key is present; returns whether it was.
+  bool number(const std::string& key, double& out);
+  /// Like number() but the key must be present.
+  double required_number(const std::string& key);
+  bool integer(const std::string& key, long long& out);
+  bool text(const std::string& key, std::string& out);
+  /// A sequence of finite numbers.
+  bool numbers(const std::string& key, std::vector<double>& out);
+  /// A child mapping (empty when absent).
+  YamlMap map(const std::string& key);
+  /// The keys of this mapping in file order (for user-named entries such as segments).
+  std::vector<std::string> keys() const;
+  /// The raw node of a key, for structures a caller parses itself.
+  YAML::Node node(const std::string& key);
+
+  /// Throws for the first key that was never read.
+  void finish() const;
+
+  /// Throws InputError "FILE:LINE: key 'prefix.key': what".
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const;
+  [[noreturn]] void fail_node(const YAML::Node& at, const std::string& key,
+                              const std::string& what) const;
+  std::string path_of(const std::string& key) const;
+  const std::string& file() const { return file_; }
+
+ private:
+  YAML::Node node_;
+  std::string file_;
+  std::string prefix_;
+  std::set<std::string> read_;
+};
+
+/// Parses a YAML scalar as a finite double; nullopt-like false when it is not one.
+bool parse_finite(const std::string& text, double& out);
+
+}  // namespace msislab::io

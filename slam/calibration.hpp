@@ -1,0 +1,57 @@
+// Sensor mounts and the local world frame of a dataset: the plain struct behind calibration.yaml.
+// Defaults are the St. Pere calibration verified against GPS (../shared/datasets/stpere/README.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+
+namespace msislab {
+
+/// Heading unit (MRU/MTi): vehicle yaw psi = pi/2 - (yaw_mru - yaw_offset), in radians.
+struct MruMount {
+  double yaw_offset_deg = 86.0;  ///< MTi yaw reading when the vehicle points north, deg
+};
+
+/// DVL: bottom velocity in the vehicle frame = Rz(yaw) [vx, vy]_dvl, measured at [x, y].
+struct DvlMount {
+  double yaw_deg = 293.5;  ///< rotation from the DVL frame to the vehicle frame, deg
+  double x_m = 0.0;        ///< lever arm, vehicle frame, m
+  double y_m = 0.0;        ///< lever arm, vehicle frame, m
+};
+
+/// Sonar head: bearing in the vehicle frame = bearing_offset + bearing_sign x transducer angle.
+struct SonarMount {
+  double x_m = 0.33;                 ///< head position, vehicle frame, m
+  double y_m = 0.0;                  ///< head position, vehicle frame, m
+  double bearing_offset_rad = M_PI;  ///< vehicle bearing of transducer angle 0, rad
+  double bearing_sign = -1.0;        ///< +1 or -1 (the St. Pere head is mounted reversed)
+};
+
+/// The local world frame: x East, y North in metres of UTM (zone from the origin's longitude),
+/// relative to the origin. The St. Pere default origin is the first GPS fix of the dataset.
+struct LocalFrame {
+  double origin_latitude_deg = 42.0 + 12.225 / 60.0;
+  double origin_longitude_deg = 3.0 + 6.2832 / 60.0;
+};
+
+struct Calibration {
+  MruMount mru;
+  DvlMount dvl;
+  SonarMount sonar;
+  LocalFrame frame;
+};
+
+/// Vehicle yaw (rad, counter-clockwise from East) from an MRU yaw reading (deg, clockwise).
+double vehicle_yaw_from_mru(double yaw_mru_deg, const MruMount& mount);
+
+/// MRU yaw reading (deg, in (-180, 180]) that the mount reports for a vehicle yaw: the inverse of
+/// vehicle_yaw_from_mru, used by the simulator.
+double mru_yaw_from_vehicle(double yaw_vehicle_rad, const MruMount& mount);
+
+/// Rotation from the DVL frame to the vehicle frame.
+Eigen::Matrix2d R_vehicle_dvl(const DvlMount& mount);
+
+/// Bearing of a sonar beam in the vehicle frame from the transducer angle.
+double sonar_bearing_in_vehicle(double transducer_angle_rad, const SonarMount& mount);
+
+}  // namespace msislab

@@ -1,0 +1,177 @@
+#include "slam/dead_reckoning.hpp"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "slam/se2.hpp"
+
+namespace msislab {
+
+DeadReckoningEkf::DeadReckoningEkf(const DeadReckoningConfig& config,
+                                   const Eigen::Vector2d& p_vehicle_dvl_m,
+                                   const StampedPose& initial)
+    : config_(config), p_vehicle_dvl_m_(p_vehicle_dvl_m), t_s_(initial.t_s) {
+  x_.head<3>() = initial.pose.mean.vector();
+  P_.topLeftCorner<3, 3>() = initial.pose.cov;
+  const double sv2 = config.initial_velocity_sigma_mps * config.initial_velocity_sigma_mps;
+  const double sr2 = config.initial_yaw_rate_sigma_radps * config.initial_yaw_rate_sigma_radps;
+  P_.bottomRightCorner<3, 3>().diagonal() << sv2, sv2, sr2;
+}
+
+void DeadReckoningEkf::predict(double t_s) {
+  const double dt = t_s - t_s_;
+  if (!(dt > 0.0)) return;
+  const double yaw = x_(2), u = x_(3), v = x_(4), r = x_(5);
+  const double c = std::cos(yaw), s = std::sin(yaw);
+  // x+ = x + R(yaw) [u v]^T dt, yaw+ = yaw + r dt, [u v r] constant (Ribas 2008, Sec. 3.1).
+  Matrix6d F = Matrix6d::Identity();
+  F(0, 2) = -(u * s + v * c) * dt;
+  F(1, 2) = (u * c - v * s) * dt;
+  F(0, 3) = c * dt;
+  F(0, 4) = -s * dt;
+  F(1, 3) = s * dt;
+  F(1, 4) = c * dt;
+  F(2, 5) = dt;
+  x_(0) += (u * c - v * s) * dt;
+  x_(1) += (u * s + v * c) * dt;
+  x_(2) = normalize_angle(yaw + r * dt);
+
+  // Continuous white acceleration noise, integrated exactly over dt: per axis q [dt^3/3, dt^2/2;
+  // dt^2/2, dt]. The surge/sway noise is isotropic, so the world-frame position block stays q I
+  // and the position-velocity block is q dt^2/2 R(yaw).
+  const double qa = config_.accel_sigma_mps2 * config_.accel_sigma_mps2;
+  const double qr = config_.yaw_accel_sigma_radps2 * config_.yaw_accel_sigma_radps2;
+  const double dt2 = dt * dt, dt3 = dt2 * dt;
+  Matrix6d Q = Matrix6d::Zero();
+  Q.block<2, 2>(0, 0) = qa * dt3 / 3.0 * Eigen::Matrix2d::Identity();
+  Q.block<2, 2>(0, 3) = qa * dt2 / 2.0 * Pose2(0.0, 0.0, yaw).rotation();
+  Q.block<2, 2>(3, 0) = Q.block<2, 2>(0, 3).transpose();
+  Q.block<2, 2>(3, 3) = qa * dt * Eigen::Matrix2d::Identity();
+  Q(2, 2) = qr * dt3 / 3.0;
+  Q(2, 5) = Q(5, 2) = qr * dt2 / 2.0;
+  Q(5, 5) = qr * dt;
+  P_ = F * P_ * F.transpose() + Q;
+  t_s_ = t_s;
+}
+
+template <int M>
+double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
+                                const Eigen::Matrix<double, M, 6>& H,
+                                const Eigen::Matrix<double, M, M>& R, double gate_chi2) {
+  // S = H P H^T + R; NIS = nu^T S^-1 nu; K = P H^T S^-1 (M <= 2: closed-form inverse).
+  const Eigen::Matrix<double, M, M> S_inv = (H * P_ * H.transpose() + R).inverse();
+  const double nis = innovation.dot(S_inv * innovation);
+  if (gate_chi2 > 0.0 && nis > gate_chi2) return nis;
+  const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S_inv;
+  x_ += K * innovation;
+  x_(2) = normalize_angle(x_(2));
+  // Joseph form keeps P symmetric and positive definite.
+  const Matrix6d I_KH = Matrix6d::Identity() - K * H;
+  P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
+  return nis;
+}
+
+double DeadReckoningEkf::update_dvl(const DvlVelocity& dvl) {
+  predict(dvl.t_s);
+  // z = [u - r y_dvl, v + r x_dvl]: the vehicle velocity seen at the DVL's lever arm.
+  Eigen::Matrix<double, 2, 6> H = Eigen::Matrix<double, 2, 6>::Zero();
+  H(0, 3) = 1.0;
+  H(0, 5) = -p_vehicle_dvl_m_.y();
+  H(1, 4) = 1.0;
+  H(1, 5) = p_vehicle_dvl_m_.x();
+  const Eigen::Vector2d innovation = dvl.v_vehicle_mps - H * x_;
+  const Eigen::Matrix2d R =
+      config_.dvl_sigma_mps * config_.dvl_sigma_mps * Eigen::Matrix2d::Identity();
+  return update<2>(innovation, H, R, config_.dvl_gate_chi2);
+}
+
+double DeadReckoningEkf::update_heading(const HeadingReading& heading) {
+  predict(heading.t_s);
+  Eigen::Matrix<double, 1, 6> H = Eigen::Matrix<double, 1, 6>::Zero();
+  H(0, 2) = 1.0;
+  const Eigen::Matrix<double, 1, 1> innovation(normalize_angle(heading.yaw_rad - x_(2)));
+  const Eigen::Matrix<double, 1, 1> R(config_.heading_sigma_rad * config_.heading_sigma_rad);
+  return update<1>(innovation, H, R, 0.0);
+}
+
+StampedPose DeadReckoningEkf::pose() const {
+  StampedPose out;
+  out.t_s = t_s_;
+  out.pose.mean = Pose2(x_(0), x_(1), x_(2));
+  out.pose.cov = P_.topLeftCorner<3, 3>();
+  return out;
+}
+
+DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadReckoningConfig& config,
+                                       const Eigen::Vector2d& p_vehicle_dvl_m,
+                                       const StampedPose& initial) {
+  DeadReckoningResult result;
+  DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
+  result.trajectory.push_back(ekf.pose());
+  auto record = [&] {
+    if (ekf.time() > result.trajectory.back().t_s) result.trajectory.push_back(ekf.pose());
+  };
+  std::size_t i_dvl = 0, i_heading = 0;
+  while (i_dvl < log.dvl.size() || i_heading < log.heading.size()) {
+    const bool dvl_next =
+        i_heading == log.heading.size() ||
+        (i_dvl < log.dvl.size() && log.dvl[i_dvl].t_s <= log.heading[i_heading].t_s);
+    if (dvl_next) {
+      const DvlVelocity& dvl = log.dvl[i_dvl++];
+      if (dvl.t_s < initial.t_s) continue;
+      const double nis = ekf.update_dvl(dvl);
+      if (config.dvl_gate_chi2 > 0.0 && nis > config.dvl_gate_chi2) {
+        ++result.dvl_rejected;
+      } else {
+        ++result.dvl_used;
+        result.dvl_mean_nis += nis;
+      }
+    } else {
+      const HeadingReading& heading = log.heading[i_heading++];
+      if (heading.t_s < initial.t_s) continue;
+      result.heading_mean_nis += ekf.update_heading(heading);
+      ++result.heading_used;
+    }
+    record();
+  }
+  if (result.dvl_used) result.dvl_mean_nis /= result.dvl_used;
+  if (result.heading_used) result.heading_mean_nis /= result.heading_used;
+  return result;
+}
+
+}  // namespace msislab
+
+namespace msislab {
+
+namespace {
+const HeadingReading& nearest_heading(const std::vector<HeadingReading>& heading, double t_s) {
+  auto it = std::lower_bound(heading.begin(), heading.end(), t_s,
+                             [](const HeadingReading& h, double t) { return h.t_s < t; });
+  if (it == heading.end()) return heading.back();
+  if (it != heading.begin() && t_s - std::prev(it)->t_s < it->t_s - t_s) --it;
+  return *it;
+}
+}  // namespace
+
+std::vector<StampedPose> integrate_velocities(const NavigationLog& log,
+                                              const Eigen::Vector2d& /*p_vehicle_dvl_m*/,
+                                              const StampedPose& initial) {
+  std::vector<StampedPose> trajectory = {initial};
+  if (log.heading.empty()) return trajectory;
+  Eigen::Vector2d p_world_m = initial.pose.mean.translation();
+  for (std::size_t i = 0; i + 1 < log.dvl.size(); ++i) {
+    const double t0 = std::max(log.dvl[i].t_s, initial.t_s);
+    const double t1 = log.dvl[i + 1].t_s;
+    if (t1 <= t0) continue;
+    const double yaw = nearest_heading(log.heading, t0).yaw_rad;
+    p_world_m += Pose2(0.0, 0.0, yaw).rotation() * log.dvl[i].v_vehicle_mps * (t1 - t0);
+    StampedPose pose;
+    pose.t_s = t1;
+    pose.pose.mean = Pose2(p_world_m.x(), p_world_m.y(), nearest_heading(log.heading, t1).yaw_rad);
+    trajectory.push_back(pose);
+  }
+  return trajectory;
+}
+
+}  // namespace msislab

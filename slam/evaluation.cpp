@@ -1,0 +1,74 @@
+#include "slam/evaluation.hpp"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+namespace msislab {
+
+Pose2 interpolate_pose(const std::vector<StampedPose>& trajectory, double t_s) {
+  assert(!trajectory.empty());
+  auto after = std::lower_bound(trajectory.begin(), trajectory.end(), t_s,
+                                [](const StampedPose& p, double t) { return p.t_s < t; });
+  if (after == trajectory.begin()) return after->pose.mean;
+  if (after == trajectory.end()) return trajectory.back().pose.mean;
+  const Pose2& a = std::prev(after)->pose.mean;
+  const Pose2& b = after->pose.mean;
+  const double span_s = after->t_s - std::prev(after)->t_s;
+  const double w = span_s > 0.0 ? (t_s - std::prev(after)->t_s) / span_s : 1.0;
+  const Eigen::Vector3d d = pose_difference(b, a);
+  return Pose2(a.vector() + w * d);
+}
+
+std::vector<ErrorSample> position_errors(const std::vector<StampedPose>& estimate,
+                                         const std::vector<PositionFix>& truth) {
+  std::vector<ErrorSample> errors;
+  if (estimate.empty()) return errors;
+  const double t_begin = estimate.front().t_s, t_end = estimate.back().t_s;
+  for (const PositionFix& fix : truth) {
+    if (fix.t_s < t_begin || fix.t_s > t_end) continue;
+    const Pose2 p = interpolate_pose(estimate, fix.t_s);
+    errors.push_back({fix.t_s, (p.translation() - fix.p_world_m).norm()});
+  }
+  return errors;
+}
+
+std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors) {
+  if (errors.empty()) return std::nullopt;
+  ErrorStats stats;
+  stats.count = errors.size();
+  std::vector<double> values;
+  values.reserve(errors.size());
+  double sum = 0.0, sum_sq = 0.0;
+  for (const ErrorSample& e : errors) {
+    values.push_back(e.error_m);
+    sum += e.error_m;
+    sum_sq += e.error_m * e.error_m;
+  }
+  const double n = static_cast<double>(values.size());
+  stats.mean_m = sum / n;
+  stats.rmse_m = std::sqrt(sum_sq / n);
+  stats.max_m = *std::max_element(values.begin(), values.end());
+  stats.final_m = errors.back().error_m;
+  std::sort(values.begin(), values.end());
+  const std::size_t mid = values.size() / 2;
+  stats.median_m = values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+  return stats;
+}
+
+std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors, double t0_s,
+                                         const TimeSegment& segment) {
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const ErrorSample& e : errors) {
+    const double t_rel = e.t_s - t0_s;
+    if (t_rel >= segment.begin_s && t_rel < segment.end_s) {
+      sum += e.error_m;
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / static_cast<double>(count);
+}
+
+}  // namespace msislab

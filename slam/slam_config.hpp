@@ -1,0 +1,16 @@
+// The SLAM configuration (--config SLAM.yaml): plain structs with defaults, parsed once by io/.
+#pragma once
+
+#include <vector>
+
+#include "slam/dead_reckoning.hpp"
+#include "slam/evaluation.hpp"
+
+namespace msislab {
+
+struct SlamConfig {
+  DeadReckoningConfig dead_reckoning;
+  std::vector<TimeSegment> segments;  ///< named windows scored separately in metrics.json
+};
+
+}  // namespace msislab

@@ -1,19 +1,16 @@
 #include "io/results.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "io/atomic_file.hpp"
+#include "io/text_lines.hpp"
 #include "io/tum.hpp"
 
 namespace msislab::io {
 
 std::string json_number(double value) {
-  if (!std::isfinite(value)) return "null";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
+  return std::isfinite(value) ? format_number(value) : "null";
 }
 
 std::string json_string(const std::string& text) {

@@ -19,7 +19,7 @@ YAML::Node load_yaml_file(const std::string& path) {
   }
 }
 
-bool parse_finite(const std::string& text, double& out) {
+bool parse_finite_scalar(const std::string& text, double& out) {
   const char* begin = text.data();
   const char* end = begin + text.size();
   if (begin != end && *begin == '+') ++begin;
@@ -65,7 +65,7 @@ bool YamlMap::number(const std::string& key, double& out) {
   read_.insert(key);
   if (!has(key)) return false;
   const YAML::Node value = node_[key];
-  if (!value.IsScalar() || !parse_finite(value.Scalar(), out)) {
+  if (!value.IsScalar() || !parse_finite_scalar(value.Scalar(), out)) {
     fail_node(value, key,
               "expected a finite number, got '" +
                   (value.IsScalar() ? value.Scalar() : std::string("a structure")) + "'");
@@ -108,7 +108,7 @@ bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
   out.clear();
   for (const YAML::Node& item : value) {
     double x = 0.0;
-    if (!item.IsScalar() || !parse_finite(item.Scalar(), x)) {
+    if (!item.IsScalar() || !parse_finite_scalar(item.Scalar(), x)) {
       fail_node(item, key, "expected finite numbers in the list");
     }
     out.push_back(x);

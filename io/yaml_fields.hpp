@@ -52,7 +52,7 @@ class YamlMap {
   std::set<std::string> read_;
 };
 
-/// Parses a YAML scalar as a finite double; nullopt-like false when it is not one.
-bool parse_finite(const std::string& text, double& out);
+/// Parses a YAML scalar as a finite double; false when it is not one.
+bool parse_finite_scalar(const std::string& text, double& out);
 
 }  // namespace msislab::io

@@ -1,0 +1,161 @@
+#include "io/text_lines.hpp"
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <system_error>
+
+#include "io/input_error.hpp"
+
+namespace msislab::io {
+namespace {
+
+// Long tokens are cut so that one bad field cannot flood the one-line error message.
+std::string quoted(std::string_view token) {
+  constexpr std::size_t kMaxShown = 40;
+  if (token.size() <= kMaxShown) return "'" + std::string(token) + "'";
+  return "'" + std::string(token.substr(0, kMaxShown)) + "...'";
+}
+
+// Digits and letters fail the first comparison, which keeps the split loop cheap.
+bool is_blank(char c) {
+  return static_cast<unsigned char>(c) <= ' ' && (c == ' ' || c == '\t' || c == '\r');
+}
+
+// Splits on runs of blanks; a trailing '\r' (CRLF files) counts as a blank.
+void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+  fields.clear();
+  const char* p = line.data();
+  const char* const end = p + line.size();
+  while (p < end) {
+    while (p < end && is_blank(*p)) ++p;
+    const char* const start = p;
+    while (p < end && !is_blank(*p)) ++p;
+    if (p > start) fields.emplace_back(start, static_cast<std::size_t>(p - start));
+  }
+}
+
+}  // namespace
+
+void fail_field(const FieldAt& at, std::string_view token, const std::string& what) {
+  fail_at(at.path, at.line,
+          "field " + std::to_string(at.field) + " (" + std::string(at.column) + ") " +
+              quoted(token) + " " + what);
+}
+
+double parse_finite(std::string_view token, const FieldAt& at) {
+  double value = 0.0;
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  if (ec == std::errc::result_out_of_range && ptr == end) fail_field(at, token, "is out of range");
+  if (ec != std::errc() || ptr != end) fail_field(at, token, "is not a number");
+  if (!std::isfinite(value)) fail_field(at, token, "is not finite");
+  return value;
+}
+
+std::int64_t parse_integer(std::string_view token, const FieldAt& at) {
+  std::int64_t value = 0;
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  if (ec == std::errc::result_out_of_range && ptr == end) fail_field(at, token, "is out of range");
+  if (ec != std::errc() || ptr != end) fail_field(at, token, "is not an integer");
+  return value;
+}
+
+std::string read_whole_file(const std::string& path) {
+  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
+                                                             &std::fclose);
+  if (!file) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+  std::error_code ec;
+  const auto size_hint = std::filesystem::file_size(path, ec);
+  std::string text;
+  if (!ec) text.reserve(static_cast<std::size_t>(size_hint));
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  while (true) {
+    const std::size_t old_size = text.size();
+    text.resize(old_size + kChunk);
+    const std::size_t got = std::fread(text.data() + old_size, 1, kChunk, file.get());
+    text.resize(old_size + got);
+    if (got < kChunk) break;
+  }
+  if (std::ferror(file.get())) fail_file(path, std::string("cannot read: ") + std::strerror(errno));
+  return text;
+}
+
+DataLines::DataLines(std::string path, char comment)
+    : path_(std::move(path)), text_(read_whole_file(path_)), comment_(comment) {}
+
+bool DataLines::next() {
+  while (offset_ < text_.size()) {
+    const std::size_t newline = text_.find('\n', offset_);
+    const std::size_t end = newline == std::string::npos ? text_.size() : newline;
+    const std::string_view line(text_.data() + offset_, end - offset_);
+    offset_ = end + 1;
+    ++line_number_;
+    std::size_t first = 0;
+    while (first < line.size() && is_blank(line[first])) ++first;
+    if (first == line.size() || line[first] == comment_) continue;
+    split_fields(line.substr(first), fields_);
+    return true;
+  }
+  fields_.clear();
+  return false;
+}
+
+double DataLines::number(std::size_t index, std::string_view column) const {
+  return parse_finite(fields_[index], FieldAt{path_, line_number_, index + 1, column});
+}
+
+void DataLines::expect_columns(std::size_t expected) const {
+  if (fields_.size() != expected) fail(column_count_error(expected, fields_.size()));
+}
+
+void DataLines::fail(const std::string& what) const { fail_at(path_, line_number_, what); }
+
+// A step back means a corrupt or concatenated file; equal times (two sensor rows logged in one
+// clock tick) are allowed.
+void check_time_order(const DataLines& lines, double previous_s, double t_s) {
+  if (t_s < previous_s)
+    lines.fail("time goes backwards (" + format_number(t_s) + " after " +
+               format_number(previous_s) + ")");
+}
+
+void require_data_rows(const std::string& path, std::size_t rows) {
+  if (rows == 0) fail_file(path, "no data rows (empty file?)");
+}
+
+std::string column_count_error(std::size_t expected, std::size_t got) {
+  const std::string counts =
+      "expected " + std::to_string(expected) + " columns, got " + std::to_string(got);
+  return (got < expected ? "truncated line: " : "too many columns: ") + counts;
+}
+
+void append_number(std::string& out, double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  out.append(buffer, result.ptr);
+}
+
+std::string format_number(double value) {
+  std::string text;
+  append_number(text, value);
+  return text;
+}
+
+void check_finite(double value, const std::string& path, std::size_t row, std::string_view column) {
+  if (std::isfinite(value)) return;
+  fail_file(path, "row " + std::to_string(row) + ": " + std::string(column) + " is not finite (" +
+                      format_number(value) + "), cannot write it");
+}
+
+void append_finite(std::string& out, double value, const std::string& path, std::size_t row,
+                   std::string_view column) {
+  check_finite(value, path, row, column);
+  append_number(out, value);
+}
+
+}  // namespace msislab::io

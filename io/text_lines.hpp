@@ -1,0 +1,88 @@
+// The whitespace-separated text formats of the .log files: a fast line reader that yields the
+// fields of each data line, number parsing that names the file, line and column on any error, and
+// shortest round-trip number formatting for the writers.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace msislab::io {
+
+/// Where a field came from, for error messages: "file:line: field 5 (bottomVelX) ...".
+struct FieldAt {
+  const std::string& path;
+  std::size_t line = 0;     ///< 1-based line in the file
+  std::size_t field = 0;    ///< 1-based field on the line
+  std::string_view column;  ///< name of the column
+};
+
+/// Throws InputError "file:line: field 5 (bottomVelX) 'abc' <what>" (long tokens are cut).
+[[noreturn]] void fail_field(const FieldAt& at, std::string_view token, const std::string& what);
+/// Parses the whole token as a finite double; otherwise InputError ("is not a number", "is not
+/// finite", "is out of range").
+double parse_finite(std::string_view token, const FieldAt& at);
+/// Parses the whole token as a decimal integer; otherwise InputError ("is not an integer").
+std::int64_t parse_integer(std::string_view token, const FieldAt& at);
+
+/// Reads the whole file into memory; a missing or unreadable file is an InputError.
+std::string read_whole_file(const std::string& path);
+
+/// The data lines of a text file: skips blank lines and lines whose first non-blank character is
+/// the comment character, strips a trailing '\r' and splits on runs of spaces and tabs.
+class DataLines {
+ public:
+  explicit DataLines(std::string path, char comment = '%');
+  // The fields point into the text this object holds.
+  DataLines(const DataLines&) = delete;
+  DataLines& operator=(const DataLines&) = delete;
+
+  /// Advances to the next data line; false at the end of the file.
+  bool next();
+
+  const std::string& path() const { return path_; }
+  std::size_t line_number() const { return line_number_; }
+  std::size_t size() const { return fields_.size(); }
+  std::string_view field(std::size_t index) const { return fields_[index]; }
+
+  /// Field index (0-based) as a finite double; column names it in the error message.
+  double number(std::size_t index, std::string_view column) const;
+  /// Fails unless the line has exactly `expected` fields ("truncated line" when fewer).
+  void expect_columns(std::size_t expected) const;
+  /// Throws InputError("path:line: what").
+  [[noreturn]] void fail(const std::string& what) const;
+
+ private:
+  std::string path_;
+  std::string text_;
+  char comment_;
+  std::size_t offset_ = 0;
+  std::size_t line_number_ = 0;
+  std::vector<std::string_view> fields_;
+};
+
+/// Rows of a log are in logging order: InputError "time goes backwards (t after previous)" when
+/// t_s < previous_s.
+void check_time_order(const DataLines& lines, double previous_s, double t_s);
+
+/// InputError "path: no data rows (empty file?)" when rows is zero.
+void require_data_rows(const std::string& path, std::size_t rows);
+
+/// The column-count error text, "truncated line: expected 32 columns, got 17" or
+/// "too many columns: expected 32 columns, got 40".
+std::string column_count_error(std::size_t expected, std::size_t got);
+
+/// The shortest text that reads back as exactly the same double.
+std::string format_number(double value);
+/// Appends the shortest text that reads back as exactly the same double.
+void append_number(std::string& out, double value);
+/// For a writer: a non-finite value is an InputError naming the file, the 1-based data row and the
+/// column.
+void check_finite(double value, const std::string& path, std::size_t row, std::string_view column);
+/// check_finite, then append_number.
+void append_finite(std::string& out, double value, const std::string& path, std::size_t row,
+                   std::string_view column);
+
+}  // namespace msislab::io

@@ -1,0 +1,286 @@
+// calibration.yaml and the SLAM config: defaults when keys are absent, overrides, the exact write ->
+// read round trip, and every class of bad input rejected with "FILE:LINE: key 'a.b': ...".
+#include "io/config_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "io/input_error.hpp"
+#include "test_support.hpp"
+
+namespace msislab::io {
+namespace {
+
+using testing::TempDir;
+using testing::write_text;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kAngleTolerance_rad = 1e-12;
+
+// Expects `read(path)` to throw InputError whose message contains the file, ":LINE:" and, when
+// given, the quoted dotted key.
+template <typename Read>
+void expect_input_error(Read read, const std::string& path, int line, const std::string& key) {
+  try {
+    read(path);
+    ADD_FAILURE() << "no InputError for " << path;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    const std::string where = path + ":" + std::to_string(line) + ":";
+    EXPECT_NE(message.find(where), std::string::npos) << message << "\nexpected " << where;
+    if (!key.empty()) {
+      EXPECT_NE(message.find("key '" + key + "'"), std::string::npos)
+          << message << "\nexpected key '" << key << "'";
+    }
+  }
+}
+
+void expect_bad_calibration(const std::string& text, int line, const std::string& key) {
+  const TempDir dir;
+  const std::string path = write_text(dir.file("calibration.yaml"), text);
+  expect_input_error([](const std::string& p) { read_calibration(p); }, path, line, key);
+}
+
+void expect_bad_slam_config(const std::string& text, int line, const std::string& key) {
+  const TempDir dir;
+  const std::string path = write_text(dir.file("slam.yaml"), text);
+  expect_input_error([](const std::string& p) { read_slam_config(p); }, path, line, key);
+}
+
+// The St. Pere values of slam/calibration.hpp and the dataset README, written out independently.
+void expect_stpere_calibration(const Calibration& c) {
+  EXPECT_EQ(c.mru.yaw_offset_deg, 86.0);
+  EXPECT_EQ(c.dvl.yaw_deg, 293.5);
+  EXPECT_EQ(c.dvl.x_m, 0.0);
+  EXPECT_EQ(c.dvl.y_m, 0.0);
+  EXPECT_EQ(c.sonar.x_m, 0.33);
+  EXPECT_EQ(c.sonar.y_m, 0.0);
+  EXPECT_NEAR(c.sonar.bearing_offset_rad, kPi, kAngleTolerance_rad);
+  EXPECT_EQ(c.sonar.bearing_sign, -1.0);
+  EXPECT_EQ(c.frame.origin_latitude_deg, 42.0 + 12.225 / 60.0);
+  EXPECT_EQ(c.frame.origin_longitude_deg, 3.0 + 6.2832 / 60.0);
+}
+
+TEST(CalibrationYaml, AbsentKeysKeepTheStPereDefaults) {
+  const TempDir dir;
+  expect_stpere_calibration(Calibration{});
+  for (const std::string text : {"", "# only a comment\n", "{}\n", "mru: {}\ndvl:\nsonar: {}\n"}) {
+    expect_stpere_calibration(read_calibration(write_text(dir.file("c.yaml"), text)));
+  }
+}
+
+TEST(CalibrationYaml, PartialOverride) {
+  const TempDir dir;
+  const Calibration c = read_calibration(write_text(dir.file("c.yaml"),
+                                                    "dvl:\n"
+                                                    "  yaw_deg: 290.25\n"
+                                                    "sonar:\n"
+                                                    "  bearing_offset_deg: 90\n"
+                                                    "  bearing_sign: 1\n"
+                                                    "frame: {origin_latitude_deg: -33.5}\n"));
+  EXPECT_EQ(c.dvl.yaw_deg, 290.25);
+  EXPECT_NEAR(c.sonar.bearing_offset_rad, kPi / 2.0, kAngleTolerance_rad);
+  EXPECT_EQ(c.sonar.bearing_sign, 1.0);
+  EXPECT_EQ(c.frame.origin_latitude_deg, -33.5);
+  // Everything not named keeps its default.
+  const Calibration defaults;
+  EXPECT_EQ(c.mru.yaw_offset_deg, defaults.mru.yaw_offset_deg);
+  EXPECT_EQ(c.dvl.x_m, defaults.dvl.x_m);
+  EXPECT_EQ(c.dvl.y_m, defaults.dvl.y_m);
+  EXPECT_EQ(c.sonar.x_m, defaults.sonar.x_m);
+  EXPECT_EQ(c.sonar.y_m, defaults.sonar.y_m);
+  EXPECT_EQ(c.frame.origin_longitude_deg, defaults.frame.origin_longitude_deg);
+}
+
+TEST(CalibrationYaml, WriteReadRoundTrip) {
+  const TempDir dir;
+  Calibration c;
+  c.mru.yaw_offset_deg = -86.123456789012345;
+  c.dvl.yaw_deg = 293.49999999999994;
+  c.dvl.x_m = 0.1 + 0.2;
+  c.dvl.y_m = -1e-17;
+  c.sonar.x_m = 0.33333333333333331;
+  c.sonar.y_m = -0.05;
+  c.sonar.bearing_offset_rad = 2.9876543210987654;
+  c.sonar.bearing_sign = 1.0;
+  c.frame.origin_latitude_deg = -12.345678901234567;
+  c.frame.origin_longitude_deg = 179.99999999999997;
+  const std::string path = dir.file("calibration.yaml");
+  write_calibration(path, c);
+  const Calibration back = read_calibration(path);
+  EXPECT_EQ(back.mru.yaw_offset_deg, c.mru.yaw_offset_deg);
+  EXPECT_EQ(back.dvl.yaw_deg, c.dvl.yaw_deg);
+  EXPECT_EQ(back.dvl.x_m, c.dvl.x_m);
+  EXPECT_EQ(back.dvl.y_m, c.dvl.y_m);
+  EXPECT_EQ(back.sonar.x_m, c.sonar.x_m);
+  EXPECT_EQ(back.sonar.y_m, c.sonar.y_m);
+  // Written in degrees, read back in radians: one conversion each way.
+  EXPECT_NEAR(back.sonar.bearing_offset_rad, c.sonar.bearing_offset_rad, kAngleTolerance_rad);
+  EXPECT_EQ(back.sonar.bearing_sign, c.sonar.bearing_sign);
+  EXPECT_EQ(back.frame.origin_latitude_deg, c.frame.origin_latitude_deg);
+  EXPECT_EQ(back.frame.origin_longitude_deg, c.frame.origin_longitude_deg);
+  // Atomic write: no temporary left beside the file.
+  int files = 0;
+  for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    ++files;
+  }
+  EXPECT_EQ(files, 1);
+}
+
+TEST(CalibrationYaml, UnknownTopLevelKey) {
+  expect_bad_calibration("mru:\n  yaw_offset_deg: 86\nsonr:\n  x_m: 1\n", 3, "sonr");
+}
+
+TEST(CalibrationYaml, UnknownNestedKeyTypo) {
+  expect_bad_calibration("dvl:\n  yaw_dg: 290\n", 2, "dvl.yaw_dg");
+  expect_bad_calibration("mru: {yaw_offset_deg: 86}\n\nframe:\n  origin_lat_deg: 1\n", 4,
+                         "frame.origin_lat_deg");
+}
+
+TEST(CalibrationYaml, NotANumber) {
+  expect_bad_calibration("dvl:\n  x_m: abc\n", 2, "dvl.x_m");
+  expect_bad_calibration("dvl:\n  x_m: 1.5m\n", 2, "dvl.x_m");
+  expect_bad_calibration("dvl:\n  x_m: [1, 2]\n", 2, "dvl.x_m");
+  expect_bad_calibration("mru:\n  yaw_offset_deg: {a: 1}\n", 2, "mru.yaw_offset_deg");
+}
+
+TEST(CalibrationYaml, NonFiniteNumbers) {
+  expect_bad_calibration("sonar:\n  x_m: .nan\n", 2, "sonar.x_m");
+  expect_bad_calibration("sonar:\n  x_m: 0\n  y_m: .inf\n", 3, "sonar.y_m");
+  expect_bad_calibration("sonar:\n  bearing_offset_deg: -.inf\n", 2, "sonar.bearing_offset_deg");
+  expect_bad_calibration("dvl:\n  yaw_deg: 1e400\n", 2, "dvl.yaw_deg");
+}
+
+TEST(CalibrationYaml, BadValues) {
+  expect_bad_calibration("sonar:\n  bearing_sign: 2\n", 2, "sonar.bearing_sign");
+  expect_bad_calibration("sonar:\n  bearing_sign: 0\n", 2, "sonar.bearing_sign");
+  expect_bad_calibration("frame:\n  origin_latitude_deg: 95\n", 2, "frame.origin_latitude_deg");
+  expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2,
+                         "frame.origin_latitude_deg");
+  expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2,
+                         "frame.origin_longitude_deg");
+}
+
+TEST(CalibrationYaml, MalformedSyntaxNamesFileAndLine) {
+  expect_bad_calibration("dvl:\n  yaw_deg: 290\nsonar:\n  x_m: [1, 2\n", 4, "");
+  expect_bad_calibration("dvl:\n  yaw_deg: 290\n x_m: 1\n", 3, "");
+}
+
+TEST(CalibrationYaml, MissingFile) {
+  const TempDir dir;
+  const std::string path = dir.file("absent.yaml");
+  try {
+    read_calibration(path);
+    ADD_FAILURE() << "no InputError for a missing file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+TEST(CalibrationYaml, MappingExpectedButListGiven) {
+  expect_bad_calibration("mru: {}\ndvl: [1, 2]\n", 2, "dvl");
+  expect_bad_calibration("dvl:\n  - yaw_deg: 1\n", 2, "dvl");
+  expect_bad_calibration("dvl: 3\n", 1, "dvl");
+  // The document itself must be a mapping.
+  expect_bad_calibration("- dvl\n- mru\n", 1, "");
+}
+
+TEST(SlamConfigYaml, Defaults) {
+  const TempDir dir;
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"), "# defaults\n"));
+  const DeadReckoningConfig d;
+  EXPECT_EQ(c.dead_reckoning.dvl_sigma_mps, d.dvl_sigma_mps);
+  EXPECT_EQ(c.dead_reckoning.heading_sigma_rad, d.heading_sigma_rad);
+  EXPECT_EQ(c.dead_reckoning.accel_sigma_mps2, d.accel_sigma_mps2);
+  EXPECT_EQ(c.dead_reckoning.yaw_accel_sigma_radps2, d.yaw_accel_sigma_radps2);
+  EXPECT_EQ(c.dead_reckoning.initial_velocity_sigma_mps, d.initial_velocity_sigma_mps);
+  EXPECT_EQ(c.dead_reckoning.initial_yaw_rate_sigma_radps, d.initial_yaw_rate_sigma_radps);
+  EXPECT_EQ(c.dead_reckoning.dvl_gate_chi2, d.dvl_gate_chi2);
+  EXPECT_TRUE(c.segments.empty());
+}
+
+TEST(SlamConfigYaml, DeadReckoningKeysOverride) {
+  const TempDir dir;
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "dead_reckoning:\n"
+                                                   "  dvl_sigma_mps: 0.05\n"
+                                                   "  heading_sigma_deg: 2\n"
+                                                   "  accel_sigma_mps2: 0.125\n"
+                                                   "  yaw_accel_sigma_radps2: 0.5\n"
+                                                   "  initial_velocity_sigma_mps: 1.5\n"
+                                                   "  initial_yaw_rate_sigma_radps: 0.25\n"
+                                                   "  dvl_gate_chi2: 13.82\n"));
+  EXPECT_EQ(c.dead_reckoning.dvl_sigma_mps, 0.05);
+  EXPECT_NEAR(c.dead_reckoning.heading_sigma_rad, 2.0 * kPi / 180.0, 1e-15);
+  EXPECT_EQ(c.dead_reckoning.accel_sigma_mps2, 0.125);
+  EXPECT_EQ(c.dead_reckoning.yaw_accel_sigma_radps2, 0.5);
+  EXPECT_EQ(c.dead_reckoning.initial_velocity_sigma_mps, 1.5);
+  EXPECT_EQ(c.dead_reckoning.initial_yaw_rate_sigma_radps, 0.25);
+  EXPECT_EQ(c.dead_reckoning.dvl_gate_chi2, 13.82);
+}
+
+TEST(SlamConfigYaml, HeadingSigmaDegreesBecomeRadians) {
+  const TempDir dir;
+  for (const double deg : {0.5, 1.0, 10.0, 180.0}) {
+    const std::string text = "dead_reckoning: {heading_sigma_deg: " + std::to_string(deg) + "}\n";
+    const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"), text));
+    EXPECT_NEAR(c.dead_reckoning.heading_sigma_rad, deg * kPi / 180.0, 1e-15) << deg;
+    // Only the heading sigma changes.
+    EXPECT_EQ(c.dead_reckoning.dvl_sigma_mps, DeadReckoningConfig{}.dvl_sigma_mps);
+  }
+}
+
+TEST(SlamConfigYaml, SegmentsInFileOrder) {
+  const TempDir dir;
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "segments:\n"
+                                                   "  zeta: [0, 1800]\n"
+                                                   "  alpha: [1800, 3300.5]\n"
+                                                   "  mid: [-5, 1e3]\n"));
+  ASSERT_EQ(c.segments.size(), 3u);
+  EXPECT_EQ(c.segments[0].name, "zeta");
+  EXPECT_EQ(c.segments[0].begin_s, 0.0);
+  EXPECT_EQ(c.segments[0].end_s, 1800.0);
+  EXPECT_EQ(c.segments[1].name, "alpha");
+  EXPECT_EQ(c.segments[1].begin_s, 1800.0);
+  EXPECT_EQ(c.segments[1].end_s, 3300.5);
+  EXPECT_EQ(c.segments[2].name, "mid");
+  EXPECT_EQ(c.segments[2].begin_s, -5.0);
+  EXPECT_EQ(c.segments[2].end_s, 1000.0);
+}
+
+TEST(SlamConfigYaml, BadSegments) {
+  expect_bad_slam_config("segments:\n  loop: [0, 10]\n  back: [5, 1]\n", 3, "segments.back");
+  expect_bad_slam_config("segments:\n  same: [5, 5]\n", 2, "segments.same");
+  expect_bad_slam_config("segments:\n  one: [5]\n", 2, "segments.one");
+  expect_bad_slam_config("segments:\n  three: [1, 2, 3]\n", 2, "segments.three");
+  expect_bad_slam_config("segments:\n  words: all of it\n", 2, "segments.words");
+  expect_bad_slam_config("segments:\n  mixed: [0, end]\n", 2, "segments.mixed");
+  expect_bad_slam_config("segments:\n  nan: [0, .nan]\n", 2, "segments.nan");
+  expect_bad_slam_config("segments: [0, 10]\n", 1, "segments");
+}
+
+TEST(SlamConfigYaml, NonPositiveSigmasRejected) {
+  for (const std::string key :
+       {"dvl_sigma_mps", "heading_sigma_deg", "accel_sigma_mps2", "yaw_accel_sigma_radps2",
+        "initial_velocity_sigma_mps", "initial_yaw_rate_sigma_radps"}) {
+    SCOPED_TRACE(key);
+    expect_bad_slam_config("dead_reckoning:\n  " + key + ": 0\n", 2, "dead_reckoning." + key);
+    expect_bad_slam_config("dead_reckoning:\n\n  " + key + ": -1.5\n", 3,
+                           "dead_reckoning." + key);
+  }
+}
+
+TEST(SlamConfigYaml, UnknownAndMistypedKeys) {
+  expect_bad_slam_config("dead_reckoning:\n  dvl_sigma: 0.1\n", 2, "dead_reckoning.dvl_sigma");
+  expect_bad_slam_config("segment:\n  a: [0, 1]\n", 1, "segment");
+  expect_bad_slam_config("dead_reckoning:\n  dvl_sigma_mps: fast\n", 2,
+                         "dead_reckoning.dvl_sigma_mps");
+  expect_bad_slam_config("dead_reckoning: [1]\n", 1, "dead_reckoning");
+}
+
+}  // namespace
+}  // namespace msislab::io

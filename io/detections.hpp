@@ -9,13 +9,13 @@
 namespace msislab::io {
 
 struct DetectionRecord {
-  std::int32_t keyframe = 0;       ///< revolution index, 1-based
-  std::int64_t beam_row = 0;       ///< 0-based row of the beam in *_IS_timestamps.log
+  std::int32_t keyframe = 0;  ///< revolution index, 1-based
+  std::int64_t beam_row = 0;  ///< 0-based row of the beam in *_IS_timestamps.log
   double t_log_s = 0.0;
   std::int64_t sensor_time_ms = 0;
-  std::int32_t angle_idx = 0;      ///< transducer step, 0..199
-  double angle_rad = 0.0;          ///< transducer angle
-  double range_m = 0.0;            ///< range of the detected bin
+  std::int32_t angle_idx = 0;  ///< transducer step, 0..199
+  double angle_rad = 0.0;      ///< transducer angle
+  double range_m = 0.0;        ///< range of the detected bin
   bool operator==(const DetectionRecord&) const;
 };
 

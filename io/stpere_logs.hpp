@@ -16,15 +16,15 @@ namespace msislab::io {
 /// One row of *_DVL.log (SonTek DVL), 32 columns (33 when the [idSensor] column is filled).
 struct DvlRecord {
   double t_log_s = 0.0;
-  std::array<double, 6> dvl_clock{};            ///< year, month, day, hour, minute, second
-  std::array<double, 3> water_vel_cm_s{};       ///< DVL frame
+  std::array<double, 6> dvl_clock{};       ///< year, month, day, hour, minute, second
+  std::array<double, 3> water_vel_cm_s{};  ///< DVL frame
   double water_vel_status = 0.0;
-  std::array<double, 3> bottom_vel_cm_s{};      ///< DVL frame
-  double bottom_vel_status = 0.0;               ///< 1 = valid bottom lock
+  std::array<double, 3> bottom_vel_cm_s{};  ///< DVL frame
+  double bottom_vel_status = 0.0;           ///< 1 = valid bottom lock
   std::array<double, 3> range_bottom_m{};
   std::array<double, 3> amplitude{};
   double percent_good_pings = 0.0;
-  double heading_deg = 0.0;                     ///< the DVL's internal compass
+  double heading_deg = 0.0;  ///< the DVL's internal compass
   double pitch_deg = 0.0;
   double roll_deg = 0.0;
   double temperature_c = 0.0;
@@ -51,9 +51,9 @@ struct MtiRecord {
 /// nmea_to_degrees() converts.
 struct GpsRecord {
   double t_log_s = 0.0;
-  double latitude_nmea = 0.0;    ///< ddmm.mmmm, negative = south
-  double longitude_nmea = 0.0;   ///< dddmm.mmmm, negative = west
-  double status = 0.0;           ///< 1 = GPS, 2 = DGPS
+  double latitude_nmea = 0.0;   ///< ddmm.mmmm, negative = south
+  double longitude_nmea = 0.0;  ///< dddmm.mmmm, negative = west
+  double status = 0.0;          ///< 1 = GPS, 2 = DGPS
   double altitude_m = 0.0;
   double geoid_altitude_m = 0.0;
   double true_course_deg = 0.0;
@@ -76,7 +76,7 @@ struct SonarBeamRecord {
   double t_log_s = 0.0;
   double sensor_time_ms = 0.0;
   double transducer_angle_rad = 0.0;
-  std::vector<std::uint8_t> intensity;   ///< 0..255 per bin; every row has the same count
+  std::vector<std::uint8_t> intensity;  ///< 0..255 per bin; every row has the same count
   bool operator==(const SonarBeamRecord&) const;
 };
 

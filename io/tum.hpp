@@ -12,7 +12,7 @@ struct TumPose {
   double x_m = 0.0;
   double y_m = 0.0;
   double z_m = 0.0;
-  double yaw_rad = 0.0;   ///< from the quaternion's rotation about z
+  double yaw_rad = 0.0;  ///< from the quaternion's rotation about z
 };
 
 /// Reads a TUM file; the yaw is extracted from the quaternion (which is normalised first; a zero

@@ -14,7 +14,7 @@
 namespace msislab {
 
 struct DeadReckoningConfig {
-  double dvl_sigma_mps = 0.2;         ///< DVL bottom-velocity white noise per axis, m/s
+  double dvl_sigma_mps = 0.2;               ///< DVL bottom-velocity white noise per axis, m/s
   double heading_sigma_rad = M_PI / 180.0;  ///< heading white noise, rad (1 deg)
   /// Surge/sway acceleration noise density, m/s^2/sqrt(Hz). 0.05 makes the mean DVL NIS on the
   /// St. Pere logs 1.97 (expected 2): the filter follows the velocity without lagging it.

@@ -73,7 +73,7 @@ RunOutcome run(const RunOptions& options) {
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
   if (options.method == "integration") {
-    dr.trajectory = integrate_velocities(navigation, p_vehicle_dvl_m, start);
+    dr.trajectory = integrate_velocities(navigation, start);
   } else {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
   }

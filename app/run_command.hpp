@@ -2,6 +2,7 @@
 // and writes its result directory (docs/formats.md).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 

@@ -155,7 +155,6 @@ const HeadingReading& nearest_heading(const std::vector<HeadingReading>& heading
 }  // namespace
 
 std::vector<StampedPose> integrate_velocities(const NavigationLog& log,
-                                              const Eigen::Vector2d& /*p_vehicle_dvl_m*/,
                                               const StampedPose& initial) {
   std::vector<StampedPose> trajectory = {initial};
   if (log.heading.empty()) return trajectory;

@@ -85,8 +85,6 @@ namespace msislab {
 
 /// The reference baseline: plain integration of the DVL velocities, each held until the next DVL
 /// sample and rotated by the heading reading nearest in time. No covariance (zero).
-std::vector<StampedPose> integrate_velocities(const NavigationLog& log,
-                                              const Eigen::Vector2d& p_vehicle_dvl_m,
-                                              const StampedPose& initial);
+std::vector<StampedPose> integrate_velocities(const NavigationLog& log, const StampedPose& initial);
 
 }  // namespace msislab

@@ -2,7 +2,7 @@
 // 2 on bad input with one line on stderr naming the file, line or key (docs/cli.md).
 #include <CLI/CLI.hpp>
 
-#include <cstdio>
+#include <iomanip>
 #include <iostream>
 
 #include "app/run_command.hpp"
@@ -56,9 +56,9 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << run_options.out_dir << "/trajectory.tum ("
                 << outcome.trajectory.size() << " poses)";
       if (outcome.metrics) {
-        std::printf("; mean error %.3f m against %s, metrics.json", outcome.metrics->errors.mean_m,
-                    outcome.metrics->truth.c_str());
-        std::fflush(stdout);
+        std::cout << std::fixed << std::setprecision(3) << "; mean error "
+                  << outcome.metrics->errors.mean_m << " m against " << outcome.metrics->truth
+                  << ", metrics.json";
       }
       std::cout << std::endl;
     }

@@ -151,7 +151,7 @@ TEST(DeadReckoning, ConsistentWhenTheModelHolds) {
 TEST(DeadReckoning, PlainIntegrationFollowsTheVelocities) {
   DeadReckoningConfig c;
   const Simulation sim = simulate(c, 200.0, 3, {0, 0}, 0.0);
-  const auto trajectory = integrate_velocities(sim.log, {0, 0}, start_of(sim, c));
+  const auto trajectory = integrate_velocities(sim.log, start_of(sim, c));
   ASSERT_EQ(trajectory.size(), sim.log.dvl.size());
   std::vector<StampedPose> truth;
   for (const TruthState& t : sim.truth) truth.push_back({t.t_s, {t.pose}});

@@ -25,15 +25,15 @@ int utm_epsg_for(double latitude_deg, double longitude_deg) {
 }
 }  // namespace
 
-LocalProjection::LocalProjection(const LocalFrame& frame)
-    : proj_(std::make_unique<Proj>()),
-      utm_epsg_(utm_epsg_for(frame.origin_latitude_deg, frame.origin_longitude_deg)) {
+LocalProjection::LocalProjection(const LocalFrame& frame) : proj_(std::make_unique<Proj>()) {
   const std::string where = "local frame origin (" + std::to_string(frame.origin_latitude_deg) +
                             ", " + std::to_string(frame.origin_longitude_deg) + ")";
   if (!(std::abs(frame.origin_latitude_deg) <= 84.0) ||
       !(std::abs(frame.origin_longitude_deg) <= 180.0)) {
     throw InputError(where + ": outside the UTM latitude/longitude range");
   }
+  // Plain 6-degree zones: the Norway/Svalbard exceptions do not matter for a local metric frame.
+  utm_epsg_ = utm_epsg_for(frame.origin_latitude_deg, frame.origin_longitude_deg);
   proj_->context = proj_context_create();
   const std::string utm = "EPSG:" + std::to_string(utm_epsg_);
   PJ* raw = proj_create_crs_to_crs(proj_->context, "EPSG:4326", utm.c_str(), nullptr);

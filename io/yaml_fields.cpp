@@ -34,15 +34,35 @@ YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string prefix)
     fail_at(file_, static_cast<std::size_t>(node_.Mark().line + 1),
             where + ": expected a mapping of keys");
   }
+  // yaml-cpp keeps repeated keys and lookups return the first: reject them here, or the second
+  // occurrence (and any typo inside it) would be ignored silently.
+  std::set<std::string> seen;
+  if (node_ && node_.IsMap()) {
+    for (const auto& item : node_) {
+      if (!seen.insert(item.first.Scalar()).second) {
+        fail_node(item.first, item.first.Scalar(), "duplicate key");
+      }
+    }
+  }
 }
 
 std::string YamlMap::path_of(const std::string& key) const {
   return prefix_.empty() ? key : prefix_ + "." + key;
 }
 
+int YamlMap::key_line(const std::string& key) const {
+  if (node_ && node_.IsMap()) {
+    for (const auto& item : node_) {
+      if (item.first.Scalar() == key) return item.first.Mark().line;
+    }
+  }
+  return node_ ? node_.Mark().line : -1;
+}
+
 void YamlMap::fail_node(const YAML::Node& at, const std::string& key,
                         const std::string& what) const {
-  const int line = at ? at.Mark().line : (node_ ? node_.Mark().line : -1);
+  // An empty value's mark points past its key, so empty and absent values use the key's line.
+  const int line = at && !at.IsNull() ? at.Mark().line : key_line(key);
   const std::string msg = "key '" + path_of(key) + "': " + what;
   if (line >= 0) fail_at(file_, static_cast<std::size_t>(line + 1), msg);
   fail_file(file_, msg);
@@ -50,6 +70,12 @@ void YamlMap::fail_node(const YAML::Node& at, const std::string& key,
 
 void YamlMap::fail(const std::string& key, const std::string& what) const {
   fail_node(has(key) ? node_[key] : YAML::Node(), key, what);
+}
+
+std::string describe(const YAML::Node& value) {
+  if (value.IsNull()) return "an empty value";
+  if (value.IsScalar()) return "'" + value.Scalar() + "'";
+  return value.IsSequence() ? "a list" : "a mapping";
 }
 
 bool YamlMap::has(const std::string& key) const {
@@ -66,9 +92,7 @@ bool YamlMap::number(const std::string& key, double& out) {
   if (!has(key)) return false;
   const YAML::Node value = node_[key];
   if (!value.IsScalar() || !parse_finite_scalar(value.Scalar(), out)) {
-    fail_node(value, key,
-              "expected a finite number, got '" +
-                  (value.IsScalar() ? value.Scalar() : std::string("a structure")) + "'");
+    fail_node(value, key, "expected a finite number, got " + describe(value));
   }
   return true;
 }
@@ -95,7 +119,7 @@ bool YamlMap::text(const std::string& key, std::string& out) {
   read_.insert(key);
   if (!has(key)) return false;
   const YAML::Node value = node_[key];
-  if (!value.IsScalar()) fail_node(value, key, "expected a text value");
+  if (!value.IsScalar()) fail_node(value, key, "expected a text value, got " + describe(value));
   out = value.Scalar();
   return true;
 }
@@ -104,7 +128,8 @@ bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
   read_.insert(key);
   if (!has(key)) return false;
   const YAML::Node value = node_[key];
-  if (!value.IsSequence()) fail_node(value, key, "expected a list of numbers");
+  if (!value.IsSequence())
+    fail_node(value, key, "expected a list of numbers, got " + describe(value));
   out.clear();
   for (const YAML::Node& item : value) {
     double x = 0.0;

@@ -43,6 +43,8 @@ class YamlMap {
   [[noreturn]] void fail_node(const YAML::Node& at, const std::string& key,
                               const std::string& what) const;
   std::string path_of(const std::string& key) const;
+  /// 0-based line of a key in the file (of the mapping when the key is absent; -1 when unknown).
+  int key_line(const std::string& key) const;
   const std::string& file() const { return file_; }
 
  private:
@@ -51,6 +53,9 @@ class YamlMap {
   std::string prefix_;
   std::set<std::string> read_;
 };
+
+/// How a value reads in an error message: 'text', an empty value, a list or a mapping.
+std::string describe(const YAML::Node& value);
 
 /// Parses a YAML scalar as a finite double; false when it is not one.
 bool parse_finite_scalar(const std::string& text, double& out);

@@ -1,5 +1,5 @@
-// calibration.yaml and the SLAM config: defaults when keys are absent, overrides, the exact write ->
-// read round trip, and every class of bad input rejected with "FILE:LINE: key 'a.b': ...".
+// calibration.yaml and the SLAM config: defaults when keys are absent, overrides, the exact write
+// -> read round trip, and every class of bad input rejected with "FILE:LINE: key 'a.b': ...".
 #include "io/config_yaml.hpp"
 
 #include <gtest/gtest.h>
@@ -158,15 +158,31 @@ TEST(CalibrationYaml, BadValues) {
   expect_bad_calibration("sonar:\n  bearing_sign: 2\n", 2, "sonar.bearing_sign");
   expect_bad_calibration("sonar:\n  bearing_sign: 0\n", 2, "sonar.bearing_sign");
   expect_bad_calibration("frame:\n  origin_latitude_deg: 95\n", 2, "frame.origin_latitude_deg");
-  expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2,
-                         "frame.origin_latitude_deg");
-  expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2,
-                         "frame.origin_longitude_deg");
+  expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2, "frame.origin_latitude_deg");
+  expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2, "frame.origin_longitude_deg");
 }
 
 TEST(CalibrationYaml, MalformedSyntaxNamesFileAndLine) {
-  expect_bad_calibration("dvl:\n  yaw_deg: 290\nsonar:\n  x_m: [1, 2\n", 4, "");
   expect_bad_calibration("dvl:\n  yaw_deg: 290\n x_m: 1\n", 3, "");
+  expect_bad_calibration("dvl:\n  yaw_deg: 290\n\tx_m: 1\n", 3, "");
+  expect_bad_calibration("mru: {}\ndvl:\n  yaw_deg: [1, 2]]\n", 3, "");
+  expect_bad_calibration("mru:\n  yaw_offset_deg: 86\n  - 2\n", 3, "");
+}
+
+// BUG (io/yaml_fields.cpp, YamlMap::finish and YamlMap::number): a repeated key is accepted and
+// the first occurrence silently wins, so a second value, or a whole repeated section with a typo
+// inside it, is never read nor checked. YAML requires unique keys; these must be InputErrors.
+TEST(CalibrationYaml, DuplicateKeysAreRejected) {
+  SCOPED_TRACE("BUG: duplicate keys are silently accepted (first occurrence wins)");
+  expect_bad_calibration("dvl:\n  yaw_deg: 10\n  yaw_deg: 20\n", 3, "dvl.yaw_deg");
+  expect_bad_calibration("dvl: {}\ndvl:\n  yaw_dg: 1\n", 2, "dvl");
+}
+
+// BUG (io/yaml_fields.cpp, YamlMap::fail_node): an empty value ("x_m:" with nothing after it) is
+// reported at the line of the next token, not at the key's line, and as "a structure".
+TEST(CalibrationYaml, EmptyValueIsReportedAtItsKeysLine) {
+  SCOPED_TRACE("BUG: an empty value is reported at the next line");
+  expect_bad_calibration("dvl:\n  x_m:\n  y_m: 0.5\n", 2, "dvl.x_m");
 }
 
 TEST(CalibrationYaml, MissingFile) {
@@ -263,14 +279,20 @@ TEST(SlamConfigYaml, BadSegments) {
   expect_bad_slam_config("segments: [0, 10]\n", 1, "segments");
 }
 
+// BUG (io/config_yaml.cpp, read_segments, with YamlMap::numbers): a repeated segment name gives
+// two segments that both carry the first window; the second window is silently lost.
+TEST(SlamConfigYaml, DuplicateSegmentNamesAreRejected) {
+  SCOPED_TRACE("BUG: a repeated segment name is accepted with the first window twice");
+  expect_bad_slam_config("segments:\n  a: [0, 10]\n  a: [20, 30]\n", 3, "segments.a");
+}
+
 TEST(SlamConfigYaml, NonPositiveSigmasRejected) {
   for (const std::string key :
        {"dvl_sigma_mps", "heading_sigma_deg", "accel_sigma_mps2", "yaw_accel_sigma_radps2",
         "initial_velocity_sigma_mps", "initial_yaw_rate_sigma_radps"}) {
     SCOPED_TRACE(key);
     expect_bad_slam_config("dead_reckoning:\n  " + key + ": 0\n", 2, "dead_reckoning." + key);
-    expect_bad_slam_config("dead_reckoning:\n\n  " + key + ": -1.5\n", 3,
-                           "dead_reckoning." + key);
+    expect_bad_slam_config("dead_reckoning:\n\n  " + key + ": -1.5\n", 3, "dead_reckoning." + key);
   }
 }
 

@@ -1,0 +1,136 @@
+// The msislab executable as a user runs it: help, exit status 0 on success and 2 on bad input,
+// with exactly one stderr line "msislab: ..." naming the file and line (docs/interfaces.md).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include "synthetic_dataset.hpp"
+#include "test_support.hpp"
+
+namespace msislab {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_text;
+using testing::TempDir;
+
+struct Result {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (const char ch : text) quoted += (ch == '\'') ? std::string("'\\''") : std::string(1, ch);
+  return quoted + "'";
+}
+
+// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
+Result run_msislab(const std::string& args, const TempDir& tmp) {
+  const std::string out = tmp.file("stdout.txt");
+  const std::string err = tmp.file("stderr.txt");
+  const std::string command = shell_quote(MSISLAB_EXE) + " " + args + " >" + shell_quote(out) +
+                              " 2>" + shell_quote(err) + " </dev/null";
+  const int status = std::system(command.c_str());
+  Result result;
+  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  result.out = read_text(out);
+  result.err = read_text(err);
+  return result;
+}
+
+// Exactly one line on stderr, starting "msislab: ".
+void expect_one_error_line(const Result& result) {
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_FALSE(result.err.empty() || result.err.back() != '\n') << result.err;
+  EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
+}
+
+TEST(Cli, HelpListsTheRunCommand) {
+  const TempDir tmp;
+  const Result result = run_msislab("--help", tmp);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("run"), std::string::npos) << result.out;
+}
+
+TEST(Cli, RunHelpDescribesItsOptions) {
+  const TempDir tmp;
+  const Result result = run_msislab("run --help", tmp);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  for (const char* option : {"--method", "--out", "--config", "DATASET_DIR"}) {
+    EXPECT_NE(result.out.find(option), std::string::npos) << option << "\n" << result.out;
+  }
+}
+
+TEST(Cli, NoArgumentsIsBadInput) {
+  const TempDir tmp;
+  const Result result = run_msislab("", tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  expect_one_error_line(result);
+}
+
+TEST(Cli, UnknownOptionIsBadInput) {
+  const TempDir tmp;
+  const Result result = run_msislab(
+      "run " + shell_quote(tmp.file("d")) + " --method deadreckoning --out o --frobnicate 3", tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  expect_one_error_line(result);
+  EXPECT_NE(result.err.find("frobnicate"), std::string::npos) << result.err;
+}
+
+TEST(Cli, MissingDatasetDirectory) {
+  const TempDir tmp;
+  const std::string missing = tmp.file("no_such_dataset");
+  const std::string out = tmp.file("out");
+  const Result result = run_msislab(
+      "run " + shell_quote(missing) + " --method deadreckoning --out " + shell_quote(out), tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  expect_one_error_line(result);
+  EXPECT_NE(result.err.find(missing), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(fs::path(out) / "trajectory.tum"));
+}
+
+TEST(Cli, TruncatedLogNamesFileAndLine) {
+  const TempDir tmp;
+  const fs::path dataset = tmp.path() / "dataset";
+  testing::SyntheticOptions options;
+  options.duration_s = 20.0;
+  testing::write_synthetic_dataset(dataset, options);
+  const std::string dvl = (dataset / "synth_DVL.log").string();
+  const std::size_t line = testing::truncate_last_line(dvl);
+  const std::string out = tmp.file("out");
+  const Result result = run_msislab(
+      "run " + shell_quote(dataset.string()) + " --method deadreckoning --out " + shell_quote(out),
+      tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  expect_one_error_line(result);
+  EXPECT_NE(result.err.find(dvl + ":" + std::to_string(line) + ":"), std::string::npos)
+      << result.err << "expected " << dvl << ":" << line << ":";
+  EXPECT_FALSE(fs::exists(fs::path(out) / "trajectory.tum"));
+}
+
+TEST(Cli, GoodDatasetRunsAndWritesResults) {
+  const TempDir tmp;
+  const fs::path dataset = tmp.path() / "dataset";
+  testing::SyntheticOptions options;
+  options.duration_s = 60.0;
+  testing::write_synthetic_dataset(dataset, options);
+  const fs::path out = tmp.path() / "out";
+  const Result result =
+      run_msislab("run " + shell_quote(dataset.string()) + " --method deadreckoning --out " +
+                      shell_quote(out.string()),
+                  tmp);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << result.err;
+  EXPECT_NE(result.out.find("trajectory.tum"), std::string::npos) << result.out;
+  EXPECT_TRUE(fs::is_regular_file(out / "trajectory.tum"));
+  EXPECT_TRUE(fs::is_regular_file(out / "metrics.json"));
+}
+
+}  // namespace
+}  // namespace msislab

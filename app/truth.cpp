@@ -22,17 +22,6 @@ Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration) 
   return truth;
 }
 
-namespace {
-/// Heading reading nearest to t_s.
-double heading_at(const std::vector<HeadingReading>& heading, double t_s) {
-  auto it = std::lower_bound(heading.begin(), heading.end(), t_s,
-                             [](const HeadingReading& h, double t) { return h.t_s < t; });
-  if (it == heading.end()) return heading.back().yaw_rad;
-  if (it != heading.begin() && t_s - std::prev(it)->t_s < it->t_s - t_s) --it;
-  return it->yaw_rad;
-}
-}  // namespace
-
 StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
                          const std::string& dataset_dir, double heading_sigma_rad) {
   if (navigation.heading.empty()) io::fail_file(dataset_dir, "the MRU log has no heading rows");
@@ -56,8 +45,8 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
     return start;
   }
   start.t_s = fix->t_s;
-  start.pose.mean =
-      Pose2(fix->p_world_m.x(), fix->p_world_m.y(), heading_at(navigation.heading, fix->t_s));
+  start.pose.mean = Pose2(fix->p_world_m.x(), fix->p_world_m.y(),
+                          nearest_heading(navigation.heading, fix->t_s).yaw_rad);
   return start;
 }
 

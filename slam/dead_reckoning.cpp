@@ -144,16 +144,6 @@ DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadRecko
 
 namespace msislab {
 
-namespace {
-const HeadingReading& nearest_heading(const std::vector<HeadingReading>& heading, double t_s) {
-  auto it = std::lower_bound(heading.begin(), heading.end(), t_s,
-                             [](const HeadingReading& h, double t) { return h.t_s < t; });
-  if (it == heading.end()) return heading.back();
-  if (it != heading.begin() && t_s - std::prev(it)->t_s < it->t_s - t_s) --it;
-  return *it;
-}
-}  // namespace
-
 std::vector<StampedPose> integrate_velocities(const NavigationLog& log,
                                               const StampedPose& initial) {
   std::vector<StampedPose> trajectory = {initial};

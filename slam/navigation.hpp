@@ -26,4 +26,8 @@ struct NavigationLog {
   int dvl_rows_without_bottom_lock = 0;  ///< DVL rows dropped when the log was read
 };
 
+/// The heading reading nearest in time to t_s (ties go to the earlier). Requires a non-empty,
+/// time-ordered list.
+const HeadingReading& nearest_heading(const std::vector<HeadingReading>& heading, double t_s);
+
 }  // namespace msislab

@@ -5,17 +5,54 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/config_fields.hpp"
 #include "io/input_error.hpp"
-#include "io/yaml_fields.hpp"
 
 namespace msislab::io {
 
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
+}  // namespace
 
 void require_positive(YamlMap& map, const std::string& key, double value) {
   if (!(value > 0.0)) map.fail(key, "must be > 0, got " + std::to_string(value));
 }
+
+void read_mru_mount(YamlMap& map, MruMount& mount) {
+  map.number("yaw_offset_deg", mount.yaw_offset_deg);
+}
+
+void read_dvl_mount(YamlMap& map, DvlMount& mount) {
+  map.number("yaw_deg", mount.yaw_deg);
+  map.number("x_m", mount.x_m);
+  map.number("y_m", mount.y_m);
+}
+
+void read_sonar_mount(YamlMap& map, SonarMount& mount) {
+  map.number("x_m", mount.x_m);
+  map.number("y_m", mount.y_m);
+  map.number("z_m", mount.z_m);
+  double bearing_offset_deg = mount.bearing_offset_rad / kDegToRad;
+  if (map.number("bearing_offset_deg", bearing_offset_deg)) {
+    mount.bearing_offset_rad = bearing_offset_deg * kDegToRad;
+  }
+  if (map.number("bearing_sign", mount.bearing_sign) && std::abs(mount.bearing_sign) != 1.0) {
+    map.fail("bearing_sign", "must be 1 or -1");
+  }
+}
+
+void read_local_frame(YamlMap& map, LocalFrame& frame) {
+  map.number("origin_latitude_deg", frame.origin_latitude_deg);
+  map.number("origin_longitude_deg", frame.origin_longitude_deg);
+  if (std::abs(frame.origin_latitude_deg) > 84.0) {
+    map.fail("origin_latitude_deg", "outside the UTM range [-84, 84]");
+  }
+  if (std::abs(frame.origin_longitude_deg) > 180.0) {
+    map.fail("origin_longitude_deg", "outside [-180, 180]");
+  }
+}
+
+namespace {
 
 void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
   map.number("dvl_sigma_mps", c.dvl_sigma_mps);
@@ -37,6 +74,8 @@ void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
   map.finish();
 }
 
+}  // namespace
+
 std::vector<TimeSegment> read_segments(YamlMap map) {
   std::vector<TimeSegment> segments;
   for (const std::string& name : map.keys()) {
@@ -47,41 +86,24 @@ std::vector<TimeSegment> read_segments(YamlMap map) {
     }
     segments.push_back({name, window[0], window[1]});
   }
+  map.finish();
   return segments;
 }
-}  // namespace
 
 Calibration read_calibration(const std::string& path) {
   YamlMap root(load_yaml_file(path), path, "");
   Calibration c;
   YamlMap mru = root.map("mru");
-  mru.number("yaw_offset_deg", c.mru.yaw_offset_deg);
+  read_mru_mount(mru, c.mru);
   mru.finish();
   YamlMap dvl = root.map("dvl");
-  dvl.number("yaw_deg", c.dvl.yaw_deg);
-  dvl.number("x_m", c.dvl.x_m);
-  dvl.number("y_m", c.dvl.y_m);
+  read_dvl_mount(dvl, c.dvl);
   dvl.finish();
   YamlMap sonar = root.map("sonar");
-  sonar.number("x_m", c.sonar.x_m);
-  sonar.number("y_m", c.sonar.y_m);
-  double bearing_offset_deg = c.sonar.bearing_offset_rad / kDegToRad;
-  if (sonar.number("bearing_offset_deg", bearing_offset_deg)) {
-    c.sonar.bearing_offset_rad = bearing_offset_deg * kDegToRad;
-  }
-  if (sonar.number("bearing_sign", c.sonar.bearing_sign) && std::abs(c.sonar.bearing_sign) != 1.0) {
-    sonar.fail("bearing_sign", "must be 1 or -1");
-  }
+  read_sonar_mount(sonar, c.sonar);
   sonar.finish();
   YamlMap frame = root.map("frame");
-  frame.number("origin_latitude_deg", c.frame.origin_latitude_deg);
-  frame.number("origin_longitude_deg", c.frame.origin_longitude_deg);
-  if (std::abs(c.frame.origin_latitude_deg) > 84.0) {
-    frame.fail("origin_latitude_deg", "outside the UTM range [-84, 84]");
-  }
-  if (std::abs(c.frame.origin_longitude_deg) > 180.0) {
-    frame.fail("origin_longitude_deg", "outside [-180, 180]");
-  }
+  read_local_frame(frame, c.frame);
   frame.finish();
   root.finish();
   return c;
@@ -96,7 +118,7 @@ void write_calibration(const std::string& path, const Calibration& c) {
         << "\n  y_m: " << c.dvl.y_m << "\n"
         << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
         << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
-        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n"
+        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m << "\n"
         << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
         << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
   });

@@ -27,8 +27,8 @@ bool parse_finite_scalar(const std::string& text, double& out) {
   return ec == std::errc() && ptr == end && std::isfinite(out);
 }
 
-YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string prefix)
-    : node_(node), file_(std::move(file)), prefix_(std::move(prefix)) {
+YamlMap::YamlMap(const YAML::Node& node, std::string file, std::string prefix, int line)
+    : node_(node), file_(std::move(file)), prefix_(std::move(prefix)), line_(line) {
   if (node_ && !node_.IsNull() && !node_.IsMap()) {
     const std::string where = prefix_.empty() ? "the document" : "key '" + prefix_ + "'";
     fail_at(file_, static_cast<std::size_t>(node_.Mark().line + 1),
@@ -56,7 +56,9 @@ int YamlMap::key_line(const std::string& key) const {
       if (item.first.Scalar() == key) return item.first.Mark().line;
     }
   }
-  return node_ ? node_.Mark().line : -1;
+  // An absent key is reported at its mapping's own key ("vehicle:"), or at the mapping's start.
+  if (line_ >= 0) return line_;
+  return node_ && node_.IsMap() ? node_.Mark().line : -1;
 }
 
 void YamlMap::fail_node(const YAML::Node& at, const std::string& key,
@@ -124,6 +126,18 @@ bool YamlMap::text(const std::string& key, std::string& out) {
   return true;
 }
 
+bool YamlMap::boolean(const std::string& key, bool& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  const std::string text = value.IsScalar() ? value.Scalar() : "";
+  if (text != "true" && text != "false") {
+    fail_node(value, key, "expected true or false, got " + describe(value));
+  }
+  out = text == "true";
+  return true;
+}
+
 bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
   read_.insert(key);
   if (!has(key)) return false;
@@ -143,7 +157,7 @@ bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
 
 YamlMap YamlMap::map(const std::string& key) {
   read_.insert(key);
-  return YamlMap(has(key) ? node_[key] : YAML::Node(), file_, path_of(key));
+  return YamlMap(has(key) ? node_[key] : YAML::Node(), file_, path_of(key), key_line(key));
 }
 
 std::vector<std::string> YamlMap::keys() const {

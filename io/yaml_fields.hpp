@@ -17,7 +17,9 @@ YAML::Node load_yaml_file(const std::string& path);
 class YamlMap {
  public:
   /// node must be a mapping (or null/absent, read as empty). `prefix` is the dotted key path.
-  YamlMap(const YAML::Node& node, std::string file, std::string prefix);
+  /// `line` is the 0-based line of this mapping's own key (used when the mapping is empty or
+  /// absent, since yaml-cpp places an empty value on the line after its key); -1 for the root.
+  YamlMap(const YAML::Node& node, std::string file, std::string prefix, int line = -1);
 
   bool has(const std::string& key) const;
   /// Reads a finite number into out if the key is present; returns whether it was.
@@ -26,6 +28,8 @@ class YamlMap {
   double required_number(const std::string& key);
   bool integer(const std::string& key, long long& out);
   bool text(const std::string& key, std::string& out);
+  /// true/false (YAML 1.2 core spelling only).
+  bool boolean(const std::string& key, bool& out);
   /// A sequence of finite numbers.
   bool numbers(const std::string& key, std::vector<double>& out);
   /// A child mapping (empty when absent).
@@ -52,6 +56,7 @@ class YamlMap {
   std::string file_;
   std::string prefix_;
   std::set<std::string> read_;
+  int line_ = -1;
 };
 
 /// How a value reads in an error message: 'text', an empty value, a list or a mapping.

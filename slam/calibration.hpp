@@ -23,6 +23,7 @@ struct DvlMount {
 struct SonarMount {
   double x_m = 0.33;                 ///< head position, vehicle frame, m
   double y_m = 0.0;                  ///< head position, vehicle frame, m
+  double z_m = 0.0;                  ///< head height above the vehicle origin, m
   double bearing_offset_rad = M_PI;  ///< vehicle bearing of transducer angle 0, rad
   double bearing_sign = -1.0;        ///< +1 or -1 (the St. Pere head is mounted reversed)
 };

@@ -1,0 +1,59 @@
+#include "app/simulate_command.hpp"
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <thread>
+
+#include "io/input_error.hpp"
+#include "io/mesh_io.hpp"
+#include "io/scenario_yaml.hpp"
+#include "io/sim_dataset.hpp"
+#include "sim/simulator.hpp"
+
+namespace msislab::app {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+SimulateSummary simulate(const SimulateOptions& options) {
+  const auto t_start = Clock::now();
+  sim::Scenario scenario = io::read_scenario(options.scenario_path);
+  if (options.seed) scenario.seed = *options.seed;
+  io::MeshMaterials materials{scenario.scene.default_material, scenario.scene.group_materials};
+  const sim::TriangleMesh mesh = io::read_mesh(scenario.scene.mesh_path, materials);
+  std::unique_ptr<sim::Scene> scene;
+  try {
+    scene = std::make_unique<sim::Scene>(mesh, scenario.scene.surface);
+  } catch (const std::exception& e) {
+    io::fail_file(scenario.scene.mesh_path, std::string("cannot build the scene: ") + e.what());
+  }
+  const int threads = options.threads > 0
+                          ? options.threads
+                          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+
+  const auto t_render = Clock::now();
+  const sim::SimulationResult result = sim::simulate(scenario, *scene, threads);
+  SimulateSummary summary;
+  summary.render_s = seconds_since(t_render);
+  io::write_simulated_dataset(options.out_dir, scenario, result, read_text(options.scenario_path));
+  summary.beams = result.beams.size();
+  summary.dvl_samples = result.dvl.size();
+  summary.duration_s = result.truth.end_s() - result.truth.start_s();
+  summary.rays_per_beam = static_cast<std::size_t>(scenario.sonar.rays_horizontal) *
+                          static_cast<std::size_t>(scenario.sonar.rays_vertical);
+  summary.total_s = seconds_since(t_start);
+  return summary;
+}
+
+}  // namespace msislab::app

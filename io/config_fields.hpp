@@ -1,0 +1,28 @@
+// Readers of the YAML sections shared by calibration.yaml, the SLAM config and scenario files.
+// Internal to io/. Each reads the keys it knows into the struct (absent keys keep their values) and
+// leaves finish() to the caller, who may read more keys from the same mapping.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/yaml_fields.hpp"
+#include "slam/calibration.hpp"
+#include "slam/evaluation.hpp"
+
+namespace msislab::io {
+
+/// Fails naming the key unless value > 0.
+void require_positive(YamlMap& map, const std::string& key, double value);
+
+void read_mru_mount(YamlMap& map, MruMount& mount);  ///< yaw_offset_deg
+void read_dvl_mount(YamlMap& map, DvlMount& mount);  ///< yaw_deg, x_m, y_m
+void read_sonar_mount(YamlMap& map,
+                      SonarMount& mount);  ///< x_m, y_m, z_m, bearing_offset_deg, bearing_sign
+void read_local_frame(YamlMap& map,
+                      LocalFrame& frame);  ///< origin_latitude_deg, origin_longitude_deg
+
+/// `name: [begin_s, end_s]` entries in file order; calls finish() on the mapping.
+std::vector<TimeSegment> read_segments(YamlMap map);
+
+}  // namespace msislab::io

@@ -1,0 +1,202 @@
+#include "io/scenario_yaml.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include "io/config_fields.hpp"
+#include "io/input_error.hpp"
+
+namespace msislab::io {
+
+namespace {
+
+int read_count(YamlMap& map, const std::string& key, int value, int min, int max) {
+  long long v = value;
+  map.integer(key, v);
+  if (v < min || v > max) {
+    map.fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  return static_cast<int>(v);
+}
+
+void read_fraction(YamlMap& map, const std::string& key, float& value) {
+  double v = value;
+  map.number(key, v);
+  if (v < 0.0 || v > 1.0) map.fail(key, "must be in [0, 1]");
+  value = static_cast<float>(v);
+}
+
+void read_material(YamlMap map, sim::Material& material) {
+  read_fraction(map, "backscatter", material.backscatter);
+  read_fraction(map, "specular", material.specular);
+  map.finish();
+}
+
+void read_scene(YamlMap map, const std::string& scenario_dir, sim::SceneConfig& scene) {
+  if (!map.has("mesh")) map.fail("mesh", "is required");
+  std::string mesh;
+  map.text("mesh", mesh);
+  scene.mesh_path = (std::filesystem::path(scenario_dir) / mesh).lexically_normal().string();
+  read_fraction(map, "backscatter", scene.default_material.backscatter);
+  read_fraction(map, "specular", scene.default_material.specular);
+  YamlMap groups = map.map("groups");
+  for (const std::string& name : groups.keys()) {
+    sim::Material material = scene.default_material;
+    material.name = name;
+    read_material(groups.map(name), material);
+    scene.group_materials[name] = material;
+  }
+  groups.finish();
+  read_material(map.map("surface"), scene.surface);
+  map.finish();
+}
+
+void read_path(YamlMap& map, std::vector<Eigen::Vector2d>& path) {
+  if (!map.has("path")) map.fail("path", "is required");
+  const YAML::Node node = map.node("path");
+  if (!node.IsSequence()) map.fail_node(node, "path", "expected a list of [x, y] waypoints");
+  path.clear();
+  for (const YAML::Node& item : node) {
+    double x = 0.0, y = 0.0;
+    if (!item.IsSequence() || item.size() != 2 || !item[0].IsScalar() || !item[1].IsScalar() ||
+        !parse_finite_scalar(item[0].Scalar(), x) || !parse_finite_scalar(item[1].Scalar(), y)) {
+      map.fail_node(item, "path", "each waypoint must be [x, y] in metres");
+    }
+    path.emplace_back(x, y);
+  }
+  if (path.size() < 2) map.fail("path", "needs at least 2 waypoints");
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    if ((path[i] - path[i - 1]).norm() == 0.0) map.fail("path", "repeats a waypoint");
+  }
+}
+
+void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
+  v.depth_m = map.required_number("depth_m");
+  v.speed_mps = map.required_number("speed_mps");
+  require_positive(map, "speed_mps", v.speed_mps);
+  if (v.depth_m < 0.0) map.fail("depth_m", "must be >= 0 (metres below the surface)");
+  read_path(map, v.path_m);
+  double length_m = 0.0;
+  for (std::size_t i = 1; i < v.path_m.size(); ++i)
+    length_m += (v.path_m[i] - v.path_m[i - 1]).norm();
+  if (length_m / v.speed_mps > 30.0 * 86400.0) {
+    map.fail("speed_mps", "the path would take over 30 days at this speed");
+  }
+  double turn_rate_deg_s = v.max_turn_rate_radps * 180.0 / M_PI;
+  map.number("max_turn_rate_deg_s", turn_rate_deg_s);
+  require_positive(map, "max_turn_rate_deg_s", turn_rate_deg_s);
+  v.max_turn_rate_radps = turn_rate_deg_s * M_PI / 180.0;
+  map.number("lookahead_m", v.lookahead_m);
+  require_positive(map, "lookahead_m", v.lookahead_m);
+  map.number("start_time_s", v.start_time_s);
+  map.number("step_s", v.step_s);
+  if (!(v.step_s > 0.0 && v.step_s <= 0.1)) map.fail("step_s", "must be in (0, 0.1]");
+  map.finish();
+}
+
+void read_sonar(YamlMap map, sim::SonarConfig& s) {
+  s.steps_per_revolution = read_count(map, "steps_per_revolution", s.steps_per_revolution, 4, 6400);
+  s.bins = read_count(map, "bins", s.bins, 1, 10000);
+  s.rays_horizontal = read_count(map, "rays_horizontal", s.rays_horizontal, 1, 64);
+  s.rays_vertical = read_count(map, "rays_vertical", s.rays_vertical, 1, 256);
+  s.multipath_bounces = read_count(map, "multipath_bounces", s.multipath_bounces, 0, 8);
+  for (auto [key, value] : {std::pair<const char*, double*>{"revolution_s", &s.revolution_s},
+                            {"bin_m", &s.bin_m},
+                            {"horizontal_beamwidth_deg", &s.horizontal_beamwidth_deg},
+                            {"vertical_beamwidth_deg", &s.vertical_beamwidth_deg},
+                            {"sound_speed_mps", &s.sound_speed_mps}}) {
+    map.number(key, *value);
+    require_positive(map, key, *value);
+  }
+  map.number("tilt_deg", s.tilt_deg);
+  map.number("absorption_db_per_m", s.absorption_db_per_m);
+  if (s.absorption_db_per_m < 0.0) map.fail("absorption_db_per_m", "must be >= 0");
+  map.number("gain_db", s.gain_db);
+  map.number("tvg_db_per_decade", s.tvg_db_per_decade);
+  map.number("noise_level_db", s.noise_level_db);
+  map.number("display_min_db", s.display_min_db);
+  map.number("display_max_db", s.display_max_db);
+  if (!(s.display_max_db > s.display_min_db)) {
+    map.fail("display_max_db", "must be above display_min_db");
+  }
+  map.boolean("speckle", s.speckle);
+  map.number("min_range_m", s.min_range_m);
+  YamlMap mount = map.map("mount");
+  read_sonar_mount(mount, s.mount);
+  mount.finish();
+  map.finish();
+}
+
+void read_dvl(YamlMap map, sim::DvlConfig& d) {
+  map.number("rate_hz", d.rate_hz);
+  require_positive(map, "rate_hz", d.rate_hz);
+  map.number("noise_sigma_mps", d.noise_sigma_mps);
+  if (d.noise_sigma_mps < 0.0) map.fail("noise_sigma_mps", "must be >= 0");
+  std::vector<double> bias;
+  if (map.numbers("bias_mps", bias)) {
+    if (bias.size() != 2) map.fail("bias_mps", "expected [x, y] in the DVL frame");
+    d.bias_mps = {bias[0], bias[1]};
+  }
+  map.number("dropout_probability", d.dropout_probability);
+  if (d.dropout_probability < 0.0 || d.dropout_probability > 1.0) {
+    map.fail("dropout_probability", "must be in [0, 1]");
+  }
+  map.number("max_altitude_m", d.max_altitude_m);
+  require_positive(map, "max_altitude_m", d.max_altitude_m);
+  YamlMap mount = map.map("mount");
+  read_dvl_mount(mount, d.mount);
+  mount.finish();
+  map.finish();
+}
+
+void read_mru(YamlMap map, sim::MruConfig& m) {
+  map.number("rate_hz", m.rate_hz);
+  require_positive(map, "rate_hz", m.rate_hz);
+  map.number("heading_noise_deg", m.heading_noise_deg);
+  map.number("bias_initial_deg", m.bias_initial_deg);
+  map.number("bias_random_walk_deg_per_sqrt_s", m.bias_random_walk_deg_per_sqrt_s);
+  if (m.heading_noise_deg < 0.0) map.fail("heading_noise_deg", "must be >= 0");
+  if (m.bias_random_walk_deg_per_sqrt_s < 0.0) {
+    map.fail("bias_random_walk_deg_per_sqrt_s", "must be >= 0");
+  }
+  YamlMap mount = map.map("mount");
+  read_mru_mount(mount, m.mount);
+  mount.finish();
+  map.finish();
+}
+
+void read_gps(YamlMap map, sim::GpsConfig& g) {
+  map.boolean("enabled", g.enabled);
+  map.number("rate_hz", g.rate_hz);
+  require_positive(map, "rate_hz", g.rate_hz);
+  map.number("noise_sigma_m", g.noise_sigma_m);
+  if (g.noise_sigma_m < 0.0) map.fail("noise_sigma_m", "must be >= 0");
+  read_local_frame(map, g.frame);
+  map.finish();
+}
+
+}  // namespace
+
+sim::Scenario read_scenario(const std::string& path) {
+  YamlMap root(load_yaml_file(path), path, "");
+  sim::Scenario s;
+  root.text("name", s.name);
+  long long seed = 0;
+  if (!root.integer("seed", seed)) root.fail("seed", "is required");
+  if (seed < 0) root.fail("seed", "must be >= 0");
+  s.seed = static_cast<std::uint64_t>(seed);
+  if (!root.has("scene")) root.fail("scene", "is required (scene.mesh)");
+  if (!root.has("vehicle")) root.fail("vehicle", "is required (depth_m, speed_mps, path)");
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  read_scene(root.map("scene"), dir, s.scene);
+  read_vehicle(root.map("vehicle"), s.vehicle);
+  s.segments = read_segments(root.map("segments"));
+  read_sonar(root.map("sonar"), s.sonar);
+  read_dvl(root.map("dvl"), s.dvl);
+  read_mru(root.map("mru"), s.mru);
+  read_gps(root.map("gps"), s.gps);
+  root.finish();
+  return s;
+}
+
+}  // namespace msislab::io

@@ -1,0 +1,14 @@
+// Scenario files (YAML): parsed once, strictly, into sim::Scenario. Unknown keys, missing required
+// keys (seed, scene.mesh, vehicle.depth_m, vehicle.speed_mps, vehicle.path), wrong types and bad
+// values fail with "FILE:LINE: key 'a.b': what". Paths are relative to the scenario file.
+#pragma once
+
+#include <string>
+
+#include "sim/scenario.hpp"
+
+namespace msislab::io {
+
+sim::Scenario read_scenario(const std::string& path);
+
+}  // namespace msislab::io

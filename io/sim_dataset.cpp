@@ -1,0 +1,166 @@
+#include "io/sim_dataset.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "io/atomic_file.hpp"
+#include "io/config_yaml.hpp"
+#include "io/geodesy.hpp"
+#include "io/input_error.hpp"
+#include "io/stpere_logs.hpp"
+#include "io/text_lines.hpp"
+#include "io/tum.hpp"
+
+namespace msislab::io {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// File-name prefix from the scenario name: letters, digits, '-' and '_' only.
+std::string prefix_of(const std::string& name) {
+  std::string out;
+  for (const char c : name)
+    out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+  return out.empty() ? "sim" : out;
+}
+
+std::vector<DvlRecord> dvl_records(const std::vector<sim::DvlSample>& samples) {
+  std::vector<DvlRecord> rows;
+  for (const sim::DvlSample& s : samples) {
+    DvlRecord r;  // columns the simulator does not model stay 0
+    r.t_log_s = s.t_s;
+    r.bottom_vel_cm_s = {s.v_dvl_mps.x() * 100.0, s.v_dvl_mps.y() * 100.0, 0.0};
+    r.bottom_vel_status = s.bottom_lock ? 1.0 : 0.0;
+    r.range_bottom_m = {s.altitude_m, s.altitude_m, s.altitude_m};
+    r.percent_good_pings = s.bottom_lock ? 100.0 : 0.0;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::vector<MtiRecord> mti_records(const std::vector<sim::MruSample>& samples) {
+  std::vector<MtiRecord> rows;
+  for (const sim::MruSample& s : samples) {
+    MtiRecord r;
+    r.t_log_s = s.t_s;
+    r.yaw_deg = s.yaw_mru_deg;
+    r.accel_m_s2 = {0.0, 0.0, -9.81};
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::vector<GpsRecord> gps_records(const std::vector<sim::GpsFix>& fixes, const LocalFrame& frame) {
+  const LocalProjection projection(frame);
+  std::vector<GpsRecord> rows;
+  for (const sim::GpsFix& f : fixes) {
+    const auto [latitude_deg, longitude_deg] = projection.to_geodetic(f.p_world_m);
+    GpsRecord r;
+    r.t_log_s = f.t_s;
+    r.latitude_nmea = degrees_to_nmea(latitude_deg);
+    r.longitude_nmea = degrees_to_nmea(longitude_deg);
+    r.status = 1.0;
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+std::vector<SonarBeamRecord> beam_records(const std::vector<sim::RenderedBeam>& beams) {
+  std::vector<SonarBeamRecord> rows;
+  rows.reserve(beams.size());
+  for (const sim::RenderedBeam& b : beams) {
+    // The head's own millisecond clock, counted from the first beam.
+    const double sensor_ms = std::round((b.slot.t_s - beams.front().slot.t_s) * 1000.0);
+    rows.push_back({b.slot.t_s, sensor_ms, b.slot.transducer_angle_rad, b.intensity});
+  }
+  return rows;
+}
+
+std::vector<TumPose> truth_poses(const sim::VehicleTrajectory& truth, double depth_m) {
+  // 10 Hz: every sample whose time is a new tenth of a second from the start.
+  std::vector<TumPose> poses;
+  double next_s = truth.start_s();
+  for (const sim::VehicleState& s : truth.samples()) {
+    if (s.t_s + 1e-9 < next_s) continue;
+    poses.push_back({s.t_s, s.pose.x(), s.pose.y(), -depth_m, s.pose.yaw()});
+    next_s += 0.1;
+  }
+  return poses;
+}
+
+std::string optional_number(const std::optional<double>& value) {
+  return value ? format_number(*value) : std::string();
+}
+
+void write_files(const fs::path& dir, const sim::Scenario& scenario,
+                 const sim::SimulationResult& result, const std::string& scenario_text) {
+  const std::string base = (dir / prefix_of(scenario.name)).string();
+  write_is_log(base + "_IS.log", beam_records(result.beams));
+  write_setup_log(base + "_SETUP.log",
+                  {scenario.sonar.bins * scenario.sonar.bin_m, scenario.sonar.bin_m,
+                   2.0 * M_PI / scenario.sonar.steps_per_revolution});
+  write_dvl_log(base + "_DVL.log", dvl_records(result.dvl));
+  write_mti_log(base + "_MTi.log", mti_records(result.mru));
+  if (scenario.gps.enabled) {
+    write_gps_log(base + "_DGPS.log", gps_records(result.gps, scenario.gps.frame));
+  }
+  write_calibration((dir / "calibration.yaml").string(), sim::calibration_of(scenario));
+  write_file_atomically((dir / "scenario.yaml").string(),
+                        [&](std::ostream& out) { out << scenario_text; });
+  fs::create_directories(dir / "truth");
+  write_tum((dir / "truth" / "trajectory.tum").string(),
+            truth_poses(result.truth, scenario.vehicle.depth_m));
+  write_beam_truth((dir / "truth" / "beams.csv").string(), result.beams);
+}
+
+}  // namespace
+
+void write_beam_truth(const std::string& path, const std::vector<sim::RenderedBeam>& beams) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text =
+        "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,"
+        "strongest_multipath\n";
+    for (const sim::RenderedBeam& b : beams) {
+      const sim::BeamTruth& t = b.truth;
+      for (const double v :
+           {b.slot.t_s, t.vehicle.x(), t.vehicle.y(), t.vehicle.yaw(), t.bearing_vehicle_rad}) {
+        append_number(text, v);
+        text += ',';
+      }
+      text += optional_number(t.first_hit_range_m) + "," + optional_number(t.strongest_range_m) +
+              "," + (t.strongest_is_multipath ? "1" : "0") + "\n";
+    }
+    out << text;
+  });
+}
+
+void write_simulated_dataset(const std::string& dir, const sim::Scenario& scenario,
+                             const sim::SimulationResult& result,
+                             const std::string& scenario_text) {
+  const fs::path target = fs::absolute(dir).lexically_normal();
+  const fs::path parent = target.parent_path();
+  const std::string pid = std::to_string(::getpid());
+  const fs::path partial = parent / ("." + target.filename().string() + ".partial-" + pid);
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  fs::remove_all(partial, ec);
+  if (!fs::create_directory(partial, ec)) {
+    fail_file(dir, "cannot create the output directory: " + ec.message());
+  }
+  try {
+    write_files(partial, scenario, result, scenario_text);
+  } catch (...) {
+    fs::remove_all(partial, ec);
+    throw;
+  }
+  const fs::path old = parent / ("." + target.filename().string() + ".old-" + pid);
+  if (fs::exists(target)) fs::rename(target, old);
+  fs::rename(partial, target);
+  fs::remove_all(old, ec);
+}
+
+}  // namespace msislab::io

@@ -1,0 +1,91 @@
+#include "sim/navigation_sensors.hpp"
+
+#include <cmath>
+#include <random>
+
+#include "sim/random.hpp"
+#include "slam/calibration.hpp"
+
+namespace msislab::sim {
+
+namespace {
+constexpr double kDegToRad = M_PI / 180.0;
+
+/// Sample times t0 + k / rate over the trajectory's span.
+std::vector<double> sample_times(const VehicleTrajectory& truth, double rate_hz) {
+  std::vector<double> times;
+  for (std::uint64_t k = 0;; ++k) {
+    const double t_s = truth.start_s() + static_cast<double>(k) / rate_hz;
+    if (t_s > truth.end_s()) break;
+    times.push_back(t_s);
+  }
+  return times;
+}
+
+double altitude_below(const Scene& scene, const Pose2& pose, double depth_m, double max_m) {
+  Ray down;
+  down.origin_m = Eigen::Vector3f(static_cast<float>(pose.x()), static_cast<float>(pose.y()),
+                                  static_cast<float>(-depth_m));
+  down.direction = -Eigen::Vector3f::UnitZ();
+  down.t_max_m = static_cast<float>(max_m);
+  const RayHit hit = scene.intersect(down);
+  return hit.hit ? hit.distance_m : 0.0;
+}
+}  // namespace
+
+std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
+                                    const Scene& scene, double depth_m, std::uint64_t seed) {
+  std::mt19937_64 rng = make_rng(seed, RandomStream::kDvl, 0);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  std::bernoulli_distribution dropout(dvl.dropout_probability);
+  const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(dvl.mount).transpose();
+  std::vector<DvlSample> samples;
+  for (const double t_s : sample_times(truth, dvl.rate_hz)) {
+    const VehicleState s = truth.at(t_s);
+    DvlSample sample;
+    sample.t_s = t_s;
+    sample.altitude_m = altitude_below(scene, s.pose, depth_m, dvl.max_altitude_m);
+    // Velocity of the DVL's mount point: v + r x p, in the vehicle frame, then the DVL frame.
+    const Eigen::Vector2d v_vehicle(s.surge_mps - s.yaw_rate_radps * dvl.mount.y_m,
+                                    s.sway_mps + s.yaw_rate_radps * dvl.mount.x_m);
+    const Eigen::Vector2d noise(n01(rng), n01(rng));
+    const bool lost = dropout(rng);
+    sample.bottom_lock = !lost && sample.altitude_m > 0.0;
+    if (sample.bottom_lock) {
+      sample.v_dvl_mps = R_dvl_vehicle * v_vehicle + dvl.bias_mps + dvl.noise_sigma_mps * noise;
+    }
+    samples.push_back(sample);
+  }
+  return samples;
+}
+
+std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruConfig& mru,
+                                    std::uint64_t seed) {
+  std::mt19937_64 rng = make_rng(seed, RandomStream::kMru, 0);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  double bias_deg = mru.bias_initial_deg;
+  const double dt_s = 1.0 / mru.rate_hz;
+  std::vector<MruSample> samples;
+  for (const double t_s : sample_times(truth, mru.rate_hz)) {
+    const double error_deg = bias_deg + mru.heading_noise_deg * n01(rng);
+    const double yaw_rad = truth.at(t_s).pose.yaw() + error_deg * kDegToRad;
+    samples.push_back({t_s, mru_yaw_from_vehicle(yaw_rad, mru.mount)});
+    bias_deg += mru.bias_random_walk_deg_per_sqrt_s * std::sqrt(dt_s) * n01(rng);
+  }
+  return samples;
+}
+
+std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig& gps,
+                                 std::uint64_t seed) {
+  std::vector<GpsFix> fixes;
+  if (!gps.enabled) return fixes;
+  std::mt19937_64 rng = make_rng(seed, RandomStream::kGps, 0);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (const double t_s : sample_times(truth, gps.rate_hz)) {
+    const Eigen::Vector2d noise(n01(rng), n01(rng));
+    fixes.push_back({t_s, truth.at(t_s).pose.translation() + gps.noise_sigma_m * noise});
+  }
+  return fixes;
+}
+
+}  // namespace msislab::sim

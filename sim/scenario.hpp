@@ -1,0 +1,96 @@
+// A simulation scenario: plain structs with the St. Pere defaults in place, filled once from the
+// scenario YAML by io/scenario_yaml (docs/simulator.md lists every key).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "sim/mesh.hpp"
+#include "slam/calibration.hpp"
+#include "slam/evaluation.hpp"
+
+namespace msislab::sim {
+
+struct SceneConfig {
+  std::string mesh_path;  ///< resolved against the scenario file's folder
+  Material default_material{"", 0.5f, 0.3f};
+  std::map<std::string, Material> group_materials;  ///< by OBJ group name
+  Material surface{"water_surface", 0.001f, 0.9f};  ///< the z = 0 plane
+};
+
+struct VehicleConfig {
+  double depth_m = 1.5;
+  double speed_mps = 0.2;
+  std::vector<Eigen::Vector2d> path_m;  ///< waypoints in the scene frame, followed in order
+  double max_turn_rate_radps = 0.15;    ///< bound on |yaw rate|
+  double lookahead_m = 3.0;             ///< pure-pursuit carrot distance along the path
+  double start_time_s = 1093455407.0;   ///< log time of the first sample (Unix s)
+  double step_s = 0.01;                 ///< integration step of the truth
+};
+
+struct SonarConfig {
+  int steps_per_revolution = 200;
+  double revolution_s = 13.8;
+  int bins = 500;
+  double bin_m = 0.1;
+  double horizontal_beamwidth_deg = 3.0;  ///< two-way -3 dB full width
+  double vertical_beamwidth_deg = 35.0;   ///< two-way -3 dB full width
+  double tilt_deg = 0.0;                  ///< beam axis below the horizontal, deg
+  int rays_horizontal = 3;                ///< rays across the horizontal aperture
+  int rays_vertical = 24;                 ///< rays across the vertical aperture
+  double sound_speed_mps = 1500.0;
+  double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
+  double gain_db = 50.0;                ///< receiver gain added to the level
+  double tvg_db_per_decade = 30.0;      ///< time-varying gain, dB per decade of range
+  double noise_level_db = -95.0;        ///< background noise power before gain and TVG, dB
+  double display_min_db = 0.0;          ///< level shown as intensity 0
+  double display_max_db = 45.0;         ///< level shown as intensity 255
+  bool speckle = true;                  ///< multiplicative Rayleigh (exponential power) speckle
+  int multipath_bounces = 1;            ///< specular bounces followed per ray
+  double min_range_m = 0.3;             ///< returns closer than this are blanked (ring-down)
+  SonarMount mount;                     ///< head position and bearing convention
+};
+
+struct DvlConfig {
+  double rate_hz = 1.5;
+  double noise_sigma_mps = 0.2;                        ///< white noise per axis (St. Pere: ~0.2)
+  Eigen::Vector2d bias_mps = Eigen::Vector2d::Zero();  ///< constant, DVL frame
+  double dropout_probability = 0.017;                  ///< chance a sample has no bottom lock
+  double max_altitude_m = 30.0;                        ///< no bottom lock above this
+  DvlMount mount;
+};
+
+struct MruConfig {
+  double rate_hz = 10.0;
+  double heading_noise_deg = 0.2;  ///< white noise
+  double bias_initial_deg = 0.0;
+  double bias_random_walk_deg_per_sqrt_s = 0.01;  ///< heading bias random walk density
+  MruMount mount;
+};
+
+struct GpsConfig {
+  bool enabled = true;
+  double rate_hz = 1.0;
+  double noise_sigma_m = 1.5;  ///< white noise per axis
+  LocalFrame frame;            ///< geodetic origin of the scene frame
+};
+
+struct Scenario {
+  std::string name = "scenario";
+  std::uint64_t seed = 0;
+  SceneConfig scene;
+  VehicleConfig vehicle;
+  SonarConfig sonar;
+  DvlConfig dvl;
+  MruConfig mru;
+  GpsConfig gps;
+  std::vector<TimeSegment> segments;
+};
+
+/// The calibration a dataset from this scenario carries (its mounts and frame).
+Calibration calibration_of(const Scenario& scenario);
+
+}  // namespace msislab::sim

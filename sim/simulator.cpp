@@ -1,0 +1,53 @@
+#include "sim/simulator.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+
+#include "sim/random.hpp"
+
+namespace msislab::sim {
+
+Calibration calibration_of(const Scenario& scenario) {
+  Calibration calibration;
+  calibration.mru = scenario.mru.mount;
+  calibration.dvl = scenario.dvl.mount;
+  calibration.sonar = scenario.sonar.mount;
+  calibration.frame = scenario.gps.frame;
+  return calibration;
+}
+
+namespace {
+std::vector<RenderedBeam> render_beams(const Scenario& scenario, const Scene& scene,
+                                       const VehicleTrajectory& truth, int threads) {
+  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+  const std::vector<BeamSlot> slots = beam_schedule(scenario.sonar, truth.start_s(), truth.end_s());
+  std::vector<RenderedBeam> beams(slots.size());
+  // Workers take the next beam from a shared counter; each beam owns its slot in the output and
+  // its random stream, so the bytes do not depend on which worker renders it.
+  std::atomic<std::size_t> next{0};
+  auto work = [&] {
+    for (std::size_t i = next++; i < slots.size(); i = next++) {
+      std::mt19937_64 rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+      beams[i] = model.render(slots[i], truth, rng);
+    }
+  };
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();
+  for (std::thread& worker : workers) worker.join();
+  return beams;
+}
+}  // namespace
+
+SimulationResult simulate(const Scenario& scenario, const Scene& scene, int threads) {
+  VehicleTrajectory truth = follow_path(scenario.vehicle);
+  std::vector<RenderedBeam> beams = render_beams(scenario, scene, truth, std::max(threads, 1));
+  std::vector<DvlSample> dvl =
+      simulate_dvl(truth, scenario.dvl, scene, scenario.vehicle.depth_m, scenario.seed);
+  std::vector<MruSample> mru = simulate_mru(truth, scenario.mru, scenario.seed);
+  std::vector<GpsFix> gps = simulate_gps(truth, scenario.gps, scenario.seed);
+  return {std::move(truth), std::move(beams), std::move(dvl), std::move(mru), std::move(gps)};
+}
+
+}  // namespace msislab::sim

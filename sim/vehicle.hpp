@@ -1,0 +1,38 @@
+// The simulated vehicle: pure-pursuit path following at constant speed and depth with a bounded
+// turn rate, integrated at a fine step into the exact truth trajectory.
+#pragma once
+
+#include <vector>
+
+#include "sim/scenario.hpp"
+#include "slam/se2.hpp"
+
+namespace msislab::sim {
+
+struct VehicleState {
+  double t_s = 0.0;
+  Pose2 pose;              ///< vehicle in the scene frame
+  double surge_mps = 0.0;  ///< u, vehicle frame
+  double sway_mps = 0.0;   ///< v, vehicle frame
+  double yaw_rate_radps = 0.0;
+};
+
+class VehicleTrajectory {
+ public:
+  explicit VehicleTrajectory(std::vector<VehicleState> samples);
+
+  /// The state at t_s (linear between samples, yaw along the short arc); clamped to the span.
+  VehicleState at(double t_s) const;
+  double start_s() const { return samples_.front().t_s; }
+  double end_s() const { return samples_.back().t_s; }
+  const std::vector<VehicleState>& samples() const { return samples_; }
+
+ private:
+  std::vector<VehicleState> samples_;
+};
+
+/// Follows config.path_m (>= 2 waypoints) from the first waypoint, heading along the first leg,
+/// until the last waypoint is reached.
+VehicleTrajectory follow_path(const VehicleConfig& config);
+
+}  // namespace msislab::sim

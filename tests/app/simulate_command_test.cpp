@@ -1,0 +1,546 @@
+// `msislab simulate` end to end on a small box basin: every dataset file read back by the io
+// readers at the St. Pere rates, beam truth against the box's geometry and the rendered echoes,
+// byte-for-byte determinism (same seed, any thread count), dead reckoning on the result, bad input
+// rejected with nothing written, and the command line's exit codes (docs/simulator.md).
+#include "app/simulate_command.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/run_command.hpp"
+#include "io/config_yaml.hpp"
+#include "io/dataset.hpp"
+#include "io/input_error.hpp"
+#include "io/mesh_io.hpp"
+#include "io/scenario_yaml.hpp"
+#include "io/stpere_logs.hpp"
+#include "io/tum.hpp"
+#include "test_support.hpp"
+
+namespace msislab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_text;
+using testing::TempDir;
+using testing::write_text;
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The basin: x in [-20, 20], y in [-10, 10], walls from z = +1 down to the bottom at z = -3.3.
+constexpr double kHalfLength_m = 20.0;
+constexpr double kHalfWidth_m = 10.0;
+constexpr double kBottomZ_m = -3.3;
+
+// A loop 10 + 8 + 10 + 7 = 35 m long at 0.5 m/s (about 65 s), at least 5 m from every wall, whose
+// last leg is long enough after the final corner for the vehicle to reach its end.
+constexpr double kPathLength_m = 35.0;
+constexpr double kSpeed_mps = 0.5;
+constexpr double kStartTime_s = 1093455407.0;  // the default vehicle.start_time_s
+constexpr const char* kScenario =
+    "name: box\n"
+    "seed: 11\n"
+    "scene:\n"
+    "  mesh: box.obj\n"
+    "  groups:\n"
+    "    walls: {backscatter: 0.8, specular: 0.2}\n"
+    "    bottom: {backscatter: 0.3, specular: 0.5}\n"
+    "vehicle:\n"
+    "  depth_m: 1.5\n"
+    "  speed_mps: 0.5\n"
+    "  path: [[-5, -4], [5, -4], [5, 4], [-5, 4], [-5, -3]]\n";
+
+const char* const kDatasetFiles[] = {"box_IS.log",    "box_SETUP.log",        "box_DVL.log",
+                                     "box_MTi.log",   "box_DGPS.log",         "calibration.yaml",
+                                     "scenario.yaml", "truth/trajectory.tum", "truth/beams.csv"};
+
+// The box: 4 walls (2 triangles each, group `walls`) and the bottom (2 triangles, group `bottom`),
+// counter-clockwise seen from inside so every normal faces the water.
+sim::TriangleMesh box_basin() {
+  sim::TriangleMesh mesh;
+  const float x = static_cast<float>(kHalfLength_m), y = static_cast<float>(kHalfWidth_m);
+  const float bottom = static_cast<float>(kBottomZ_m), top = 1.0f;
+  const float corners[4][2] = {{-x, -y}, {x, -y}, {x, y}, {-x, y}};
+  for (const float z : {bottom, top}) {
+    for (const auto& c : corners) mesh.vertices_m.emplace_back(c[0], c[1], z);
+  }
+  mesh.materials = {{"walls", 0.8f, 0.2f}, {"bottom", 0.3f, 0.5f}};
+  mesh.group_names = {"walls", "bottom"};
+  for (int i = 0; i < 4; ++i) {
+    const int j = (i + 1) % 4;  // bottom corners i, j; top corners i + 4, j + 4
+    mesh.triangles.emplace_back(i, i + 4, j + 4);
+    mesh.triangles.emplace_back(i, j + 4, j);
+    mesh.material_ids.insert(mesh.material_ids.end(), 2, 0u);
+  }
+  mesh.triangles.emplace_back(0, 1, 2);
+  mesh.triangles.emplace_back(0, 2, 3);
+  mesh.material_ids.insert(mesh.material_ids.end(), 2, 1u);
+  return mesh;
+}
+
+// Writes box.obj and scenario.yaml (kScenario + extra) into dir; returns the scenario's path.
+std::string write_box_scenario(const fs::path& dir, const std::string& extra = "") {
+  fs::create_directories(dir);
+  io::write_obj((dir / "box.obj").string(), box_basin());
+  return write_text((dir / "scenario.yaml").string(), std::string(kScenario) + extra);
+}
+
+SimulateOptions options_for(const std::string& scenario, const fs::path& out, int threads = 2) {
+  SimulateOptions options;
+  options.scenario_path = scenario;
+  options.out_dir = out.string();
+  options.threads = threads;
+  return options;
+}
+
+// One simulation of the box, shared by the tests that only read it.
+struct BoxDataset {
+  TempDir tmp;
+  std::string scenario;
+  fs::path dir;
+  SimulateSummary summary;
+  BoxDataset() : scenario(write_box_scenario(tmp.path())), dir(tmp.path() / "dataset") {
+    summary = simulate(options_for(scenario, dir));
+  }
+};
+const BoxDataset& box_dataset() {
+  static const BoxDataset dataset;
+  return dataset;
+}
+
+// Every file under dir, relative path -> bytes.
+std::map<std::string, std::string> files_of(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (entry.is_regular_file()) {
+      files[fs::relative(entry.path(), dir).string()] = read_text(entry.path().string());
+    }
+  }
+  return files;
+}
+
+void expect_same_files(const fs::path& a, const fs::path& b) {
+  const auto files_a = files_of(a), files_b = files_of(b);
+  std::vector<std::string> names_a, names_b;
+  for (const auto& [name, bytes] : files_a) names_a.push_back(name);
+  for (const auto& [name, bytes] : files_b) names_b.push_back(name);
+  ASSERT_EQ(names_a, names_b);
+  for (const auto& [name, bytes] : files_a) {
+    EXPECT_TRUE(bytes == files_b.at(name)) << name << " differs between " << a << " and " << b;
+  }
+}
+
+// Samples per second over a stream's span.
+template <typename Row>
+double rate_hz(const std::vector<Row>& rows) {
+  if (rows.size() < 2) return 0.0;
+  return static_cast<double>(rows.size() - 1) / (rows.back().t_log_s - rows.front().t_log_s);
+}
+
+double wrap_angle(double a_rad) { return std::remainder(a_rad, 2.0 * kPi); }
+
+// One row of truth/beams.csv.
+struct BeamRow {
+  double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, bearing_rad = 0.0;
+  std::optional<double> first_hit_range_m, strongest_range_m;
+  bool multipath = false;
+};
+
+std::vector<std::string> split(const std::string& line, char separator) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, separator)) fields.push_back(field);
+  if (!line.empty() && line.back() == separator) fields.emplace_back();
+  return fields;
+}
+
+constexpr const char* kBeamsHeader =
+    "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath";
+
+std::vector<BeamRow> read_beams_csv(const std::string& path) {
+  std::stringstream in(read_text(path));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, kBeamsHeader);
+  std::vector<BeamRow> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = split(line, ',');
+    if (f.size() != 8) {
+      ADD_FAILURE() << path << ": expected 8 columns: " << line;
+      continue;
+    }
+    auto optional = [](const std::string& text) -> std::optional<double> {
+      if (text.empty()) return std::nullopt;
+      return std::stod(text);
+    };
+    EXPECT_TRUE(f[7] == "0" || f[7] == "1") << line;
+    rows.push_back({std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[3]),
+                    std::stod(f[4]), optional(f[5]), optional(f[6]), f[7] == "1"});
+  }
+  return rows;
+}
+
+// Range from the sonar head along a horizontal beam to the first wall of the box.
+double range_to_wall_m(const BeamRow& beam, const SonarMount& mount) {
+  const double c = std::cos(beam.yaw_rad), s = std::sin(beam.yaw_rad);
+  const double hx = beam.x_m + c * mount.x_m - s * mount.y_m;
+  const double hy = beam.y_m + s * mount.x_m + c * mount.y_m;
+  const double dx = std::cos(beam.yaw_rad + beam.bearing_rad);
+  const double dy = std::sin(beam.yaw_rad + beam.bearing_rad);
+  double range_m = 1e300;
+  if (std::abs(dx) > 1e-12)
+    range_m = std::min(range_m, ((dx > 0 ? 1 : -1) * kHalfLength_m - hx) / dx);
+  if (std::abs(dy) > 1e-12)
+    range_m = std::min(range_m, ((dy > 0 ? 1 : -1) * kHalfWidth_m - hy) / dy);
+  return range_m;
+}
+
+TEST(SimulateCommand, WritesEveryFileAndTheReadersReadThemBack) {
+  const BoxDataset& box = box_dataset();
+  for (const char* name : kDatasetFiles) {
+    EXPECT_TRUE(fs::is_regular_file(box.dir / name)) << name;
+  }
+  // Nothing else is left next to the dataset (no temporary or partial folders).
+  std::vector<std::string> siblings;
+  for (const auto& entry : fs::directory_iterator(box.tmp.path())) {
+    siblings.push_back(entry.path().filename().string());
+  }
+  std::sort(siblings.begin(), siblings.end());
+  EXPECT_EQ(siblings, (std::vector<std::string>{"box.obj", "dataset", "scenario.yaml"}));
+
+  const io::DatasetFiles files = io::find_dataset_files(box.dir.string());
+  EXPECT_TRUE(files.is_log && files.setup && files.dvl && files.mti && files.gps &&
+              files.calibration && files.truth_trajectory && files.truth_beams);
+
+  const double duration_s = box.summary.duration_s;
+  std::printf("simulated %.1f s: %zu beams, %zu DVL samples, render %.3f s, total %.3f s\n",
+              duration_s, box.summary.beams, box.summary.dvl_samples, box.summary.render_s,
+              box.summary.total_s);
+  // At constant speed the loop takes its length over the speed, a little less for cut corners.
+  EXPECT_GT(duration_s, 0.85 * kPathLength_m / kSpeed_mps);
+  EXPECT_LT(duration_s, 1.1 * kPathLength_m / kSpeed_mps);
+  EXPECT_EQ(box.summary.rays_per_beam, 3u * 24u);
+
+  // Sonar: one row per beam, 500 bins, the angle stepping down one 1.8 deg step per beam, 200
+  // beams per 13.8 s revolution.
+  const auto beams = io::read_is_log((box.dir / "box_IS.log").string());
+  ASSERT_EQ(beams.size(), box.summary.beams);
+  ASSERT_GT(beams.size(), 200u);
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    ASSERT_EQ(beams[i].intensity.size(), 500u) << "beam " << i;
+    if (i == 0) continue;
+    ASSERT_NEAR(wrap_angle(beams[i].transducer_angle_rad - beams[i - 1].transducer_angle_rad),
+                -2.0 * kPi / 200.0, 1e-9)
+        << "beam " << i;
+  }
+  EXPECT_EQ(beams.front().t_log_s, kStartTime_s);
+  EXPECT_NEAR(rate_hz(beams) * 13.8, 200.0, 1.0);
+  const auto in_first_revolution = std::count_if(beams.begin(), beams.end(), [&](const auto& b) {
+    return b.t_log_s < beams.front().t_log_s + 13.8 - 1e-6;
+  });
+  EXPECT_NEAR(static_cast<double>(in_first_revolution), 200.0, 1.0);
+
+  const io::SonarSetup setup = io::read_setup_log((box.dir / "box_SETUP.log").string());
+  EXPECT_NEAR(setup.range_m, 50.0, 1e-9);
+  EXPECT_NEAR(setup.bin_m, 0.1, 1e-12);
+  EXPECT_NEAR(setup.step_rad, 2.0 * kPi / 200.0, 1e-12);
+
+  const auto dvl = io::read_dvl_log((box.dir / "box_DVL.log").string());
+  EXPECT_EQ(dvl.size(), box.summary.dvl_samples);
+  EXPECT_NEAR(rate_hz(dvl), 1.5, 0.1);
+  const auto mti = io::read_mti_log((box.dir / "box_MTi.log").string());
+  EXPECT_NEAR(rate_hz(mti), 10.0, 0.1);
+  EXPECT_NEAR(static_cast<double>(mti.size()), 10.0 * duration_s, 2.0);
+  const auto gps = io::read_gps_log((box.dir / "box_DGPS.log").string());
+  EXPECT_NEAR(rate_hz(gps), 1.0, 0.05);
+  EXPECT_NEAR(static_cast<double>(gps.size()), duration_s, 2.0);
+
+  // Truth trajectory: at least 10 Hz over the whole run, at the scenario's depth.
+  const auto truth = io::read_tum((box.dir / "truth" / "trajectory.tum").string());
+  ASSERT_GE(truth.size(), 2u);
+  EXPECT_EQ(truth.front().t_s, kStartTime_s);
+  EXPECT_NEAR(truth.back().t_s - truth.front().t_s, duration_s, 0.1);
+  double max_gap_s = 0.0;
+  for (std::size_t i = 1; i < truth.size(); ++i) {
+    max_gap_s = std::max(max_gap_s, truth[i].t_s - truth[i - 1].t_s);
+  }
+  EXPECT_LE(max_gap_s, 0.1 + 1e-6);
+  EXPECT_GE(static_cast<double>(truth.size()), 10.0 * duration_s);
+  EXPECT_EQ(truth.front().z_m, -1.5);
+  EXPECT_NEAR(truth.front().x_m, -5.0, 1e-9);
+  EXPECT_NEAR(truth.front().y_m, -4.0, 1e-9);
+  EXPECT_NEAR(truth.front().yaw_rad, 0.0, 1e-9);
+
+  // calibration.yaml is the scenario's mounts and frame.
+  const Calibration expected = sim::calibration_of(io::read_scenario(box.scenario));
+  const Calibration c = io::read_calibration((box.dir / "calibration.yaml").string());
+  EXPECT_EQ(c.mru.yaw_offset_deg, expected.mru.yaw_offset_deg);
+  EXPECT_EQ(c.dvl.yaw_deg, expected.dvl.yaw_deg);
+  EXPECT_EQ(c.dvl.x_m, expected.dvl.x_m);
+  EXPECT_EQ(c.dvl.y_m, expected.dvl.y_m);
+  EXPECT_EQ(c.sonar.x_m, expected.sonar.x_m);
+  EXPECT_EQ(c.sonar.y_m, expected.sonar.y_m);
+  EXPECT_EQ(c.sonar.z_m, expected.sonar.z_m);
+  EXPECT_NEAR(c.sonar.bearing_offset_rad, expected.sonar.bearing_offset_rad, 1e-12);
+  EXPECT_EQ(c.sonar.bearing_sign, expected.sonar.bearing_sign);
+  EXPECT_EQ(c.frame.origin_latitude_deg, expected.frame.origin_latitude_deg);
+  EXPECT_EQ(c.frame.origin_longitude_deg, expected.frame.origin_longitude_deg);
+
+  EXPECT_EQ(read_text((box.dir / "scenario.yaml").string()), kScenario);
+
+  // beams.csv: one row per beam, at the beams' times.
+  const std::vector<BeamRow> rows = read_beams_csv((box.dir / "truth" / "beams.csv").string());
+  ASSERT_EQ(rows.size(), beams.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    ASSERT_NEAR(rows[i].t_s, beams[i].t_log_s, 1e-6) << "beam " << i;
+  }
+}
+
+TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
+  const BoxDataset& box = box_dataset();
+  const std::vector<BeamRow> rows = read_beams_csv((box.dir / "truth" / "beams.csv").string());
+  const SonarMount mount = io::read_calibration((box.dir / "calibration.yaml").string()).sonar;
+  ASSERT_FALSE(rows.empty());
+  std::size_t with_hit = 0, close = 0, multipath = 0, agree = 0;
+  double max_geometry_error_m = 0.0;
+  for (const BeamRow& row : rows) {
+    if (!row.first_hit_range_m) continue;
+    ++with_hit;
+    // The axis is horizontal (tilt 0) at 1.5 m depth: its first surface is a wall of the box.
+    max_geometry_error_m = std::max(max_geometry_error_m,
+                                    std::abs(*row.first_hit_range_m - range_to_wall_m(row, mount)));
+    const bool is_close =
+        row.strongest_range_m && std::abs(*row.strongest_range_m - *row.first_hit_range_m) <= 0.3;
+    close += is_close ? 1 : 0;
+    multipath += row.multipath ? 1 : 0;
+    agree += is_close || row.multipath ? 1 : 0;
+  }
+  const auto fraction = [&](std::size_t n) {
+    return static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(with_hit, 1));
+  };
+  std::printf(
+      "beams with a first hit: %zu of %zu (%.3f); of those: strongest within 0.3 m %.3f, "
+      "strongest by multipath %.3f, either %.3f; max first-hit error vs box geometry %.2g m\n",
+      with_hit, rows.size(), static_cast<double>(with_hit) / static_cast<double>(rows.size()),
+      fraction(close), fraction(multipath), fraction(agree), max_geometry_error_m);
+  // The box is closed and at most ~30 m across from the path: every beam hits a wall in range.
+  EXPECT_EQ(with_hit, rows.size());
+  EXPECT_LT(max_geometry_error_m, 0.01);
+  EXPECT_GE(fraction(agree), 0.9);
+}
+
+// The box has no surface farther than ~30 m from the path, so the last bins (45-50 m) hold only
+// background noise and weak multipath ghosts: the image there must not be saturated.
+TEST(SimulateCommand, BinsBeyondEveryWallAreNotSaturated) {
+  const BoxDataset& box = box_dataset();
+  const auto beams = io::read_is_log((box.dir / "box_IS.log").string());
+  std::vector<int> far;
+  for (const auto& beam : beams) {
+    for (std::size_t j = 450; j < beam.intensity.size(); ++j) far.push_back(beam.intensity[j]);
+  }
+  ASSERT_FALSE(far.empty());
+  std::nth_element(far.begin(), far.begin() + static_cast<std::ptrdiff_t>(far.size() / 2),
+                   far.end());
+  const int median = far[far.size() / 2];
+  std::printf("median intensity of bins 451-500 (45-50 m): %d of 255\n", median);
+  EXPECT_LT(median, 128) << "the background beyond the walls is saturated: with sonar defaults "
+                            "(noise_level_db, gain_db, tvg) the noise floor reaches full scale";
+}
+
+TEST(SimulateCommand, SameSeedGivesTheSameBytesForAnyThreadCount) {
+  const BoxDataset& box = box_dataset();  // 2 threads
+  const TempDir tmp;
+  simulate(options_for(box.scenario, tmp.path() / "again", 2));
+  expect_same_files(box.dir, tmp.path() / "again");
+  simulate(options_for(box.scenario, tmp.path() / "one_thread", 1));
+  expect_same_files(box.dir, tmp.path() / "one_thread");
+}
+
+TEST(SimulateCommand, AnotherSeedGivesAnotherSonarLog) {
+  const BoxDataset& box = box_dataset();
+  const TempDir tmp;
+  SimulateOptions options = options_for(box.scenario, tmp.path() / "seed12");
+  options.seed = 12;
+  simulate(options);
+  EXPECT_NE(read_text((tmp.path() / "seed12" / "box_IS.log").string()),
+            read_text((box.dir / "box_IS.log").string()));
+  EXPECT_NE(read_text((tmp.path() / "seed12" / "box_DVL.log").string()),
+            read_text((box.dir / "box_DVL.log").string()));
+  // The truth does not depend on the seed.
+  EXPECT_EQ(read_text((tmp.path() / "seed12" / "truth" / "trajectory.tum").string()),
+            read_text((box.dir / "truth" / "trajectory.tum").string()));
+}
+
+TEST(SimulateCommand, DeadReckoningRunsOnTheSimulatedDataset) {
+  const BoxDataset& box = box_dataset();
+  const TempDir tmp;
+  RunOptions options;
+  options.dataset_dir = box.dir.string();
+  options.method = "deadreckoning";
+  options.out_dir = (tmp.path() / "result").string();
+  const RunOutcome outcome = run(options);
+  ASSERT_TRUE(outcome.metrics.has_value());
+  std::printf("deadreckoning on the box: mean %.3f m, max %.3f m, final %.3f m\n",
+              outcome.metrics->errors.mean_m, outcome.metrics->errors.max_m,
+              outcome.metrics->errors.final_m);
+  EXPECT_EQ(outcome.metrics->truth, "simulation");
+  EXPECT_LT(outcome.metrics->errors.mean_m, 5.0);
+  ASSERT_FALSE(outcome.trajectory.empty());
+  const double end_s = kStartTime_s + box.summary.duration_s;
+  EXPECT_NEAR(outcome.trajectory.back().t_s, end_s, 1.0);
+  EXPECT_NEAR(outcome.trajectory.front().t_s, kStartTime_s, 1.0);
+  EXPECT_TRUE(fs::is_regular_file(tmp.path() / "result" / "trajectory.tum"));
+  EXPECT_TRUE(fs::is_regular_file(tmp.path() / "result" / "metrics.json"));
+}
+
+// The message of the InputError that simulate(options) throws ("" and a failure when none).
+std::string simulate_error(const SimulateOptions& options) {
+  try {
+    simulate(options);
+  } catch (const io::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for " << options.scenario_path;
+  return "";
+}
+
+TEST(SimulateCommand, MissingMeshNamesItAndWritesNothing) {
+  const TempDir tmp;
+  const std::string scenario = write_box_scenario(tmp.path());
+  fs::remove(tmp.path() / "box.obj");
+  const std::string message = simulate_error(options_for(scenario, tmp.path() / "out"));
+  const std::string mesh = (tmp.path() / "box.obj").string();
+  EXPECT_NE(message.find(mesh), std::string::npos) << message << "\nexpected " << mesh;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(tmp.path()), fs::directory_iterator()), 1)
+      << "only scenario.yaml should be there";
+}
+
+TEST(SimulateCommand, EmptyMeshIsBadInput) {
+  const TempDir tmp;
+  const std::string scenario = write_box_scenario(tmp.path());
+  write_text((tmp.path() / "box.obj").string(), "");
+  const std::string message = simulate_error(options_for(scenario, tmp.path() / "out"));
+  EXPECT_NE(message.find((tmp.path() / "box.obj").string()), std::string::npos) << message;
+  EXPECT_FALSE(fs::exists(tmp.path() / "out"));
+}
+
+TEST(SimulateCommand, BadScenarioLeavesAnExistingDatasetUntouched) {
+  const TempDir tmp;
+  const fs::path out = tmp.path() / "out";
+  fs::create_directories(out);
+  write_text((out / "marker.txt").string(), "an earlier dataset\n");
+  const std::string scenario = write_box_scenario(tmp.path(), "sonar: {bems: 3}\n");
+  const std::string message = simulate_error(options_for(scenario, out));
+  EXPECT_NE(message.find(scenario + ":12:"), std::string::npos) << message;
+  EXPECT_NE(message.find("key 'sonar.bems'"), std::string::npos) << message;
+  EXPECT_EQ(read_text((out / "marker.txt").string()), "an earlier dataset\n");
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
+}
+
+TEST(SimulateCommand, NewDatasetReplacesAnEarlierOneWhole) {
+  const TempDir tmp;
+  const fs::path out = tmp.path() / "out";
+  fs::create_directories(out);
+  write_text((out / "old_IS.log").string(), "stale\n");
+  // A short run with a cheap sonar is enough here.
+  simulate(options_for(write_box_scenario(tmp.path(), "sonar: {rays_vertical: 2}\n"), out));
+  EXPECT_FALSE(fs::exists(out / "old_IS.log"));
+  EXPECT_TRUE(fs::is_regular_file(out / "box_IS.log"));
+  EXPECT_NO_THROW(io::find_dataset_files(out.string()));
+}
+
+// docs/simulator.md: the vehicle "stops at the last waypoint". A last leg shorter than the turning
+// circle (0.5 m/s at 0.15 rad/s: radius 3.3 m) after a corner must not leave it circling.
+TEST(SimulateCommand, VehicleStopsAtTheLastWaypointAfterAShortLastLeg) {
+  const TempDir tmp;
+  fs::create_directories(tmp.path());
+  io::write_obj((tmp.path() / "box.obj").string(), box_basin());
+  const std::string scenario = write_text(tmp.file("short_leg.yaml"),
+                                          "seed: 1\n"
+                                          "scene: {mesh: box.obj}\n"
+                                          "vehicle:\n"
+                                          "  depth_m: 1.5\n"
+                                          "  speed_mps: 0.5\n"
+                                          "  path: [[-6, -3], [6, -3], [6, 3], [-6, 3], [-6, 0]]\n"
+                                          "sonar: {rays_horizontal: 1, rays_vertical: 1, bins: 10,"
+                                          " steps_per_revolution: 4}\n");
+  const SimulateSummary summary = simulate(options_for(scenario, tmp.path() / "out"));
+  const auto truth = io::read_tum((tmp.path() / "out" / "truth" / "trajectory.tum").string());
+  ASSERT_FALSE(truth.empty());
+  const double length_m = 12.0 + 6.0 + 12.0 + 3.0;
+  const double end_distance_m = std::hypot(truth.back().x_m + 6.0, truth.back().y_m - 0.0);
+  std::printf("short last leg: %.1f s for a %.0f m path, ends %.2f m from the last waypoint\n",
+              summary.duration_s, length_m, end_distance_m);
+  EXPECT_LT(summary.duration_s, 1.5 * length_m / kSpeed_mps);
+  EXPECT_LT(end_distance_m, 1.0);
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string shell_quote(const std::string& text) {
+  std::string quoted = "'";
+  for (const char ch : text) quoted += (ch == '\'') ? std::string("'\\''") : std::string(1, ch);
+  return quoted + "'";
+}
+
+// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
+CliResult run_msislab(const std::string& args, const TempDir& tmp) {
+  const std::string out = tmp.file("stdout.txt");
+  const std::string err = tmp.file("stderr.txt");
+  const std::string command = shell_quote(MSISLAB_EXE) + " " + args + " >" + shell_quote(out) +
+                              " 2>" + shell_quote(err) + " </dev/null";
+  const int status = std::system(command.c_str());
+  CliResult result;
+  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
+  result.out = read_text(out);
+  result.err = read_text(err);
+  return result;
+}
+
+TEST(SimulateCli, GoodScenarioExitsZero) {
+  const TempDir tmp;
+  const std::string scenario = write_box_scenario(tmp.path() / "scene");
+  const fs::path out = tmp.path() / "dataset";
+  const CliResult result =
+      run_msislab("simulate " + shell_quote(scenario) + " --out " + shell_quote(out.string()), tmp);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_TRUE(result.err.empty()) << result.err;
+  EXPECT_NE(result.out.find("wrote"), std::string::npos) << result.out;
+  for (const char* name : kDatasetFiles) {
+    EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
+  }
+}
+
+TEST(SimulateCli, BadScenarioExitsTwoWithOneLine) {
+  const TempDir tmp;
+  const std::string scenario = write_box_scenario(tmp.path() / "scene", "vehicle_speed: 3\n");
+  const fs::path out = tmp.path() / "dataset";
+  const CliResult result =
+      run_msislab("simulate " + shell_quote(scenario) + " --out " + shell_quote(out.string()), tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
+  EXPECT_NE(result.err.find(scenario + ":12:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("vehicle_speed"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace msislab::app

@@ -1,0 +1,451 @@
+// Scenario files: a minimal scenario gets every default of sim/scenario.hpp, each section's keys
+// land in the struct, the mesh path is resolved against the scenario's folder, and every class of
+// bad input fails with InputError "FILE:LINE: key 'a.b': ..." (docs/interfaces.md).
+#include "io/scenario_yaml.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "io/input_error.hpp"
+#include "test_support.hpp"
+
+namespace msislab::io {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+using testing::write_text;
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kAngleTolerance_rad = 1e-12;
+
+// The required keys only; line numbers below refer to this layout.
+constexpr const char* kMinimal =
+    "seed: 7\n"                              // 1
+    "scene:\n"                               // 2
+    "  mesh: basin.obj\n"                    // 3
+    "vehicle:\n"                             // 4
+    "  depth_m: 1.5\n"                       // 5
+    "  speed_mps: 0.5\n"                     // 6
+    "  path: [[0, 0], [10, 0], [10, 5]]\n";  // 7
+
+// The message of the InputError that read_scenario(path) throws ("" and a failure when none).
+std::string error_of(const std::string& path) {
+  try {
+    read_scenario(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no InputError for " << path;
+  return "";
+}
+
+// Whether message starts "PATH:N: " with N a positive line number.
+bool has_line_number(const std::string& message, const std::string& path) {
+  if (message.rfind(path + ":", 0) != 0) return false;
+  std::size_t i = path.size() + 1;
+  const std::size_t digits_begin = i;
+  while (i < message.size() && std::isdigit(static_cast<unsigned char>(message[i]))) ++i;
+  return i > digits_begin && message.compare(i, 2, ": ") == 0 && message[digits_begin] != '0';
+}
+
+// Writes `text` as a scenario and expects InputError "PATH:LINE: ... key 'KEY' ... WHAT"; line 0
+// accepts any line number (an absent key is reported at its enclosing mapping), key "" and what ""
+// check nothing.
+void expect_bad(const std::string& text, int line, const std::string& key,
+                const std::string& what = "") {
+  SCOPED_TRACE(text);
+  const TempDir dir;
+  const std::string path = write_text(dir.file("bad.yaml"), text);
+  const std::string message = error_of(path);
+  const std::string where =
+      line > 0 ? path + ":" + std::to_string(line) + ":" : std::string(path + ":");
+  EXPECT_EQ(message.rfind(where, 0), 0u) << message << "\nexpected to start with " << where;
+  EXPECT_TRUE(has_line_number(message, path)) << message << "\nexpected " << path << ":LINE: ";
+  if (!key.empty()) {
+    EXPECT_NE(message.find("key '" + key + "'"), std::string::npos)
+        << message << "\nexpected key '" << key << "'";
+  }
+  if (!what.empty()) {
+    EXPECT_NE(message.find(what), std::string::npos) << message << "\nexpected '" << what << "'";
+  }
+}
+
+// kMinimal with line `line` (1-based) replaced by `replacement` (which may hold several lines or
+// none).
+std::string minimal_with(int line, const std::string& replacement) {
+  std::string text = kMinimal;
+  std::size_t begin = 0;
+  for (int i = 1; i < line; ++i) begin = text.find('\n', begin) + 1;
+  const std::size_t end = text.find('\n', begin) + 1;
+  return text.replace(begin, end - begin, replacement);
+}
+
+void expect_same_material(const sim::Material& a, const sim::Material& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.backscatter, b.backscatter);
+  EXPECT_EQ(a.specular, b.specular);
+}
+
+TEST(ScenarioYaml, MinimalScenarioKeepsEveryDefault) {
+  const TempDir dir;
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), kMinimal));
+  const sim::Scenario d;  // the defaults of sim/scenario.hpp
+
+  EXPECT_EQ(s.seed, 7u);
+  EXPECT_EQ(s.name, d.name);
+  EXPECT_EQ(s.scene.mesh_path, (dir.path() / "basin.obj").string());
+  expect_same_material(s.scene.default_material, d.scene.default_material);
+  expect_same_material(s.scene.surface, d.scene.surface);
+  EXPECT_TRUE(s.scene.group_materials.empty());
+
+  EXPECT_EQ(s.vehicle.depth_m, 1.5);
+  EXPECT_EQ(s.vehicle.speed_mps, 0.5);
+  ASSERT_EQ(s.vehicle.path_m.size(), 3u);
+  EXPECT_EQ(s.vehicle.path_m[0], Eigen::Vector2d(0.0, 0.0));
+  EXPECT_EQ(s.vehicle.path_m[1], Eigen::Vector2d(10.0, 0.0));
+  EXPECT_EQ(s.vehicle.path_m[2], Eigen::Vector2d(10.0, 5.0));
+  EXPECT_NEAR(s.vehicle.max_turn_rate_radps, d.vehicle.max_turn_rate_radps, 1e-15);
+  EXPECT_EQ(s.vehicle.lookahead_m, d.vehicle.lookahead_m);
+  EXPECT_EQ(s.vehicle.start_time_s, d.vehicle.start_time_s);
+  EXPECT_EQ(s.vehicle.step_s, d.vehicle.step_s);
+
+  EXPECT_EQ(s.sonar.steps_per_revolution, d.sonar.steps_per_revolution);
+  EXPECT_EQ(s.sonar.revolution_s, d.sonar.revolution_s);
+  EXPECT_EQ(s.sonar.bins, d.sonar.bins);
+  EXPECT_EQ(s.sonar.bin_m, d.sonar.bin_m);
+  EXPECT_EQ(s.sonar.horizontal_beamwidth_deg, d.sonar.horizontal_beamwidth_deg);
+  EXPECT_EQ(s.sonar.vertical_beamwidth_deg, d.sonar.vertical_beamwidth_deg);
+  EXPECT_EQ(s.sonar.tilt_deg, d.sonar.tilt_deg);
+  EXPECT_EQ(s.sonar.rays_horizontal, d.sonar.rays_horizontal);
+  EXPECT_EQ(s.sonar.rays_vertical, d.sonar.rays_vertical);
+  EXPECT_EQ(s.sonar.sound_speed_mps, d.sonar.sound_speed_mps);
+  EXPECT_EQ(s.sonar.absorption_db_per_m, d.sonar.absorption_db_per_m);
+  EXPECT_EQ(s.sonar.gain_db, d.sonar.gain_db);
+  EXPECT_EQ(s.sonar.tvg_db_per_decade, d.sonar.tvg_db_per_decade);
+  EXPECT_EQ(s.sonar.noise_level_db, d.sonar.noise_level_db);
+  EXPECT_EQ(s.sonar.display_min_db, d.sonar.display_min_db);
+  EXPECT_EQ(s.sonar.display_max_db, d.sonar.display_max_db);
+  EXPECT_EQ(s.sonar.speckle, d.sonar.speckle);
+  EXPECT_EQ(s.sonar.multipath_bounces, d.sonar.multipath_bounces);
+  EXPECT_EQ(s.sonar.min_range_m, d.sonar.min_range_m);
+  EXPECT_EQ(s.sonar.mount.x_m, d.sonar.mount.x_m);
+  EXPECT_EQ(s.sonar.mount.y_m, d.sonar.mount.y_m);
+  EXPECT_EQ(s.sonar.mount.z_m, d.sonar.mount.z_m);
+  EXPECT_EQ(s.sonar.mount.bearing_offset_rad, d.sonar.mount.bearing_offset_rad);
+  EXPECT_EQ(s.sonar.mount.bearing_sign, d.sonar.mount.bearing_sign);
+
+  EXPECT_EQ(s.dvl.rate_hz, d.dvl.rate_hz);
+  EXPECT_EQ(s.dvl.noise_sigma_mps, d.dvl.noise_sigma_mps);
+  EXPECT_EQ(s.dvl.bias_mps, d.dvl.bias_mps);
+  EXPECT_EQ(s.dvl.dropout_probability, d.dvl.dropout_probability);
+  EXPECT_EQ(s.dvl.max_altitude_m, d.dvl.max_altitude_m);
+  EXPECT_EQ(s.dvl.mount.yaw_deg, d.dvl.mount.yaw_deg);
+  EXPECT_EQ(s.dvl.mount.x_m, d.dvl.mount.x_m);
+  EXPECT_EQ(s.dvl.mount.y_m, d.dvl.mount.y_m);
+
+  EXPECT_EQ(s.mru.rate_hz, d.mru.rate_hz);
+  EXPECT_EQ(s.mru.heading_noise_deg, d.mru.heading_noise_deg);
+  EXPECT_EQ(s.mru.bias_initial_deg, d.mru.bias_initial_deg);
+  EXPECT_EQ(s.mru.bias_random_walk_deg_per_sqrt_s, d.mru.bias_random_walk_deg_per_sqrt_s);
+  EXPECT_EQ(s.mru.mount.yaw_offset_deg, d.mru.mount.yaw_offset_deg);
+
+  EXPECT_EQ(s.gps.enabled, d.gps.enabled);
+  EXPECT_EQ(s.gps.rate_hz, d.gps.rate_hz);
+  EXPECT_EQ(s.gps.noise_sigma_m, d.gps.noise_sigma_m);
+  EXPECT_EQ(s.gps.frame.origin_latitude_deg, d.gps.frame.origin_latitude_deg);
+  EXPECT_EQ(s.gps.frame.origin_longitude_deg, d.gps.frame.origin_longitude_deg);
+  EXPECT_TRUE(s.segments.empty());
+}
+
+// The St. Pere setup of docs/interfaces.md, written out independently of sim/scenario.hpp.
+TEST(ScenarioYaml, DefaultsAreTheStPereSetup) {
+  const TempDir dir;
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), kMinimal));
+  EXPECT_EQ(s.sonar.steps_per_revolution, 200);
+  EXPECT_EQ(s.sonar.revolution_s, 13.8);
+  EXPECT_EQ(s.sonar.bins, 500);
+  EXPECT_EQ(s.sonar.bin_m, 0.1);
+  EXPECT_EQ(s.dvl.rate_hz, 1.5);
+  EXPECT_EQ(s.mru.rate_hz, 10.0);
+  EXPECT_EQ(s.mru.mount.yaw_offset_deg, 86.0);
+  EXPECT_EQ(s.dvl.mount.yaw_deg, 293.5);
+  EXPECT_EQ(s.sonar.mount.x_m, 0.33);
+  EXPECT_NEAR(s.sonar.mount.bearing_offset_rad, kPi, kAngleTolerance_rad);
+  EXPECT_EQ(s.sonar.mount.bearing_sign, -1.0);
+  EXPECT_TRUE(s.gps.enabled);
+}
+
+TEST(ScenarioYaml, EverySectionOverrides) {
+  const TempDir dir;
+  const std::string text = std::string(kMinimal) +
+                           "name: basin test\n"
+                           "segments: {first: [0, 30], second: [30, 75.5]}\n"
+                           "sonar:\n"
+                           "  steps_per_revolution: 100\n"
+                           "  revolution_s: 6.9\n"
+                           "  bins: 250\n"
+                           "  bin_m: 0.2\n"
+                           "  horizontal_beamwidth_deg: 2.5\n"
+                           "  vertical_beamwidth_deg: 30\n"
+                           "  tilt_deg: 5\n"
+                           "  rays_horizontal: 2\n"
+                           "  rays_vertical: 12\n"
+                           "  sound_speed_mps: 1480\n"
+                           "  absorption_db_per_m: 0.02\n"
+                           "  gain_db: 40\n"
+                           "  tvg_db_per_decade: 20\n"
+                           "  noise_level_db: -50\n"
+                           "  display_min_db: -5\n"
+                           "  display_max_db: 40\n"
+                           "  speckle: false\n"
+                           "  multipath_bounces: 2\n"
+                           "  min_range_m: 0.5\n"
+                           "  mount: {x_m: 0.4, y_m: -0.1, z_m: 0.2, bearing_offset_deg: 90,"
+                           " bearing_sign: 1}\n"
+                           "dvl:\n"
+                           "  rate_hz: 3\n"
+                           "  noise_sigma_mps: 0.05\n"
+                           "  bias_mps: [0.01, -0.02]\n"
+                           "  dropout_probability: 0.1\n"
+                           "  max_altitude_m: 20\n"
+                           "  mount: {yaw_deg: 45, x_m: 0.2, y_m: 0.1}\n"
+                           "mru:\n"
+                           "  rate_hz: 20\n"
+                           "  heading_noise_deg: 0.5\n"
+                           "  bias_initial_deg: 1.5\n"
+                           "  bias_random_walk_deg_per_sqrt_s: 0.02\n"
+                           "  mount: {yaw_offset_deg: 10}\n"
+                           "gps:\n"
+                           "  enabled: false\n"
+                           "  rate_hz: 2\n"
+                           "  noise_sigma_m: 3\n"
+                           "  origin_latitude_deg: 41.5\n"
+                           "  origin_longitude_deg: 2.25\n";
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
+  EXPECT_EQ(s.name, "basin test");
+  ASSERT_EQ(s.segments.size(), 2u);
+  EXPECT_EQ(s.segments[0].name, "first");
+  EXPECT_EQ(s.segments[0].begin_s, 0.0);
+  EXPECT_EQ(s.segments[0].end_s, 30.0);
+  EXPECT_EQ(s.segments[1].name, "second");
+  EXPECT_EQ(s.segments[1].begin_s, 30.0);
+  EXPECT_EQ(s.segments[1].end_s, 75.5);
+
+  EXPECT_EQ(s.sonar.steps_per_revolution, 100);
+  EXPECT_EQ(s.sonar.revolution_s, 6.9);
+  EXPECT_EQ(s.sonar.bins, 250);
+  EXPECT_EQ(s.sonar.bin_m, 0.2);
+  EXPECT_EQ(s.sonar.horizontal_beamwidth_deg, 2.5);
+  EXPECT_EQ(s.sonar.vertical_beamwidth_deg, 30.0);
+  EXPECT_EQ(s.sonar.tilt_deg, 5.0);
+  EXPECT_EQ(s.sonar.rays_horizontal, 2);
+  EXPECT_EQ(s.sonar.rays_vertical, 12);
+  EXPECT_EQ(s.sonar.sound_speed_mps, 1480.0);
+  EXPECT_EQ(s.sonar.absorption_db_per_m, 0.02);
+  EXPECT_EQ(s.sonar.gain_db, 40.0);
+  EXPECT_EQ(s.sonar.tvg_db_per_decade, 20.0);
+  EXPECT_EQ(s.sonar.noise_level_db, -50.0);
+  EXPECT_EQ(s.sonar.display_min_db, -5.0);
+  EXPECT_EQ(s.sonar.display_max_db, 40.0);
+  EXPECT_FALSE(s.sonar.speckle);
+  EXPECT_EQ(s.sonar.multipath_bounces, 2);
+  EXPECT_EQ(s.sonar.min_range_m, 0.5);
+  EXPECT_EQ(s.sonar.mount.x_m, 0.4);
+  EXPECT_EQ(s.sonar.mount.y_m, -0.1);
+  EXPECT_EQ(s.sonar.mount.z_m, 0.2);
+  EXPECT_NEAR(s.sonar.mount.bearing_offset_rad, kPi / 2.0, kAngleTolerance_rad);
+  EXPECT_EQ(s.sonar.mount.bearing_sign, 1.0);
+
+  EXPECT_EQ(s.dvl.rate_hz, 3.0);
+  EXPECT_EQ(s.dvl.noise_sigma_mps, 0.05);
+  EXPECT_EQ(s.dvl.bias_mps, Eigen::Vector2d(0.01, -0.02));
+  EXPECT_EQ(s.dvl.dropout_probability, 0.1);
+  EXPECT_EQ(s.dvl.max_altitude_m, 20.0);
+  EXPECT_EQ(s.dvl.mount.yaw_deg, 45.0);
+  EXPECT_EQ(s.dvl.mount.x_m, 0.2);
+  EXPECT_EQ(s.dvl.mount.y_m, 0.1);
+
+  EXPECT_EQ(s.mru.rate_hz, 20.0);
+  EXPECT_EQ(s.mru.heading_noise_deg, 0.5);
+  EXPECT_EQ(s.mru.bias_initial_deg, 1.5);
+  EXPECT_EQ(s.mru.bias_random_walk_deg_per_sqrt_s, 0.02);
+  EXPECT_EQ(s.mru.mount.yaw_offset_deg, 10.0);
+
+  EXPECT_FALSE(s.gps.enabled);
+  EXPECT_EQ(s.gps.rate_hz, 2.0);
+  EXPECT_EQ(s.gps.noise_sigma_m, 3.0);
+  EXPECT_EQ(s.gps.frame.origin_latitude_deg, 41.5);
+  EXPECT_EQ(s.gps.frame.origin_longitude_deg, 2.25);
+}
+
+TEST(ScenarioYaml, VehicleOverrides) {
+  const TempDir dir;
+  const std::string text = std::string(kMinimal) +
+                           "  max_turn_rate_deg_s: 12\n"
+                           "  lookahead_m: 2\n"
+                           "  start_time_s: 1000\n"
+                           "  step_s: 0.05\n";
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
+  EXPECT_NEAR(s.vehicle.max_turn_rate_radps, 12.0 * kPi / 180.0, 1e-15);
+  EXPECT_EQ(s.vehicle.lookahead_m, 2.0);
+  EXPECT_EQ(s.vehicle.start_time_s, 1000.0);
+  EXPECT_EQ(s.vehicle.step_s, 0.05);
+}
+
+TEST(ScenarioYaml, SceneMaterialsAndGroups) {
+  const TempDir dir;
+  const std::string text = minimal_with(3,
+                                        "  mesh: basin.obj\n"
+                                        "  backscatter: 0.6\n"
+                                        "  specular: 0.2\n"
+                                        "  groups:\n"
+                                        "    walls: {backscatter: 0.9, specular: 0.1}\n"
+                                        "    bottom: {backscatter: 0.4}\n"
+                                        "  surface: {backscatter: 0.01, specular: 0.95}\n");
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
+  EXPECT_EQ(s.scene.default_material.backscatter, 0.6f);
+  EXPECT_EQ(s.scene.default_material.specular, 0.2f);
+  ASSERT_EQ(s.scene.group_materials.size(), 2u);
+  const sim::Material& walls = s.scene.group_materials.at("walls");
+  EXPECT_EQ(walls.name, "walls");
+  EXPECT_EQ(walls.backscatter, 0.9f);
+  EXPECT_EQ(walls.specular, 0.1f);
+  // A group that sets one value keeps the scene's default for the other.
+  const sim::Material& bottom = s.scene.group_materials.at("bottom");
+  EXPECT_EQ(bottom.name, "bottom");
+  EXPECT_EQ(bottom.backscatter, 0.4f);
+  EXPECT_EQ(bottom.specular, 0.2f);
+  EXPECT_EQ(s.scene.surface.name, "water_surface");
+  EXPECT_EQ(s.scene.surface.backscatter, 0.01f);
+  EXPECT_EQ(s.scene.surface.specular, 0.95f);
+}
+
+TEST(ScenarioYaml, MeshPathIsRelativeToTheScenarioFolder) {
+  const TempDir dir;
+  fs::create_directories(dir.path() / "scenarios");
+  const std::string path =
+      write_text(dir.file("scenarios/s.yaml"), minimal_with(3, "  mesh: ../scenes/basin.obj\n"));
+  EXPECT_EQ(read_scenario(path).scene.mesh_path, (dir.path() / "scenes" / "basin.obj").string());
+
+  const std::string absolute = (dir.path() / "elsewhere" / "m.ply").string();
+  write_text(path, minimal_with(3, "  mesh: " + absolute + "\n"));
+  EXPECT_EQ(read_scenario(path).scene.mesh_path, absolute);
+}
+
+TEST(ScenarioYaml, UnknownKeys) {
+  expect_bad(std::string(kMinimal) + "sonnar: {}\n", 8, "sonnar");
+  expect_bad(std::string(kMinimal) + "sonar:\n  bins: 100\n  bems: 3\n", 10, "sonar.bems");
+  expect_bad(minimal_with(3, "  mesh: a.obj\n  meshes: b.obj\n"), 4, "scene.meshes");
+  expect_bad(std::string(kMinimal) + "  speed: 1\n", 8, "vehicle.speed");
+  expect_bad(std::string(kMinimal) + "dvl: {mount: {yaw: 3}}\n", 8, "dvl.mount.yaw");
+  expect_bad(std::string(kMinimal) + "gps: {enable: false}\n", 8, "gps.enable");
+  expect_bad(minimal_with(3, "  mesh: a.obj\n  groups: {walls: {backscater: 0.5}}\n"), 4,
+             "scene.groups.walls.backscater");
+}
+
+TEST(ScenarioYaml, MissingRequiredKeys) {
+  expect_bad(minimal_with(1, ""), 0, "seed", "required");
+  expect_bad(
+      "seed: 7\n"
+      "vehicle: {depth_m: 1.5, speed_mps: 0.5, path: [[0, 0], [10, 0]]}\n",
+      0, "scene", "required");
+  expect_bad(minimal_with(3, "  backscatter: 0.5\n"), 0, "scene.mesh", "required");
+  expect_bad(minimal_with(3, "  groups: {}\n"), 0, "scene.mesh", "required");
+  expect_bad(
+      "seed: 7\n"
+      "scene: {mesh: basin.obj}\n",
+      0, "vehicle", "required");
+  expect_bad(minimal_with(5, ""), 0, "vehicle.depth_m", "required");
+  expect_bad(minimal_with(6, ""), 0, "vehicle.speed_mps", "required");
+}
+
+// A section written with no value (`scene:`) is an empty mapping: its missing keys are reported
+// at the section's own line, not at the line after it (or past the end of the file).
+TEST(ScenarioYaml, EmptySectionReportsItsKeyLine) {
+  expect_bad(minimal_with(3, ""), 2, "scene.mesh", "required");
+  expect_bad("seed: 7\nscene: {mesh: basin.obj}\nvehicle:\n", 3, "vehicle.depth_m", "required");
+}
+
+// Separate from the above so that its failure names the one key whose message is wrong.
+TEST(ScenarioYaml, MissingPathIsCalledRequired) {
+  expect_bad(minimal_with(7, ""), 0, "vehicle.path", "is required");
+}
+
+TEST(ScenarioYaml, WrongTypesAndNonFiniteNumbers) {
+  expect_bad(minimal_with(6, "  speed_mps: fast\n"), 6, "vehicle.speed_mps");
+  expect_bad(minimal_with(6, "  speed_mps: .nan\n"), 6, "vehicle.speed_mps");
+  expect_bad(minimal_with(5, "  depth_m: .inf\n"), 5, "vehicle.depth_m");
+  expect_bad(minimal_with(1, "seed: seven\n"), 1, "seed");
+  expect_bad(minimal_with(1, "seed: 4.5\n"), 1, "seed");
+  expect_bad(minimal_with(1, "seed: 99999999999999999999999\n"), 1, "seed");
+  expect_bad(minimal_with(1, "seed:\n"), 1, "seed");
+  expect_bad(minimal_with(3, "  mesh: [a.obj]\n"), 3, "scene.mesh");
+  expect_bad(minimal_with(7, "  path: 3\n"), 7, "vehicle.path");
+  expect_bad(std::string(kMinimal) + "sonar: {bins: many}\n", 8, "sonar.bins");
+  expect_bad(std::string(kMinimal) + "sonar:\n  speckle: maybe\n", 9, "sonar.speckle");
+  expect_bad(std::string(kMinimal) + "gps: {enabled: yes}\n", 8, "gps.enabled");
+  expect_bad(std::string(kMinimal) + "dvl: {bias_mps: 0.1}\n", 8, "dvl.bias_mps");
+  expect_bad(std::string(kMinimal) + "sonar: 3\n", 8, "sonar");
+}
+
+TEST(ScenarioYaml, BadValues) {
+  expect_bad(minimal_with(6, "  speed_mps: 0\n"), 6, "vehicle.speed_mps");
+  expect_bad(minimal_with(6, "  speed_mps: -0.5\n"), 6, "vehicle.speed_mps");
+  expect_bad(minimal_with(5, "  depth_m: -1\n"), 5, "vehicle.depth_m");
+  expect_bad(minimal_with(1, "seed: -1\n"), 1, "seed");
+  expect_bad(std::string(kMinimal) + "sonar:\n  bins: 0\n", 9, "sonar.bins");
+  expect_bad(std::string(kMinimal) + "sonar:\n  display_min_db: 10\n  display_max_db: 10\n", 10,
+             "sonar.display_max_db");
+  expect_bad(std::string(kMinimal) + "sonar:\n  display_min_db: 50\n", 0, "sonar.display_max_db");
+  expect_bad(std::string(kMinimal) + "dvl:\n  dropout_probability: 1.5\n", 9,
+             "dvl.dropout_probability");
+  expect_bad(std::string(kMinimal) + "dvl:\n  bias_mps: [0.1, 0.2, 0.3]\n", 9, "dvl.bias_mps");
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  backscatter: 2\n"), 4, "scene.backscatter");
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  groups: {walls: {specular: -0.1}}\n"), 4,
+             "scene.groups.walls.specular");
+  expect_bad(std::string(kMinimal) + "segments: {loop: [30, 10]}\n", 8, "segments.loop");
+  expect_bad(std::string(kMinimal) + "sonar: {mount: {bearing_sign: 0.5}}\n", 8,
+             "sonar.mount.bearing_sign");
+}
+
+TEST(ScenarioYaml, BadPaths) {
+  expect_bad(minimal_with(7, "  path: [[0, 0]]\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7, "  path: []\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7, "  path: [[0, 0], [1, 2, 3]]\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7, "  path: [[0, 0], [1, .nan]]\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7, "  path: [[0, 0], [1, east]]\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7, "  path: [[0, 0], [5, 5], [5, 5], [9, 9]]\n"), 7, "vehicle.path");
+  expect_bad(minimal_with(7,
+                          "  path:\n"
+                          "    - [0, 0]\n"
+                          "    - [4, 0]\n"
+                          "    - [4, 0, 1]\n"),
+             10, "vehicle.path");
+}
+
+TEST(ScenarioYaml, MalformedYamlAndDuplicateKeys) {
+  expect_bad(minimal_with(6, "  speed_mps: [0.5\n"), 0, "", "malformed YAML");
+  expect_bad(minimal_with(6, "  speed_mps: 0.5\n  speed_mps: 0.7\n"), 7, "vehicle.speed_mps",
+             "duplicate key");
+  expect_bad(std::string(kMinimal) + "seed: 8\n", 8, "seed");
+  expect_bad("- seed: 7\n", 1, "");
+}
+
+TEST(ScenarioYaml, MissingFileNamesTheFile) {
+  const TempDir dir;
+  const std::string path = dir.file("no_such_scenario.yaml");
+  try {
+    read_scenario(path);
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace msislab::io

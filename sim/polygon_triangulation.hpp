@@ -1,6 +1,6 @@
-// Triangulation of a simple polygon by ear clipping (Eberly, "Triangulation by Ear Clipping"):
-// the flat bottoms and caps of the scene meshes. O(n^2) per ear search, meant for a few hundred
-// vertices.
+// Triangulation of a simple polygon by ear clipping (Eberly, "Triangulation by Ear Clipping"), for
+// the flat bottoms and caps of the scene meshes, and the check that a polygon is simple. O(n^3) at
+// worst: meant for a few hundred vertices.
 #pragma once
 
 #include <Eigen/Core>

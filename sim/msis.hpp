@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "sim/random.hpp"
 #include "sim/scenario.hpp"
 #include "sim/scene.hpp"
 #include "sim/vehicle.hpp"
@@ -34,6 +35,7 @@ struct BeamTruth {
 struct RenderedBeam {
   BeamSlot slot;
   std::vector<std::uint8_t> intensity;  ///< bins, bin j at (j + 1) x bin_m
+  std::uint32_t rays_cast = 0;          ///< primary and bounce rays traced for this beam
   BeamTruth truth;
 };
 
@@ -42,35 +44,47 @@ class MsisModel {
   MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicle_depth_m);
 
   /// Renders one beam; rng supplies the speckle and noise of this beam only.
-  RenderedBeam render(const BeamSlot& slot, const VehicleTrajectory& trajectory,
-                      std::mt19937_64& rng) const;
+  RenderedBeam render(const BeamSlot& slot, const VehicleTrajectory& trajectory, Rng& rng) const;
 
   /// Number of rays cast per beam before bounces.
   std::size_t rays_per_beam() const { return rays_.size(); }
+
+  /// The primary rays of a beam (what render() casts first), for benchmarks and checks.
+  std::vector<Ray> primary_rays(const BeamSlot& slot, const VehicleTrajectory& trajectory) const;
 
  private:
   struct RayTemplate {
     double azimuth_rad = 0.0;    ///< offset from the beam axis
     double elevation_rad = 0.0;  ///< above the axis
     double weight = 0.0;         ///< one-way transmit pattern, normalised over the beam
+    Eigen::Vector3f direction_beam = Eigen::Vector3f::UnitX();  ///< axis along x, tilt applied
   };
   struct Echoes;
   struct Head;
   struct Ping;
 
   Head head_at(double t_s, const VehicleTrajectory& trajectory, double bearing_vehicle_rad) const;
-  void trace_ray(const RayTemplate& ray, const Ping& ping, Echoes& echoes) const;
+  Ping ping_of(const BeamSlot& slot, const VehicleTrajectory& trajectory) const;
+  std::vector<Ray> primary_rays(const Ping& ping) const;
+  /// Follows one primary ray from its first hit through its bounces; returns the rays cast after
+  /// the primary one.
+  std::uint32_t trace_from(const RayTemplate& ray, Ray r, RayHit hit, const Ping& ping,
+                           Echoes& echoes) const;
   void add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m, double power,
                 bool multipath, Echoes& echoes) const;
   BeamTruth truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const;
-  std::vector<std::uint8_t> to_intensity(const Echoes& echoes, std::mt19937_64& rng) const;
-  double tvg_db(double range_m) const;
+  std::uint8_t quantise(double shown_power) const;
+  std::vector<std::uint8_t> to_intensity(const Echoes& echoes, Rng& rng) const;
 
   const Scene& scene_;
   SonarConfig sonar_;
   double depth_m_;
   std::vector<RayTemplate> rays_;
-  double pattern_norm_ = 1.0;  ///< divides every one-way pattern value
+  double pattern_norm_ = 1.0;       ///< divides every one-way pattern value
+  std::vector<double> tvg_linear_;  ///< gain + TVG per bin as a power ratio
+  /// Quantisation: intensity k is shown for levels from step k - 1/2 to k + 1/2 of the display
+  /// range; entry k (1..255) is the lower boundary of k as a power ratio, entry 0 is 0.
+  std::vector<double> level_thresholds_;
 };
 
 /// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption

@@ -35,7 +35,7 @@ double altitude_below(const Scene& scene, const Pose2& pose, double depth_m, dou
 
 std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
                                     const Scene& scene, double depth_m, std::uint64_t seed) {
-  std::mt19937_64 rng = make_rng(seed, RandomStream::kDvl, 0);
+  Rng rng = make_rng(seed, RandomStream::kDvl, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::bernoulli_distribution dropout(dvl.dropout_probability);
   const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(dvl.mount).transpose();
@@ -61,7 +61,7 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
 
 std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruConfig& mru,
                                     std::uint64_t seed) {
-  std::mt19937_64 rng = make_rng(seed, RandomStream::kMru, 0);
+  Rng rng = make_rng(seed, RandomStream::kMru, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
   double bias_deg = mru.bias_initial_deg;
   const double dt_s = 1.0 / mru.rate_hz;
@@ -79,7 +79,7 @@ std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig
                                  std::uint64_t seed) {
   std::vector<GpsFix> fixes;
   if (!gps.enabled) return fixes;
-  std::mt19937_64 rng = make_rng(seed, RandomStream::kGps, 0);
+  Rng rng = make_rng(seed, RandomStream::kGps, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
   for (const double t_s : sample_times(truth, gps.rate_hz)) {
     const Eigen::Vector2d noise(n01(rng), n01(rng));

@@ -3,6 +3,8 @@
 // generator, derived from (seed, stream, index) by splitmix64.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 
@@ -18,12 +20,59 @@ inline std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+/// xoshiro256** (Blackman and Vigna): a small, fast generator with a 2^256 period whose state is
+/// seeded by splitmix64, so a generator per beam costs four multiplications to create. Meets the
+/// UniformRandomBitGenerator requirements, so the <random> distributions take it.
+class Xoshiro256 {
+ public:
+  using result_type = std::uint64_t;
+  explicit Xoshiro256(std::uint64_t seed) {
+    for (std::uint64_t& word : state_) word = seed = splitmix64(seed);
+  }
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type{0}; }
+  result_type operator()() {
+    const std::uint64_t result = rotl(state_[1] * 5, 7) * 9;
+    const std::uint64_t t = state_[1] << 17;
+    state_[2] ^= state_[0];
+    state_[3] ^= state_[1];
+    state_[1] ^= state_[2];
+    state_[0] ^= state_[3];
+    state_[2] ^= t;
+    state_[3] = rotl(state_[3], 45);
+    return result;
+  }
+
+ private:
+  static std::uint64_t rotl(std::uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  std::uint64_t state_[4];
+};
+
+using Rng = Xoshiro256;
+
+/// Unit-mean exponential variates from a table of 4096 quantiles (the midpoints of equal
+/// probability cells): one generator call and one lookup instead of a logarithm. The largest
+/// value is -ln(1/8192) = 9.0, so the tail beyond it (probability 1.2e-4) folds into the last cell.
+class ExponentialTable {
+ public:
+  ExponentialTable() {
+    for (std::size_t i = 0; i < kSize; ++i) {
+      table_[i] = -std::log(1.0 - (static_cast<double>(i) + 0.5) / kSize);
+    }
+  }
+  double operator()(Rng& rng) const { return table_[rng() >> (64 - kBits)]; }
+  /// The largest value drawn, -ln(1 / 8192).
+  static double max() { return std::log(2.0 * kSize); }
+
+ private:
+  static constexpr int kBits = 12;
+  static constexpr std::size_t kSize = std::size_t{1} << kBits;
+  double table_[kSize];
+};
+
 /// An independent generator for one (stream, index) of a seeded run.
-inline std::mt19937_64 make_rng(std::uint64_t seed, RandomStream stream, std::uint64_t index) {
-  const std::uint64_t key =
-      splitmix64(splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(stream)) ^ index);
-  std::seed_seq seq{static_cast<std::uint32_t>(key), static_cast<std::uint32_t>(key >> 32)};
-  return std::mt19937_64(seq);
+inline Rng make_rng(std::uint64_t seed, RandomStream stream, std::uint64_t index) {
+  return Rng(splitmix64(splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(stream)) ^ index));
 }
 
 }  // namespace msislab::sim

@@ -28,7 +28,7 @@ std::vector<RenderedBeam> render_beams(const Scenario& scenario, const Scene& sc
   std::atomic<std::size_t> next{0};
   auto work = [&] {
     for (std::size_t i = next++; i < slots.size(); i = next++) {
-      std::mt19937_64 rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+      Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
       beams[i] = model.render(slots[i], truth, rng);
     }
   };

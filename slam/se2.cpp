@@ -5,6 +5,8 @@
 namespace msislab {
 
 double normalize_angle(double angle_rad) {
+  // Most angles are already in range: return them untouched (remainder() would too, exactly).
+  if (angle_rad > -M_PI && angle_rad <= M_PI) return angle_rad;
   // remainder() maps to [-pi, pi]; -pi is folded onto +pi so the range is (-pi, pi].
   double wrapped = std::remainder(angle_rad, 2.0 * M_PI);
   if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;

@@ -77,7 +77,7 @@ TEST(Msis, WallAtAKnownRangeGivesItsEcho) {
   SonarConfig sonar = forward_sonar();
   sonar.vertical_beamwidth_deg = 10.0;  // keep the bottom-free scene's surface out of the beam
   const MsisModel model(scene, sonar, 10.0);
-  std::mt19937_64 rng(1);
+  Rng rng(1);
   const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(0.0), rng);
   ASSERT_TRUE(beam.truth.first_hit_range_m);
   EXPECT_NEAR(*beam.truth.first_hit_range_m, 20.0, 1e-4);
@@ -105,7 +105,7 @@ TEST(Msis, EchoWeakensWithRange) {
   for (const float wall_x : {5.0f, 10.0f, 20.0f, 40.0f}) {
     const Scene scene(wall_mesh(wall_x), Material{"surface", 0.001f, 0.9f});
     const MsisModel model(scene, sonar, 10.0);
-    std::mt19937_64 rng(1);
+    Rng rng(1);
     const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(0.0), rng);
     peaks.push_back(beam.intensity[peak_bin(beam.intensity)]);
   }
@@ -121,7 +121,7 @@ TEST(Msis, MotionInsideAPingShortensTheRange) {
   sonar.vertical_beamwidth_deg = 10.0;
   sonar.horizontal_beamwidth_deg = 0.5;
   const MsisModel model(scene, sonar, 10.0);
-  std::mt19937_64 rng(1);
+  Rng rng(1);
   const double v = 75.0;
   const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(v), rng);
   EXPECT_NEAR(*beam.truth.first_hit_range_m, 20.0, 1e-4);  // truth: distance at transmit
@@ -136,7 +136,7 @@ TEST(Msis, EachBeamOfARevolutionHasItsOwnPose) {
   const auto slots = beam_schedule(sonar, 0.0, 13.8 - 1e-6);
   ASSERT_EQ(slots.size(), 200u);
   for (const BeamSlot& slot : {slots[0], slots[100], slots[199]}) {
-    std::mt19937_64 rng(1);
+    Rng rng(1);
     const RenderedBeam beam = model.render(slot, truth, rng);
     EXPECT_NEAR(beam.truth.vehicle.x(), 0.5 * slot.t_s, 1e-9);
   }
@@ -151,7 +151,7 @@ TEST(Msis, SurfaceBounceMakesAFlaggedGhost) {
   sonar.vertical_beamwidth_deg = 6.0;
   const double depth_m = 2.0;
   const MsisModel model(scene, sonar, depth_m);
-  std::mt19937_64 rng(1);
+  Rng rng(1);
   const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(0.0), rng);
   ASSERT_TRUE(beam.truth.strongest_range_m);
   EXPECT_TRUE(beam.truth.strongest_is_multipath);
@@ -168,9 +168,9 @@ TEST(Msis, SameStreamSameBeamDifferentStreamDifferentSpeckle) {
   const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
   const SonarConfig sonar;  // speckle and noise on
   const MsisModel model(scene, sonar, 1.5);
-  std::mt19937_64 a = make_rng(42, RandomStream::kSonarBeam, 7);
-  std::mt19937_64 b = make_rng(42, RandomStream::kSonarBeam, 7);
-  std::mt19937_64 c = make_rng(43, RandomStream::kSonarBeam, 7);
+  Rng a = make_rng(42, RandomStream::kSonarBeam, 7);
+  Rng b = make_rng(42, RandomStream::kSonarBeam, 7);
+  Rng c = make_rng(43, RandomStream::kSonarBeam, 7);
   const BeamSlot slot{7, 0.5, 0.3};
   const auto beam_a = model.render(slot, straight(0.2), a).intensity;
   EXPECT_EQ(beam_a, model.render(slot, straight(0.2), b).intensity);

@@ -1,0 +1,146 @@
+// Renderer throughput against bare Embree (issue 3: ratio >= 0.5). On the shipped St. Pere marina
+// and the stpere_replica trajectory, 4000 beams: (a) a bare rtcIntersect1 loop over exactly the
+// renderer's primary rays, on an Embree scene of the same triangles and water surface; (b) the
+// full MSIS renderer (rays, bounces, physics, speckle, noise, quantisation), counting every ray it
+// casts. items_per_second is rays/s; vs_bare = (b) / (a).
+#include <embree3/rtcore.h>
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "io/mesh_io.hpp"
+#include "io/scenario_yaml.hpp"
+#include "sim/msis.hpp"
+#include "sim/random.hpp"
+
+namespace {
+
+using namespace msislab;
+
+const std::string kSource = MSISLAB_SOURCE_DIR;
+constexpr std::size_t kBeams = 4000;
+
+struct Fixture {
+  sim::Scenario scenario = io::read_scenario(kSource + "/scenarios/stpere_replica.yaml");
+  sim::TriangleMesh mesh = io::read_mesh(
+      scenario.scene.mesh_path,
+      io::MeshMaterials{scenario.scene.default_material, scenario.scene.group_materials});
+  sim::Scene scene{mesh, scenario.scene.surface};
+  sim::VehicleTrajectory truth = sim::follow_path(scenario.vehicle);
+  sim::MsisModel model{scene, scenario.sonar, scenario.vehicle.depth_m};
+  std::vector<sim::BeamSlot> slots;
+  Fixture() {
+    const auto all = sim::beam_schedule(scenario.sonar, truth.start_s(), truth.end_s());
+    slots.assign(all.begin() + 2000, all.begin() + 2000 + kBeams);
+  }
+};
+
+const Fixture& fixture() {
+  static const Fixture f;
+  return f;
+}
+
+double g_bare_rays_per_s = 0.0;
+
+/// An Embree scene of the mesh plus the same water-surface quad sim::Scene adds.
+RTCScene bare_scene(RTCDevice device, const sim::TriangleMesh& mesh) {
+  Eigen::AlignedBox3f box;
+  for (const auto& v : mesh.vertices_m) box.extend(v);
+  std::vector<Eigen::Vector3f> vertices = mesh.vertices_m;
+  std::vector<Eigen::Vector3i> triangles = mesh.triangles;
+  const float m = 50.0f;
+  const int n = static_cast<int>(vertices.size());
+  vertices.push_back({box.min().x() - m, box.min().y() - m, 0});
+  vertices.push_back({box.max().x() + m, box.min().y() - m, 0});
+  vertices.push_back({box.max().x() + m, box.max().y() + m, 0});
+  vertices.push_back({box.min().x() - m, box.max().y() + m, 0});
+  triangles.push_back({n, n + 1, n + 2});
+  triangles.push_back({n, n + 2, n + 3});
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    for (int k = 0; k < 3; ++k) vb[3 * i + k] = vertices[i][k];
+  }
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0,
+                                                            RTC_FORMAT_UINT3, 3 * sizeof(unsigned),
+                                                            triangles.size()));
+  for (std::size_t i = 0; i < triangles.size(); ++i) {
+    for (int k = 0; k < 3; ++k) ib[3 * i + k] = static_cast<unsigned>(triangles[i][k]);
+  }
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  return scene;
+}
+
+void BM_BareEmbreeOnTheRenderersRays(benchmark::State& state) {
+  const Fixture& f = fixture();
+  std::vector<sim::Ray> rays;
+  for (const auto& slot : f.slots) {
+    const auto beam_rays = f.model.primary_rays(slot, f.truth);
+    rays.insert(rays.end(), beam_rays.begin(), beam_rays.end());
+  }
+  RTCDevice device = rtcNewDevice(nullptr);
+  RTCScene scene = bare_scene(device, f.mesh);
+  RTCIntersectContext context;
+  float checksum = 0.0f;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    for (const sim::Ray& ray : rays) {
+      rtcInitIntersectContext(&context);
+      RTCRayHit rh{};
+      rh.ray.org_x = ray.origin_m.x();
+      rh.ray.org_y = ray.origin_m.y();
+      rh.ray.org_z = ray.origin_m.z();
+      rh.ray.dir_x = ray.direction.x();
+      rh.ray.dir_y = ray.direction.y();
+      rh.ray.dir_z = ray.direction.z();
+      rh.ray.tfar = ray.t_max_m;
+      rh.ray.mask = ~0u;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene, &context, &rh);
+      checksum += rh.ray.tfar;
+    }
+  }
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  benchmark::DoNotOptimize(checksum);
+  rtcReleaseScene(scene);
+  rtcReleaseDevice(device);
+  const auto total = static_cast<double>(state.iterations()) * static_cast<double>(rays.size());
+  state.SetItemsProcessed(static_cast<std::int64_t>(total));
+  g_bare_rays_per_s = total / elapsed_s;
+}
+
+void BM_MsisRenderer(benchmark::State& state) {
+  const Fixture& f = fixture();
+  std::int64_t rays = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (auto _ : state) {
+    for (const auto& slot : f.slots) {
+      sim::Rng rng = sim::make_rng(1, sim::RandomStream::kSonarBeam, slot.index);
+      const sim::RenderedBeam beam = f.model.render(slot, f.truth, rng);
+      rays += beam.rays_cast;
+    }
+  }
+  const double elapsed_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  state.SetItemsProcessed(rays);
+  if (g_bare_rays_per_s > 0.0) {
+    state.counters["vs_bare"] = static_cast<double>(rays) / elapsed_s / g_bare_rays_per_s;
+  }
+  state.counters["rays_per_beam"] =
+      static_cast<double>(rays) / static_cast<double>(state.iterations() * kBeams);
+}
+
+}  // namespace
+
+BENCHMARK(BM_BareEmbreeOnTheRenderersRays)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MsisRenderer)->Unit(benchmark::kMillisecond);

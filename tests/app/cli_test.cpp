@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli_runner.hpp"
 #include "synthetic_dataset.hpp"
 #include "test_support.hpp"
 
@@ -18,34 +19,12 @@ namespace fs = std::filesystem;
 using testing::read_text;
 using testing::TempDir;
 
-struct Result {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (const char ch : text) quoted += (ch == '\'') ? std::string("'\\''") : std::string(1, ch);
-  return quoted + "'";
-}
-
-// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
-Result run_msislab(const std::string& args, const TempDir& tmp) {
-  const std::string out = tmp.file("stdout.txt");
-  const std::string err = tmp.file("stderr.txt");
-  const std::string command = shell_quote(MSISLAB_EXE) + " " + args + " >" + shell_quote(out) +
-                              " 2>" + shell_quote(err) + " </dev/null";
-  const int status = std::system(command.c_str());
-  Result result;
-  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  result.out = read_text(out);
-  result.err = read_text(err);
-  return result;
-}
+using testing::CliResult;
+using testing::run_msislab;
+using testing::shell_quote;
 
 // Exactly one line on stderr, starting "msislab: ".
-void expect_one_error_line(const Result& result) {
+void expect_one_error_line(const CliResult& result) {
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
   EXPECT_FALSE(result.err.empty() || result.err.back() != '\n') << result.err;
   EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
@@ -53,14 +32,14 @@ void expect_one_error_line(const Result& result) {
 
 TEST(Cli, HelpListsTheRunCommand) {
   const TempDir tmp;
-  const Result result = run_msislab("--help", tmp);
+  const CliResult result = run_msislab("--help", tmp);
   EXPECT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("run"), std::string::npos) << result.out;
 }
 
 TEST(Cli, RunHelpDescribesItsOptions) {
   const TempDir tmp;
-  const Result result = run_msislab("run --help", tmp);
+  const CliResult result = run_msislab("run --help", tmp);
   EXPECT_EQ(result.exit_code, 0) << result.err;
   for (const char* option : {"--method", "--out", "--config", "DATASET_DIR"}) {
     EXPECT_NE(result.out.find(option), std::string::npos) << option << "\n" << result.out;
@@ -69,14 +48,14 @@ TEST(Cli, RunHelpDescribesItsOptions) {
 
 TEST(Cli, NoArgumentsIsBadInput) {
   const TempDir tmp;
-  const Result result = run_msislab("", tmp);
+  const CliResult result = run_msislab("", tmp);
   EXPECT_EQ(result.exit_code, 2);
   expect_one_error_line(result);
 }
 
 TEST(Cli, UnknownOptionIsBadInput) {
   const TempDir tmp;
-  const Result result = run_msislab(
+  const CliResult result = run_msislab(
       "run " + shell_quote(tmp.file("d")) + " --method deadreckoning --out o --frobnicate 3", tmp);
   EXPECT_EQ(result.exit_code, 2);
   expect_one_error_line(result);
@@ -87,7 +66,7 @@ TEST(Cli, MissingDatasetDirectory) {
   const TempDir tmp;
   const std::string missing = tmp.file("no_such_dataset");
   const std::string out = tmp.file("out");
-  const Result result = run_msislab(
+  const CliResult result = run_msislab(
       "run " + shell_quote(missing) + " --method deadreckoning --out " + shell_quote(out), tmp);
   EXPECT_EQ(result.exit_code, 2);
   expect_one_error_line(result);
@@ -104,7 +83,7 @@ TEST(Cli, TruncatedLogNamesFileAndLine) {
   const std::string dvl = (dataset / "synth_DVL.log").string();
   const std::size_t line = testing::truncate_last_line(dvl);
   const std::string out = tmp.file("out");
-  const Result result = run_msislab(
+  const CliResult result = run_msislab(
       "run " + shell_quote(dataset.string()) + " --method deadreckoning --out " + shell_quote(out),
       tmp);
   EXPECT_EQ(result.exit_code, 2);
@@ -121,7 +100,7 @@ TEST(Cli, GoodDatasetRunsAndWritesResults) {
   options.duration_s = 60.0;
   testing::write_synthetic_dataset(dataset, options);
   const fs::path out = tmp.path() / "out";
-  const Result result =
+  const CliResult result =
       run_msislab("run " + shell_quote(dataset.string()) + " --method deadreckoning --out " +
                       shell_quote(out.string()),
                   tmp);

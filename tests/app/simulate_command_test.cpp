@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "app/run_command.hpp"
+#include "cli_runner.hpp"
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
@@ -488,31 +489,9 @@ TEST(SimulateCommand, VehicleStopsAtTheLastWaypointAfterAShortLastLeg) {
   EXPECT_LT(end_distance_m, 1.0);
 }
 
-struct CliResult {
-  int exit_code = -1;
-  std::string out;
-  std::string err;
-};
-
-std::string shell_quote(const std::string& text) {
-  std::string quoted = "'";
-  for (const char ch : text) quoted += (ch == '\'') ? std::string("'\\''") : std::string(1, ch);
-  return quoted + "'";
-}
-
-// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
-CliResult run_msislab(const std::string& args, const TempDir& tmp) {
-  const std::string out = tmp.file("stdout.txt");
-  const std::string err = tmp.file("stderr.txt");
-  const std::string command = shell_quote(MSISLAB_EXE) + " " + args + " >" + shell_quote(out) +
-                              " 2>" + shell_quote(err) + " </dev/null";
-  const int status = std::system(command.c_str());
-  CliResult result;
-  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  result.out = read_text(out);
-  result.err = read_text(err);
-  return result;
-}
+using testing::CliResult;
+using testing::run_msislab;
+using testing::shell_quote;
 
 TEST(SimulateCli, GoodScenarioExitsZero) {
   const TempDir tmp;

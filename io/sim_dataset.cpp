@@ -123,7 +123,7 @@ void write_beam_truth(const std::string& path, const std::vector<sim::RenderedBe
   write_file_atomically(path, [&](std::ostream& out) {
     std::string text =
         "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,"
-        "strongest_multipath\n";
+        "strongest_multipath,strongest_surface\n";
     for (const sim::RenderedBeam& b : beams) {
       const sim::BeamTruth& t = b.truth;
       for (const double v :
@@ -132,7 +132,7 @@ void write_beam_truth(const std::string& path, const std::vector<sim::RenderedBe
         text += ',';
       }
       text += optional_number(t.first_hit_range_m) + "," + optional_number(t.strongest_range_m) +
-              "," + (t.strongest_is_multipath ? "1" : "0") + "\n";
+              "," + (t.strongest_is_multipath ? "1" : "0") + "," + t.strongest_surface + "\n";
     }
     out << text;
   });

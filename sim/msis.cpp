@@ -65,8 +65,12 @@ struct MsisModel::Ping {
 };
 
 struct MsisModel::Echoes {
-  std::vector<double> direct;     ///< power per bin by direct backscatter
-  std::vector<double> multipath;  ///< power per bin by a specular route
+  explicit Echoes(int bins)
+      : direct(bins, 0.0), multipath(bins, 0.0), largest(bins, 0.0), largest_material(bins, 0) {}
+  std::vector<double> direct;                   ///< power per bin by direct backscatter
+  std::vector<double> multipath;                ///< power per bin by a specular route
+  std::vector<double> largest;                  ///< the largest single contribution to each bin
+  std::vector<std::uint32_t> largest_material;  ///< the surface that returned it
 };
 
 MsisModel::MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicle_depth_m)
@@ -156,7 +160,7 @@ RenderedBeam MsisModel::render(const BeamSlot& slot, const VehicleTrajectory& tr
   RenderedBeam beam;
   beam.slot = slot;
   beam.rays_cast = static_cast<std::uint32_t>(rays.size());
-  Echoes echoes{std::vector<double>(sonar_.bins, 0.0), std::vector<double>(sonar_.bins, 0.0)};
+  Echoes echoes(sonar_.bins);
   for (std::size_t i = 0; i < rays.size(); ++i) {
     if (hits[i].hit) beam.rays_cast += trace_from(rays_[i], rays[i], hits[i], ping, echoes);
   }
@@ -177,7 +181,8 @@ std::uint32_t MsisModel::trace_from(const RayTemplate& ray, Ray r, RayHit hit, c
     const double cos_incidence = std::abs(r.direction.dot(hit.normal));
     // Lambert-like backscatter: strength x cos^2(incidence) toward the source.
     add_echo(ping, first_hit_m, path_m,
-             route_gain * material.backscatter * cos_incidence * cos_incidence, bounce > 0, echoes);
+             route_gain * material.backscatter * cos_incidence * cos_incidence, bounce > 0,
+             hit.material_id, echoes);
     if (bounce >= sonar_.multipath_bounces || material.specular <= 0.0f) return rays_cast;
     // Specular route: the echo of the next surface comes back the same way, so the mirror's
     // coefficient counts twice.
@@ -195,7 +200,8 @@ std::uint32_t MsisModel::trace_from(const RayTemplate& ray, Ray r, RayHit hit, c
 }
 
 void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m,
-                         double power, bool multipath, Echoes& echoes) const {
+                         double power, bool multipath, std::uint32_t material_id,
+                         Echoes& echoes) const {
   // Received at t + 2 path / c: the last leg of the return runs from the first surface on the
   // route to where the head is then, and the receive pattern is taken there.
   const double w = std::clamp(2.0 * path_m / sonar_.sound_speed_mps / ping.rx_window_s, 0.0, 1.0);
@@ -221,7 +227,12 @@ void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, d
                       sonar_.vertical_beamwidth_deg * kDegToRad) /
       pattern_norm_;
   const double received = power * rx_pattern * two_way_loss(path_m, sonar_.absorption_db_per_m);
-  (multipath ? echoes.multipath : echoes.direct)[static_cast<std::size_t>(bin)] += received;
+  const auto k = static_cast<std::size_t>(bin);
+  (multipath ? echoes.multipath : echoes.direct)[k] += received;
+  if (received > echoes.largest[k]) {
+    echoes.largest[k] = received;
+    echoes.largest_material[k] = material_id;
+  }
 }
 
 BeamTruth MsisModel::truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const {
@@ -243,6 +254,7 @@ BeamTruth MsisModel::truth_of(const Ping& ping, const Echoes& echoes, const Pose
       best = shown;
       truth.strongest_range_m = (j + 1) * sonar_.bin_m;
       truth.strongest_is_multipath = echoes.multipath[k] > echoes.direct[k];
+      truth.strongest_surface = scene_.materials()[echoes.largest_material[k]].name;
     }
   }
   return truth;

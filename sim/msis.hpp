@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sim/random.hpp"
@@ -30,6 +31,7 @@ struct BeamTruth {
   std::optional<double> first_hit_range_m;  ///< along the axis from the head; none in range
   std::optional<double> strongest_range_m;  ///< range of the strongest noise-free echo
   bool strongest_is_multipath = false;      ///< that echo came by a specular bounce
+  std::string strongest_surface;  ///< material (group) name of the surface that returned it
 };
 
 struct RenderedBeam {
@@ -71,7 +73,7 @@ class MsisModel {
   std::uint32_t trace_from(const RayTemplate& ray, Ray r, RayHit hit, const Ping& ping,
                            Echoes& echoes) const;
   void add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m, double power,
-                bool multipath, Echoes& echoes) const;
+                bool multipath, std::uint32_t material_id, Echoes& echoes) const;
   BeamTruth truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const;
   std::uint8_t quantise(double shown_power) const;
   std::vector<std::uint8_t> to_intensity(const Echoes& echoes, Rng& rng) const;

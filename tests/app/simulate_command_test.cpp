@@ -156,6 +156,7 @@ struct BeamRow {
   double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, bearing_rad = 0.0;
   std::optional<double> first_hit_range_m, strongest_range_m;
   bool multipath = false;
+  std::string surface;  ///< strongest_surface
 };
 
 std::vector<std::string> split(const std::string& line, char separator) {
@@ -168,7 +169,8 @@ std::vector<std::string> split(const std::string& line, char separator) {
 }
 
 constexpr const char* kBeamsHeader =
-    "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath";
+    "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
+    "strongest_surface";
 
 std::vector<BeamRow> read_beams_csv(const std::string& path) {
   std::stringstream in(read_text(path));
@@ -178,8 +180,8 @@ std::vector<BeamRow> read_beams_csv(const std::string& path) {
   std::vector<BeamRow> rows;
   while (std::getline(in, line)) {
     const std::vector<std::string> f = split(line, ',');
-    if (f.size() != 8) {
-      ADD_FAILURE() << path << ": expected 8 columns: " << line;
+    if (f.size() != 9) {
+      ADD_FAILURE() << path << ": expected 9 columns: " << line;
       continue;
     }
     auto optional = [](const std::string& text) -> std::optional<double> {
@@ -188,7 +190,7 @@ std::vector<BeamRow> read_beams_csv(const std::string& path) {
     };
     EXPECT_TRUE(f[7] == "0" || f[7] == "1") << line;
     rows.push_back({std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[3]),
-                    std::stod(f[4]), optional(f[5]), optional(f[6]), f[7] == "1"});
+                    std::stod(f[4]), optional(f[5]), optional(f[6]), f[7] == "1", f[8]});
   }
   return rows;
 }
@@ -327,6 +329,12 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
     close += is_close ? 1 : 0;
     multipath += row.multipath ? 1 : 0;
     agree += is_close || row.multipath ? 1 : 0;
+    // The box's groups, or the water surface the simulator adds.
+    if (row.strongest_range_m) {
+      EXPECT_TRUE(row.surface == "walls" || row.surface == "bottom" ||
+                  row.surface == "water_surface")
+          << "strongest_surface '" << row.surface << "' at t = " << row.t_s;
+    }
   }
   const auto fraction = [&](std::size_t n) {
     return static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(with_hit, 1));

@@ -84,6 +84,7 @@ TEST(Msis, WallAtAKnownRangeGivesItsEcho) {
   ASSERT_TRUE(beam.truth.strongest_range_m);
   EXPECT_NEAR(*beam.truth.strongest_range_m, 20.0, 0.11);
   EXPECT_FALSE(beam.truth.strongest_is_multipath);
+  EXPECT_EQ(beam.truth.strongest_surface, "wall");
   const std::size_t peak = peak_bin(beam.intensity);
   EXPECT_NEAR(static_cast<double>(peak + 1) * sonar.bin_m, 20.0, 0.11);
   EXPECT_GT(beam.intensity[peak], 100);
@@ -155,6 +156,7 @@ TEST(Msis, SurfaceBounceMakesAFlaggedGhost) {
   const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(0.0), rng);
   ASSERT_TRUE(beam.truth.strongest_range_m);
   EXPECT_TRUE(beam.truth.strongest_is_multipath);
+  EXPECT_EQ(beam.truth.strongest_surface, "wall");  // seen by way of the surface mirror
   // Up to the surface and down to the wall along the mirror image: 20 m / cos(20 deg).
   EXPECT_NEAR(*beam.truth.strongest_range_m, 20.0 / std::cos(20.0 * M_PI / 180.0), 0.3);
   SonarConfig no_bounce = sonar;

@@ -17,6 +17,7 @@ DeadReckoningEkf::DeadReckoningEkf(const DeadReckoningConfig& config,
   const double sv2 = config.initial_velocity_sigma_mps * config.initial_velocity_sigma_mps;
   const double sr2 = config.initial_yaw_rate_sigma_radps * config.initial_yaw_rate_sigma_radps;
   P_.bottomRightCorner<3, 3>().diagonal() << sv2, sv2, sr2;
+  mark();
 }
 
 void DeadReckoningEkf::predict(double t_s) {
@@ -52,6 +53,7 @@ void DeadReckoningEkf::predict(double t_s) {
   Q(2, 5) = Q(5, 2) = qr * dt2 / 2.0;
   Q(5, 5) = qr * dt;
   P_ = F * P_ * F.transpose() + Q;
+  P_x_clone_ = F * P_x_clone_;  // the clone does not move
   t_s_ = t_s;
 }
 
@@ -64,6 +66,12 @@ double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
   const double nis = innovation.dot(S_inv * innovation);
   if (gate_chi2 > 0.0 && nis > gate_chi2) return nis;
   const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S_inv;
+  // The clone's gain, through its correlation with the state; its blocks of (I - K H) P follow.
+  const Eigen::Matrix<double, 3, M> K_clone = P_x_clone_.transpose() * H.transpose() * S_inv;
+  clone_ += K_clone * innovation;
+  clone_(2) = normalize_angle(clone_(2));
+  P_clone_ -= K_clone * H * P_x_clone_;
+  P_x_clone_ -= K * H * P_x_clone_;
   x_ += K * innovation;
   x_(2) = normalize_angle(x_(2));
   // Joseph form keeps P symmetric and positive definite.
@@ -93,6 +101,24 @@ double DeadReckoningEkf::update_heading(const HeadingReading& heading) {
   const Eigen::Matrix<double, 1, 1> innovation(normalize_angle(heading.yaw_rad - x_(2)));
   const Eigen::Matrix<double, 1, 1> R(config_.heading_sigma_rad * config_.heading_sigma_rad);
   return update<1>(innovation, H, R, 0.0);
+}
+
+void DeadReckoningEkf::mark() {
+  clone_ = x_.head<3>();
+  P_clone_ = P_.topLeftCorner<3, 3>();
+  P_x_clone_ = P_.leftCols<3>();
+}
+
+GaussianPose2 DeadReckoningEkf::motion_since_mark() const {
+  Eigen::Matrix3d J_mark;
+  Eigen::Matrix3d J_now;
+  GaussianPose2 motion;
+  motion.mean = Pose2(clone_).between(Pose2(x_.head<3>()), &J_mark, &J_now);
+  const Eigen::Matrix3d P_now_mark = P_x_clone_.topRows<3>();
+  const Eigen::Matrix3d cross = J_now * P_now_mark * J_mark.transpose();
+  motion.cov = J_mark * P_clone_ * J_mark.transpose() +
+               J_now * P_.topLeftCorner<3, 3>() * J_now.transpose() + cross + cross.transpose();
+  return motion;
 }
 
 StampedPose DeadReckoningEkf::pose() const {

@@ -52,6 +52,13 @@ class DeadReckoningEkf {
   /// The vehicle pose in the world frame with its 3x3 marginal covariance.
   StampedPose pose() const;
 
+  /// Stochastic cloning: remembers the current pose (and its correlation with the state), so that
+  /// the motion from here on can be read with its exact covariance.
+  void mark();
+  /// The motion since the last mark(), in the marked pose's frame: (-)x_mark (+) x_now, with the
+  /// covariance of the pair (J_mark P_mm J_mark^T + J_now P_nn J_now^T + cross terms).
+  GaussianPose2 motion_since_mark() const;
+
  private:
   template <int M>
   double update(const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, 6>& H,
@@ -62,6 +69,11 @@ class DeadReckoningEkf {
   double t_s_ = 0.0;
   Vector6d x_ = Vector6d::Zero();
   Matrix6d P_ = Matrix6d::Zero();
+  // The clone: the pose at the last mark(), its covariance and its cross-covariance with x_. It
+  // is the augmented state [x_; clone] of the EKF, kept in blocks.
+  Eigen::Vector3d clone_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d P_clone_ = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, 6, 3> P_x_clone_ = Eigen::Matrix<double, 6, 3>::Zero();
 };
 
 struct DeadReckoningResult {

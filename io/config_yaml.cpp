@@ -74,6 +74,40 @@ void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
   map.finish();
 }
 
+void read_segmentation(YamlMap map, SegmentationConfig& c) {
+  std::string method;
+  if (map.text("method", method) && !parse_segmentation_method(method, c.method)) {
+    map.fail("method",
+             "unknown method '" + method + "' (max_intensity, threshold_groups, smoothed_first)");
+  }
+  map.number("min_range_m", c.min_range_m);
+  map.number("threshold", c.threshold);
+  long long count = c.max_ranges_per_beam;
+  if (map.integer("max_ranges_per_beam", count) && (count < 1 || count > 100)) {
+    map.fail("max_ranges_per_beam", "must be in [1, 100]");
+  }
+  c.max_ranges_per_beam = static_cast<int>(count);
+  count = c.min_run_bins;
+  if (map.integer("min_run_bins", count) && (count < 1 || count > 1000)) {
+    map.fail("min_run_bins", "must be in [1, 1000]");
+  }
+  c.min_run_bins = static_cast<int>(count);
+  count = c.smoothing_bins;
+  if (map.integer("smoothing_bins", count) && (count < 1 || count % 2 == 0 || count > 101)) {
+    map.fail("smoothing_bins", "must be odd, in [1, 101]");
+  }
+  c.smoothing_bins = static_cast<int>(count);
+  map.number("sigma_range_m", c.sigma_range_m);
+  require_positive(map, "sigma_range_m", c.sigma_range_m);
+  double sigma_bearing_deg = c.sigma_bearing_rad / kDegToRad;
+  if (map.number("sigma_bearing_deg", sigma_bearing_deg)) {
+    c.sigma_bearing_rad = sigma_bearing_deg * kDegToRad;
+  }
+  require_positive(map, "sigma_bearing_deg", c.sigma_bearing_rad);
+  if (c.min_range_m < 0.0) map.fail("min_range_m", "must be >= 0");
+  map.finish();
+}
+
 }  // namespace
 
 std::vector<TimeSegment> read_segments(YamlMap map) {
@@ -128,6 +162,7 @@ SlamConfig read_slam_config(const std::string& path) {
   YamlMap root(load_yaml_file(path), path, "");
   SlamConfig config;
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
+  read_segmentation(root.map("segmentation"), config.segmentation);
   config.segments = read_segments(root.map("segments"));
   root.finish();
   return config;

@@ -85,4 +85,37 @@ void write_metrics_json(const std::string& path, const RunMetrics& m,
   });
 }
 
+void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& scans) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text =
+        "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points\n";
+    for (const PlacedScan& s : scans) {
+      const GaussianPose2& pose = s.centre_world.pose;
+      const Eigen::Matrix3d& P = pose.cov;
+      for (const double v : {s.scan.t_s, pose.mean.x(), pose.mean.y(), pose.mean.yaw(), P(0, 0),
+                             P(0, 1), P(0, 2), P(1, 1), P(1, 2), P(2, 2)}) {
+        append_number(text, v);
+        text += ',';
+      }
+      text += std::to_string(s.scan.points.size()) + "\n";
+    }
+    out << text;
+  });
+}
+
+void write_points_ply(const std::string& path, const std::vector<Eigen::Vector2d>& points_m) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "ply\nformat ascii 1.0\ncomment msislab scan points, world frame (m)\n";
+    text += "element vertex " + std::to_string(points_m.size()) +
+            "\nproperty double x\nproperty double y\nproperty double z\nend_header\n";
+    for (const Eigen::Vector2d& p : points_m) {
+      append_number(text, p.x());
+      text += ' ';
+      append_number(text, p.y());
+      text += " 0\n";
+    }
+    out << text;
+  });
+}
+
 }  // namespace msislab::io

@@ -17,13 +17,13 @@ enum class SegmentationMethod {
 
 struct SegmentationConfig {
   SegmentationMethod method = SegmentationMethod::kThresholdGroups;
-  double min_range_m = 1.0;         ///< bins closer than this are ignored (ring-down, vehicle)
-  double threshold = 80.0;          ///< intensity 0..255 a return must reach
-  int max_ranges_per_beam = 1;      ///< kThresholdGroups: the nearest N runs are kept
-  int min_run_bins = 1;             ///< runs shorter than this are noise
-  int smoothing_bins = 5;           ///< kSmoothedFirst: moving-average window (odd)
-  double sigma_range_m = 0.1;       ///< range standard deviation of a reading
-  double sigma_bearing_rad = 0.026; ///< bearing standard deviation (about half the 3 deg beam)
+  double min_range_m = 1.0;          ///< bins closer than this are ignored (ring-down, vehicle)
+  double threshold = 100.0;          ///< intensity 0..255 a return must reach
+  int max_ranges_per_beam = 1;       ///< kThresholdGroups: the nearest N runs are kept
+  int min_run_bins = 1;              ///< runs shorter than this are noise
+  int smoothing_bins = 3;            ///< kSmoothedFirst: moving-average window (odd)
+  double sigma_range_m = 0.1;        ///< range standard deviation of a reading
+  double sigma_bearing_rad = 0.026;  ///< bearing standard deviation (about half the 3 deg beam)
 };
 
 /// One range extracted from a beam.

@@ -170,6 +170,42 @@ DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadRecko
 
 namespace msislab {
 
+std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReckoningConfig& config,
+                                        const Eigen::Vector2d& p_vehicle_dvl_m,
+                                        const StampedPose& initial,
+                                        const std::vector<double>& times_s) {
+  DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
+  Pose2 previous = initial.pose.mean;
+  std::size_t i_dvl = 0, i_heading = 0;
+  std::vector<OdometrySample> samples;
+  samples.reserve(times_s.size());
+  for (const double t_s : times_s) {
+    // Every measurement up to t_s, in time order, then a prediction to t_s itself.
+    while (true) {
+      const bool dvl = i_dvl < log.dvl.size() && log.dvl[i_dvl].t_s <= t_s;
+      const bool heading = i_heading < log.heading.size() && log.heading[i_heading].t_s <= t_s;
+      if (!dvl && !heading) break;
+      if (dvl && (!heading || log.dvl[i_dvl].t_s <= log.heading[i_heading].t_s)) {
+        if (log.dvl[i_dvl].t_s >= initial.t_s) ekf.update_dvl(log.dvl[i_dvl]);
+        ++i_dvl;
+      } else {
+        if (log.heading[i_heading].t_s >= initial.t_s) ekf.update_heading(log.heading[i_heading]);
+        ++i_heading;
+      }
+    }
+    ekf.predict(t_s);
+    // Mean: the difference of the filtered poses, so the motions compose back to the
+    // dead-reckoning trajectory (with its absolute heading). Covariance: the clone's.
+    const StampedPose pose = ekf.pose();
+    GaussianPose2 motion = ekf.motion_since_mark();
+    motion.mean = previous.between(pose.pose.mean);
+    samples.push_back({t_s, motion, pose});
+    previous = pose.pose.mean;
+    ekf.mark();
+  }
+  return samples;
+}
+
 std::vector<StampedPose> integrate_velocities(const NavigationLog& log,
                                               const StampedPose& initial) {
   std::vector<StampedPose> trajectory = {initial};

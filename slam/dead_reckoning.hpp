@@ -95,6 +95,23 @@ DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadRecko
 
 namespace msislab {
 
+/// Dead reckoning sampled at given times, e.g. the sonar beams'.
+struct OdometrySample {
+  double t_s = 0.0;
+  GaussianPose2 motion;  ///< since the previous sample (the first: since the start), its frame
+  StampedPose pose;      ///< the vehicle in the world frame, marginal covariance
+};
+
+/// Runs the EKF from `initial` and samples it at the increasing times_s (times before the start
+/// give the start pose and no motion). Each motion's mean is the difference of the filtered poses
+/// at consecutive samples, so the motions compose back to the dead-reckoning trajectory; its
+/// covariance comes from stochastic cloning (that of the smoothed difference, which later
+/// measurements refine: a close stand-in, docs/front_end.md).
+std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReckoningConfig& config,
+                                        const Eigen::Vector2d& p_vehicle_dvl_m,
+                                        const StampedPose& initial,
+                                        const std::vector<double>& times_s);
+
 /// The reference baseline: plain integration of the DVL velocities, each held until the next DVL
 /// sample and rotated by the heading reading nearest in time. No covariance (zero).
 std::vector<StampedPose> integrate_velocities(const NavigationLog& log, const StampedPose& initial);

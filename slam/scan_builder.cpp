@@ -19,6 +19,7 @@ ScanPoint reading_in_vehicle(const SonarReading& reading,
                   .asDiagonal() *
               R.transpose();
   point.t_s = reading.t_s;
+  point.p_vehicle_m = point.p_m;
   return point;
 }
 
@@ -59,6 +60,7 @@ Scan ScanBuilder::build() {
       Eigen::Matrix2d J_point;
       ScanPoint point;
       point.t_s = in_vehicle.t_s;
+      point.p_vehicle_m = in_vehicle.p_m;
       point.p_m = x_centre[i].mean.transform(in_vehicle.p_m, &J_pose, &J_point);
       point.cov = J_pose * x_centre[i].cov * J_pose.transpose() +
                   J_point * in_vehicle.cov * J_point.transpose();

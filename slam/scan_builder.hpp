@@ -20,6 +20,7 @@ struct ScanPoint {
   Eigen::Vector2d p_m = Eigen::Vector2d::Zero();  ///< in the scan frame (vehicle at the centre)
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();  ///< reading noise + motion uncertainty
   double t_s = 0.0;                               ///< when the beam was taken
+  Eigen::Vector2d p_vehicle_m = Eigen::Vector2d::Zero();  ///< the reading in its own vehicle frame
 };
 
 struct Scan {

@@ -3,6 +3,7 @@
 
 #include <vector>
 
+#include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/evaluation.hpp"
 
@@ -10,6 +11,7 @@ namespace msislab {
 
 struct SlamConfig {
   DeadReckoningConfig dead_reckoning;
+  SegmentationConfig segmentation;
   std::vector<TimeSegment> segments;  ///< named windows scored separately in metrics.json
 };
 

@@ -8,6 +8,8 @@
 
 #include "app/image_command.hpp"
 #include "app/run_command.hpp"
+#include "app/scans_command.hpp"
+#include "app/segment_command.hpp"
 #include "app/simulate_command.hpp"
 #include "io/input_error.hpp"
 
@@ -61,6 +63,41 @@ void add_image_command(CLI::App& app, msislab::app::ImageOptions& options) {
       ->check(CLI::Range(100, 4000));
 }
 
+void add_segment_command(CLI::App& app, msislab::app::SegmentOptions& options) {
+  CLI::App* segment = app.add_subcommand(
+      "segment",
+      "Score beam segmentation methods on a simulated dataset against its truth/beams.csv");
+  segment
+      ->add_option("DATASET_DIR", options.dataset_dir,
+                   "Simulated dataset directory (*_IS.log, truth/beams.csv)")
+      ->required();
+  segment->add_option("--method,-m", options.methods,
+                      "Methods: max_intensity, threshold_groups, smoothed_first or all (default)");
+  segment
+      ->add_option("--threshold", options.threshold,
+                   "Intensity threshold 0..255 (default: the SegmentationConfig default)")
+      ->check(CLI::Range(0.0, 255.0));
+  segment
+      ->add_option("--min-range", options.min_range_m,
+                   "Minimum range in m (default: the SegmentationConfig default)")
+      ->check(CLI::NonNegativeNumber);
+  segment->add_option("--out,-o", options.out_path, "Also write the Markdown table to this file");
+}
+
+void add_scans_command(CLI::App& app, msislab::app::ScansOptions& options) {
+  CLI::App* scans = app.add_subcommand(
+      "scans",
+      "Segment the sonar beams and build motion-compensated scans placed by dead "
+      "reckoning; writes scans.csv, map.ply, map.png and compensation.png");
+  scans->add_option("DATASET_DIR", options.dataset_dir, "Dataset directory, real or synthetic")
+      ->required();
+  scans->add_option("--out,-o", options.out_dir, "Output directory")->required();
+  scans->add_option("--config,-c", options.config_path,
+                    "SLAM config YAML (segmentation and dead_reckoning sections)");
+  scans->add_option("--figure-scan", options.figure_scan,
+                    "Scan drawn before/after compensation (default: the middle one)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,6 +110,10 @@ int main(int argc, char** argv) {
   add_simulate_command(app, simulate_options);
   msislab::app::ImageOptions image_options;
   add_image_command(app, image_options);
+  msislab::app::ScansOptions scans_options;
+  add_scans_command(app, scans_options);
+  msislab::app::SegmentOptions segment_options;
+  add_segment_command(app, segment_options);
 
   try {
     app.parse(argc, argv);
@@ -92,9 +133,24 @@ int main(int argc, char** argv) {
                 << s.render_s << " s (" << s.duration_s / std::max(s.render_s, 1e-9)
                 << "x real time), " << s.total_s << " s in all" << std::endl;
     }
+    if (app.got_subcommand("scans")) {
+      const msislab::app::ScansSummary s = msislab::app::build_scans_command(scans_options);
+      std::cout << "wrote " << scans_options.out_dir << ": " << s.scans << " scans, " << s.points
+                << " points from " << s.beams_with_readings << " of " << s.beams << " beams ("
+                << s.source << ")";
+      if (s.compensated_error_m) {
+        std::cout << std::fixed << std::setprecision(3)
+                  << "; reading placement error against the truth: " << *s.compensated_error_m
+                  << " m compensated, " << *s.uncompensated_error_m << " m uncompensated";
+      }
+      std::cout << std::endl;
+    }
     if (app.got_subcommand("image")) {
       msislab::app::draw_image(image_options);
       std::cout << "wrote " << image_options.out_path << std::endl;
+    }
+    if (app.got_subcommand("segment")) {
+      std::cout << msislab::app::segment(segment_options).markdown << std::flush;
     }
     if (app.got_subcommand("run")) {
       const msislab::app::RunOutcome outcome = msislab::app::run(run_options);

@@ -216,6 +216,29 @@ TEST(DeadReckoning, MarkThenNoMotionGivesZeroMotion) {
   EXPECT_NEAR(motion.cov.norm(), 0.0, 1e-12);
 }
 
+// The motions compose back to the filter's poses exactly, and those are the filter's own.
+TEST(DeadReckoning, OdometryAtGivenTimesChainsToThePoses) {
+  DeadReckoningConfig c;
+  const Simulation sim = simulate(c, 60.0, 9, {0, 0}, 1.0);
+  // At heading times both runs hold the same post-update state (between updates the recorded
+  // trajectory jumps at each DVL update, so interpolating it would not compare like with like).
+  std::vector<double> times;
+  for (std::size_t k = 3; k < sim.log.heading.size(); k += 7)
+    times.push_back(sim.log.heading[k].t_s);
+  const auto samples = odometry_at(sim.log, c, {0, 0}, start_of(sim, c), times);
+  ASSERT_EQ(samples.size(), times.size());
+  const auto dr = run_dead_reckoning(sim.log, c, {0, 0}, start_of(sim, c));
+  Pose2 chained = start_of(sim, c).pose.mean;
+  for (const OdometrySample& s : samples) {
+    chained = chained.compose(s.motion.mean);
+    EXPECT_NEAR((chained.translation() - s.pose.pose.mean.translation()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(normalize_angle(chained.yaw() - s.pose.pose.mean.yaw()), 0.0, 1e-9);
+    EXPECT_GT(s.motion.cov.determinant(), 0.0) << "t = " << s.t_s;
+    const Pose2 filtered = interpolate_pose(dr.trajectory, s.t_s);
+    EXPECT_LT((filtered.translation() - s.pose.pose.mean.translation()).norm(), 1e-9);
+  }
+}
+
 TEST(DeadReckoning, PlainIntegrationFollowsTheVelocities) {
   DeadReckoningConfig c;
   const Simulation sim = simulate(c, 200.0, 3, {0, 0}, 0.0);

@@ -1,0 +1,126 @@
+#include "app/scans_command.hpp"
+
+#include <filesystem>
+
+#include "app/sonar_readings.hpp"
+#include "app/truth.hpp"
+#include "io/config_yaml.hpp"
+#include "io/input_error.hpp"
+#include "io/results.hpp"
+#include "io/scan_figures.hpp"
+#include "io/tum.hpp"
+#include "slam/scan_sequence.hpp"
+
+namespace msislab::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::vector<StampedPose> truth_poses(const std::string& path) {
+  std::vector<StampedPose> poses;
+  for (const io::TumPose& p : io::read_tum(path)) {
+    poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
+  }
+  return poses;
+}
+
+/// Mean distance of the scan points from where their readings really were, through the true
+/// centre pose: with the compensated point, and with the reading left in its own vehicle frame.
+std::pair<double, double> compensation_errors(const std::vector<PlacedScan>& scans,
+                                              const std::vector<StampedPose>& truth) {
+  double compensated = 0.0, uncompensated = 0.0;
+  std::size_t n = 0;
+  for (const PlacedScan& placed : scans) {
+    const Pose2 centre = interpolate_pose(truth, placed.scan.t_s);
+    for (const ScanPoint& point : placed.scan.points) {
+      const Eigen::Vector2d real = interpolate_pose(truth, point.t_s).transform(point.p_vehicle_m);
+      compensated += (centre.transform(point.p_m) - real).norm();
+      uncompensated += (centre.transform(point.p_vehicle_m) - real).norm();
+      ++n;
+    }
+  }
+  if (n == 0) return {0.0, 0.0};
+  return {compensated / static_cast<double>(n), uncompensated / static_cast<double>(n)};
+}
+
+void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
+                   const std::vector<Eigen::Vector2d>& truth_track, const std::string& truth_kind,
+                   int figure_scan) {
+  io::write_scans_csv((out / "scans.csv").string(), scans);
+  std::vector<Eigen::Vector2d> world_points, centres;
+  for (const PlacedScan& s : scans) {
+    centres.push_back(s.centre_world.pose.mean.translation());
+    for (const ScanPoint& p : s.scan.points) {
+      world_points.push_back(s.centre_world.pose.mean.transform(p.p_m));
+    }
+  }
+  io::write_points_ply((out / "map.ply").string(), world_points);
+  std::vector<io::Track> tracks;
+  if (!truth_track.empty()) tracks.push_back({truth_kind + " truth", truth_track, 0x00a000});
+  tracks.push_back({"dead reckoning", centres, 0x0000ff});
+  io::write_map_png(
+      (out / "map.png").string(),
+      "Scan points placed by dead reckoning (" + std::to_string(scans.size()) + " scans)",
+      world_points, tracks);
+  const std::size_t k = figure_scan >= 0 && static_cast<std::size_t>(figure_scan) < scans.size()
+                            ? static_cast<std::size_t>(figure_scan)
+                            : scans.size() / 2;
+  std::vector<Eigen::Vector2d> before, after;
+  for (const ScanPoint& p : scans[k].scan.points) {
+    before.push_back(p.p_vehicle_m);
+    after.push_back(p.p_m);
+  }
+  io::write_scan_comparison_png(
+      (out / "compensation.png").string(),
+      "scan " + std::to_string(k) + " at t = " + std::to_string(scans[k].scan.t_s) + " s", before,
+      after);
+}
+
+}  // namespace
+
+ScansSummary build_scans_command(const ScansOptions& options) {
+  const SlamConfig config =
+      options.config_path.empty() ? SlamConfig{} : io::read_slam_config(options.config_path);
+  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
+  const Calibration calibration = io::load_calibration(files);
+  const NavigationLog navigation = io::load_navigation(files, calibration);
+  const Truth truth = load_truth(files, calibration);
+  const StampedPose start =
+      initial_pose(truth, navigation, options.dataset_dir, config.dead_reckoning.heading_sigma_rad);
+  const SonarInput sonar = load_sonar_readings(files, calibration, config.segmentation);
+
+  ScanBuilderConfig builder;
+  builder.beams_per_scan = sonar.beams_per_revolution;
+  builder.p_vehicle_sonar_m = {calibration.sonar.x_m, calibration.sonar.y_m};
+  const std::vector<PlacedScan> scans =
+      build_scans(sonar.beams, navigation, config.dead_reckoning,
+                  {calibration.dvl.x_m, calibration.dvl.y_m}, start, builder);
+  if (scans.empty()) {
+    io::fail_file(options.dataset_dir, "no complete sonar revolution after the navigation start");
+  }
+
+  ScansSummary summary;
+  summary.source = sonar.source;
+  summary.beams = sonar.beams.size();
+  for (const BeamReadings& b : sonar.beams) summary.beams_with_readings += !b.readings.empty();
+  summary.scans = scans.size();
+  for (const PlacedScan& s : scans) summary.points += s.scan.points.size();
+  if (files.truth_trajectory) {
+    const auto [with, without] = compensation_errors(scans, truth_poses(*files.truth_trajectory));
+    summary.compensated_error_m = with;
+    summary.uncompensated_error_m = without;
+  }
+
+  std::error_code ec;
+  fs::create_directories(options.out_dir, ec);
+  if (ec || !fs::is_directory(options.out_dir)) {
+    io::fail_file(options.out_dir, "cannot create the output directory: " + ec.message());
+  }
+  std::vector<Eigen::Vector2d> truth_track;
+  for (const PositionFix& f : truth.positions) truth_track.push_back(f.p_world_m);
+  write_outputs(options.out_dir, scans, truth_track, truth.kind, options.figure_scan);
+  return summary;
+}
+
+}  // namespace msislab::app

@@ -1,0 +1,81 @@
+#include "app/sonar_readings.hpp"
+
+#include <cmath>
+
+#include "io/detections.hpp"
+#include "io/input_error.hpp"
+#include "io/stpere_logs.hpp"
+
+namespace msislab::app {
+
+namespace {
+
+std::vector<SonarReading> readings_of(double t_s, const std::vector<double>& ranges_m,
+                                      double bearing_rad, const SegmentationConfig& config) {
+  std::vector<SonarReading> readings;
+  for (const double range_m : ranges_m) {
+    readings.push_back({t_s, range_m, bearing_rad, config.sigma_range_m, config.sigma_bearing_rad});
+  }
+  return readings;
+}
+
+SonarInput from_is_log(const std::string& path, const io::SonarSetup& setup,
+                       const SonarMount& mount, const SegmentationConfig& config) {
+  SonarInput input;
+  input.source = "IS log";
+  for (const io::SonarBeamRecord& beam : io::read_is_log(path)) {
+    const double bearing = sonar_bearing_in_vehicle(beam.transducer_angle_rad, mount);
+    input.beams.push_back(
+        {beam.t_log_s,
+         readings_of(beam.t_log_s, segment_profile(beam.intensity, setup.bin_m, config), bearing,
+                     config)});
+  }
+  return input;
+}
+
+SonarInput from_detections(const io::DatasetFiles& files, const io::SonarSetup& setup,
+                           const SonarMount& mount, const SegmentationConfig& config) {
+  if (!files.beam_times) {
+    io::fail_file(files.dir, "detections need *_IS_timestamps.log for the beam times");
+  }
+  const std::vector<io::BeamTimeRecord> times = io::read_beam_times_log(*files.beam_times);
+  const std::vector<io::DetectionRecord> rows = io::read_detections(*files.detections);
+  SonarInput input;
+  input.source = "detections";
+  for (const io::BeamTimeRecord& t : times) input.beams.push_back({t.t_log_s, {}});
+  std::size_t i = 0;
+  while (i < rows.size()) {
+    const io::DetectionRecord& first = rows[i];
+    if (first.beam_row < 0 || static_cast<std::size_t>(first.beam_row) >= times.size()) {
+      io::fail_file(*files.detections, "beam_row " + std::to_string(first.beam_row) +
+                                           " is not a row of " + *files.beam_times);
+    }
+    std::vector<double> ranges_m;
+    for (; i < rows.size() && rows[i].beam_row == first.beam_row; ++i) {
+      ranges_m.push_back(rows[i].range_m);
+    }
+    BeamReadings& beam = input.beams[static_cast<std::size_t>(first.beam_row)];
+    beam.readings = readings_of(beam.t_s, segment_detections(ranges_m, setup.bin_m, config),
+                                sonar_bearing_in_vehicle(first.angle_rad, mount), config);
+  }
+  return input;
+}
+
+}  // namespace
+
+SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration& calibration,
+                               const SegmentationConfig& segmentation) {
+  const io::SonarSetup setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
+  SonarInput input;
+  if (files.is_log) {
+    input = from_is_log(*files.is_log, setup, calibration.sonar, segmentation);
+  } else if (files.detections) {
+    input = from_detections(files, setup, calibration.sonar, segmentation);
+  } else {
+    io::fail_file(files.dir, "no sonar data (*_IS.log or *_detections.csv[.gz])");
+  }
+  input.beams_per_revolution = static_cast<int>(std::lround(2.0 * M_PI / setup.step_rad));
+  return input;
+}
+
+}  // namespace msislab::app

@@ -1,0 +1,124 @@
+#include "io/beam_truth.hpp"
+
+#include <algorithm>
+#include <array>
+#include <string_view>
+
+#include "io/input_error.hpp"
+#include "io/text_lines.hpp"
+
+namespace msislab::io {
+namespace {
+
+constexpr std::string_view kHeader =
+    "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
+    "strongest_surface";
+constexpr std::array<std::string_view, 9> kNames = {"t_s",
+                                                    "x_m",
+                                                    "y_m",
+                                                    "yaw_rad",
+                                                    "bearing_rad",
+                                                    "first_hit_range_m",
+                                                    "strongest_range_m",
+                                                    "strongest_multipath",
+                                                    "strongest_surface"};
+using Fields = std::array<std::string_view, kNames.size()>;
+
+// Splits on commas into exactly 9 fields (no quoting: surface names hold no commas).
+Fields split_row(std::string_view line, std::size_t line_number, const std::string& path) {
+  Fields fields;
+  std::size_t count = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::size_t end = comma == std::string_view::npos ? line.size() : comma;
+    if (count < fields.size()) fields[count] = line.substr(start, end - start);
+    ++count;
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (count != fields.size()) {
+    fail_at(path, line_number,
+            (count < fields.size() ? "truncated line: expected 9 comma-separated fields, got "
+                                   : "too many fields: expected 9 comma-separated fields, got ") +
+                std::to_string(count));
+  }
+  return fields;
+}
+
+std::optional<double> parse_optional(std::string_view token, const FieldAt& at) {
+  if (token.empty()) return std::nullopt;
+  return parse_finite(token, at);
+}
+
+bool parse_flag(std::string_view token, const FieldAt& at) {
+  if (token != "0" && token != "1") fail_field(at, token, "is not 0 or 1");
+  return token == "1";
+}
+
+BeamTruthRow parse_row(std::string_view line, std::size_t line_number, const std::string& path) {
+  const Fields f = split_row(line, line_number, path);
+  const auto at = [&](std::size_t i) { return FieldAt{path, line_number, i + 1, kNames[i]}; };
+  BeamTruthRow row;
+  row.t_s = parse_finite(f[0], at(0));
+  row.x_m = parse_finite(f[1], at(1));
+  row.y_m = parse_finite(f[2], at(2));
+  row.yaw_rad = parse_finite(f[3], at(3));
+  row.bearing_rad = parse_finite(f[4], at(4));
+  row.first_hit_range_m = parse_optional(f[5], at(5));
+  row.strongest_range_m = parse_optional(f[6], at(6));
+  row.strongest_multipath = parse_flag(f[7], at(7));
+  row.strongest_surface = std::string(f[8]);
+  return row;
+}
+
+std::string_view strip_cr(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+void check_header(std::string_view line, const std::string& path) {
+  if (line != kHeader) {
+    fail_at(path, 1,
+            "wrong header: expected '" + std::string(kHeader) + "', got '" +
+                std::string(line.substr(0, 120)) + "'");
+  }
+}
+
+}  // namespace
+
+bool BeamTruthRow::operator==(const BeamTruthRow& other) const {
+  return t_s == other.t_s && x_m == other.x_m && y_m == other.y_m && yaw_rad == other.yaw_rad &&
+         bearing_rad == other.bearing_rad && first_hit_range_m == other.first_hit_range_m &&
+         strongest_range_m == other.strongest_range_m &&
+         strongest_multipath == other.strongest_multipath &&
+         strongest_surface == other.strongest_surface;
+}
+
+std::vector<BeamTruthRow> read_beam_truth(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  if (text.empty()) fail_file(path, "empty file: no header line");
+  std::vector<BeamTruthRow> rows;
+  std::size_t line_number = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    const std::size_t newline = std::min(text.find('\n', start), text.size());
+    const std::string_view line = strip_cr(std::string_view(text).substr(start, newline - start));
+    start = newline + 1;
+    ++line_number;
+    if (line_number == 1) {
+      check_header(line, path);
+      continue;
+    }
+    if (line.empty()) continue;
+    rows.push_back(parse_row(line, line_number, path));
+    if (rows.size() > 1 && rows.back().t_s < rows[rows.size() - 2].t_s) {
+      fail_at(path, line_number,
+              "t_s goes backwards (" + format_number(rows.back().t_s) + " after " +
+                  format_number(rows[rows.size() - 2].t_s) + ")");
+    }
+  }
+  require_data_rows(path, rows.size());
+  return rows;
+}
+
+}  // namespace msislab::io

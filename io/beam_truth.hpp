@@ -1,0 +1,29 @@
+// Reader of the simulator's per-beam truth, truth/beams.csv (docs/formats.md); the writer is
+// io::write_beam_truth in io/sim_dataset.hpp. Strict: the exact header, 9 comma-separated fields,
+// finite numbers, an empty field only for the optional ranges, multipath 0 or 1, time never going
+// backwards; any other line is an InputError "file:line: what".
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace msislab::io {
+
+/// One row of truth/beams.csv: one sonar beam.
+struct BeamTruthRow {
+  double t_s = 0.0;  ///< transmit time (log clock)
+  double x_m = 0.0;  ///< true vehicle pose at transmit, world frame
+  double y_m = 0.0;
+  double yaw_rad = 0.0;
+  double bearing_rad = 0.0;                 ///< beam axis in the vehicle frame
+  std::optional<double> first_hit_range_m;  ///< first surface on the axis, from the head
+  std::optional<double> strongest_range_m;  ///< strongest noise-free echo after TVG
+  bool strongest_multipath = false;         ///< that echo came by a specular route
+  std::string strongest_surface;            ///< material (OBJ group) that returned it
+  bool operator==(const BeamTruthRow& other) const;
+};
+
+std::vector<BeamTruthRow> read_beam_truth(const std::string& path);
+
+}  // namespace msislab::io

@@ -24,28 +24,6 @@ constexpr std::array<std::string_view, 9> kNames = {"t_s",
                                                     "strongest_surface"};
 using Fields = std::array<std::string_view, kNames.size()>;
 
-// Splits on commas into exactly 9 fields (no quoting: surface names hold no commas).
-Fields split_row(std::string_view line, std::size_t line_number, const std::string& path) {
-  Fields fields;
-  std::size_t count = 0;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::size_t end = comma == std::string_view::npos ? line.size() : comma;
-    if (count < fields.size()) fields[count] = line.substr(start, end - start);
-    ++count;
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  if (count != fields.size()) {
-    fail_at(path, line_number,
-            (count < fields.size() ? "truncated line: expected 9 comma-separated fields, got "
-                                   : "too many fields: expected 9 comma-separated fields, got ") +
-                std::to_string(count));
-  }
-  return fields;
-}
-
 std::optional<double> parse_optional(std::string_view token, const FieldAt& at) {
   if (token.empty()) return std::nullopt;
   return parse_finite(token, at);
@@ -57,7 +35,7 @@ bool parse_flag(std::string_view token, const FieldAt& at) {
 }
 
 BeamTruthRow parse_row(std::string_view line, std::size_t line_number, const std::string& path) {
-  const Fields f = split_row(line, line_number, path);
+  const Fields f = split_csv<kNames.size()>(line, path, line_number);
   const auto at = [&](std::size_t i) { return FieldAt{path, line_number, i + 1, kNames[i]}; };
   BeamTruthRow row;
   row.t_s = parse_finite(f[0], at(0));
@@ -70,11 +48,6 @@ BeamTruthRow parse_row(std::string_view line, std::size_t line_number, const std
   row.strongest_multipath = parse_flag(f[7], at(7));
   row.strongest_surface = std::string(f[8]);
   return row;
-}
-
-std::string_view strip_cr(std::string_view line) {
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  return line;
 }
 
 void check_header(std::string_view line, const std::string& path) {

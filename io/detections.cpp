@@ -29,26 +29,6 @@ bool is_gzip_name(const std::string& path) {
          path.compare(path.size() - kSuffix.size(), kSuffix.size(), kSuffix) == 0;
 }
 
-// Splits on commas into exactly 7 fields (no quoting: every field is a number).
-void split_row(std::string_view line, std::size_t line_number, const std::string& path,
-               std::array<std::string_view, 7>& fields) {
-  std::size_t count = 0;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    const std::size_t end = comma == std::string_view::npos ? line.size() : comma;
-    if (count < fields.size()) fields[count] = line.substr(start, end - start);
-    ++count;
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  if (count != fields.size())
-    fail_at(path, line_number,
-            (count < fields.size() ? "truncated line: expected 7 comma-separated fields, got "
-                                   : "too many fields: expected 7 comma-separated fields, got ") +
-                std::to_string(count));
-}
-
 std::int32_t parse_int32(std::string_view token, const FieldAt& at) {
   const std::int64_t value = parse_integer(token, at);
   if (value < std::numeric_limits<std::int32_t>::min() ||
@@ -58,8 +38,7 @@ std::int32_t parse_int32(std::string_view token, const FieldAt& at) {
 }
 
 DetectionRecord parse_row(std::string_view line, std::size_t line_number, const std::string& path) {
-  std::array<std::string_view, 7> f;
-  split_row(line, line_number, path, f);
+  const std::array<std::string_view, 7> f = split_csv<7>(line, path, line_number);
   const auto at = [&](std::size_t i) { return FieldAt{path, line_number, i + 1, kNames[i]}; };
   DetectionRecord r;
   r.keyframe = parse_int32(f[0], at(0));
@@ -70,11 +49,6 @@ DetectionRecord parse_row(std::string_view line, std::size_t line_number, const 
   r.angle_rad = parse_finite(f[5], at(5));
   r.range_m = parse_finite(f[6], at(6));
   return r;
-}
-
-std::string_view strip_cr(std::string_view line) {
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  return line;
 }
 
 // The header, then one record per non-blank line in beam_row order.

@@ -158,4 +158,28 @@ void append_finite(std::string& out, double value, const std::string& path, std:
   append_number(out, value);
 }
 
+std::string_view strip_cr(std::string_view line) {
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
+void split_csv_fields(std::string_view line, const std::string& path, std::size_t line_number,
+                      std::string_view* fields, std::size_t count) {
+  std::size_t found = 0;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', start);
+    const std::size_t end = comma == std::string_view::npos ? line.size() : comma;
+    if (found < count) fields[found] = line.substr(start, end - start);
+    ++found;
+    if (comma == std::string_view::npos) break;
+    start = comma + 1;
+  }
+  if (found != count) {
+    fail_at(path, line_number,
+            std::string(found < count ? "truncated line" : "too many fields") + ": expected " +
+                std::to_string(count) + " comma-separated fields, got " + std::to_string(found));
+  }
+}
+
 }  // namespace msislab::io

@@ -3,6 +3,7 @@
 // shortest round-trip number formatting for the writers.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -73,6 +74,24 @@ void require_data_rows(const std::string& path, std::size_t rows);
 /// The column-count error text, "truncated line: expected 32 columns, got 17" or
 /// "too many columns: expected 32 columns, got 40".
 std::string column_count_error(std::size_t expected, std::size_t got);
+
+/// The line without a trailing '\r' (CRLF files).
+std::string_view strip_cr(std::string_view line);
+
+/// Splits a CSV line (no quoting) into exactly `count` fields written to `fields`; otherwise
+/// InputError "path:line: truncated line: expected N comma-separated fields, got M" (or "too many
+/// fields: ...").
+void split_csv_fields(std::string_view line, const std::string& path, std::size_t line_number,
+                      std::string_view* fields, std::size_t count);
+
+/// split_csv_fields into an array of N fields.
+template <std::size_t N>
+std::array<std::string_view, N> split_csv(std::string_view line, const std::string& path,
+                                          std::size_t line_number) {
+  std::array<std::string_view, N> fields;
+  split_csv_fields(line, path, line_number, fields.data(), N);
+  return fields;
+}
 
 /// The shortest text that reads back as exactly the same double.
 std::string format_number(double value);

@@ -5,7 +5,7 @@
 #include <filesystem>
 
 #include "app/truth.hpp"
-#include "io/config_yaml.hpp"
+#include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"
@@ -48,11 +48,8 @@ RunMetrics score(const Truth& truth, const std::vector<StampedPose>& trajectory,
 /// Creates the result directory and removes result files a previous run left that this run
 /// will not rewrite, so the directory never mixes two runs.
 void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
+  io::create_output_dir(out_dir);
   std::error_code ec;
-  fs::create_directories(out_dir, ec);
-  if (ec || !fs::is_directory(out_dir)) {
-    io::fail_file(out_dir, "cannot create the output directory: " + ec.message());
-  }
   for (const char* stale : {"scans.csv", "map.ply"}) fs::remove(fs::path(out_dir) / stale, ec);
   if (!writes_metrics) fs::remove(fs::path(out_dir) / "metrics.json", ec);
 }
@@ -60,14 +57,12 @@ void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
 
 RunOutcome run(const RunOptions& options) {
   check_method(options.method);
-  const SlamConfig config =
-      options.config_path.empty() ? SlamConfig{} : io::read_slam_config(options.config_path);
-  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
-  const Calibration calibration = io::load_calibration(files);
-  const NavigationLog navigation = io::load_navigation(files, calibration);
-  const Truth truth = load_truth(files, calibration);
-  const StampedPose start =
-      initial_pose(truth, navigation, options.dataset_dir, config.dead_reckoning.heading_sigma_rad);
+  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+  const SlamConfig& config = in.config;
+  const Calibration& calibration = in.calibration;
+  const NavigationLog& navigation = in.navigation;
+  const Truth& truth = in.truth;
+  const StampedPose& start = in.start;
 
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);

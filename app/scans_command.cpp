@@ -4,7 +4,7 @@
 
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
-#include "io/config_yaml.hpp"
+#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"
 #include "io/scan_figures.hpp"
@@ -80,22 +80,19 @@ void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
 }  // namespace
 
 ScansSummary build_scans_command(const ScansOptions& options) {
-  const SlamConfig config =
-      options.config_path.empty() ? SlamConfig{} : io::read_slam_config(options.config_path);
-  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
-  const Calibration calibration = io::load_calibration(files);
-  const NavigationLog navigation = io::load_navigation(files, calibration);
-  const Truth truth = load_truth(files, calibration);
-  const StampedPose start =
-      initial_pose(truth, navigation, options.dataset_dir, config.dead_reckoning.heading_sigma_rad);
+  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+  const SlamConfig& config = in.config;
+  const io::DatasetFiles& files = in.files;
+  const Calibration& calibration = in.calibration;
+  const Truth& truth = in.truth;
   const SonarInput sonar = load_sonar_readings(files, calibration, config.segmentation);
 
   ScanBuilderConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {calibration.sonar.x_m, calibration.sonar.y_m};
   const std::vector<PlacedScan> scans =
-      build_scans(sonar.beams, navigation, config.dead_reckoning,
-                  {calibration.dvl.x_m, calibration.dvl.y_m}, start, builder);
+      build_scans(sonar.beams, in.navigation, config.dead_reckoning,
+                  {calibration.dvl.x_m, calibration.dvl.y_m}, in.start, builder);
   if (scans.empty()) {
     io::fail_file(options.dataset_dir, "no complete sonar revolution after the navigation start");
   }
@@ -112,11 +109,7 @@ ScansSummary build_scans_command(const ScansOptions& options) {
     summary.uncompensated_error_m = without;
   }
 
-  std::error_code ec;
-  fs::create_directories(options.out_dir, ec);
-  if (ec || !fs::is_directory(options.out_dir)) {
-    io::fail_file(options.out_dir, "cannot create the output directory: " + ec.message());
-  }
+  io::create_output_dir(options.out_dir);
   std::vector<Eigen::Vector2d> truth_track;
   for (const PositionFix& f : truth.positions) truth_track.push_back(f.p_world_m);
   write_outputs(options.out_dir, scans, truth_track, truth.kind, options.figure_scan);

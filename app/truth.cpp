@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/tum.hpp"
 
@@ -48,6 +49,18 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
   start.pose.mean = Pose2(fix->p_world_m.x(), fix->p_world_m.y(),
                           nearest_heading(navigation.heading, fix->t_s).yaw_rad);
   return start;
+}
+
+RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path) {
+  RunInputs in;
+  in.config = config_path.empty() ? SlamConfig{} : io::read_slam_config(config_path);
+  in.files = io::find_dataset_files(dataset_dir);
+  in.calibration = io::load_calibration(in.files);
+  in.navigation = io::load_navigation(in.files, in.calibration);
+  in.truth = load_truth(in.files, in.calibration);
+  in.start = initial_pose(in.truth, in.navigation, dataset_dir,
+                          in.config.dead_reckoning.heading_sigma_rad);
+  return in;
 }
 
 }  // namespace msislab::app

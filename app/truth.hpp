@@ -8,6 +8,7 @@
 #include "io/dataset.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
+#include "slam/slam_config.hpp"
 
 namespace msislab::app {
 
@@ -25,5 +26,19 @@ Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);
 /// the navigation log has no heading at all.
 StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
                          const std::string& dataset_dir, double heading_sigma_rad);
+
+/// Everything a method reads from a dataset before it runs: the SLAM config, the dataset's files
+/// and calibration, its navigation, its truth and the shared start pose.
+struct RunInputs {
+  SlamConfig config;
+  io::DatasetFiles files;
+  Calibration calibration;
+  NavigationLog navigation;
+  Truth truth;
+  StampedPose start;
+};
+
+/// Reads and checks them (config_path empty: the default config). Throws io::InputError.
+RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path);
 
 }  // namespace msislab::app

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "io/input_error.hpp"
@@ -34,6 +35,14 @@ void write_file_atomically(const std::string& path,
     const int err = errno;
     std::remove(tmp.c_str());
     fail_file(path, std::string("cannot rename into place: ") + std::strerror(err));
+  }
+}
+
+void create_output_dir(const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec || !std::filesystem::is_directory(dir)) {
+    fail_file(dir, "cannot create the output directory: " + ec.message());
   }
 }
 

@@ -13,4 +13,7 @@ namespace msislab::io {
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
+/// Creates the directory (and its parents) if needed; InputError naming it when that fails.
+void create_output_dir(const std::string& dir);
+
 }  // namespace msislab::io

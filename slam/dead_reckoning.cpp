@@ -17,7 +17,7 @@ DeadReckoningEkf::DeadReckoningEkf(const DeadReckoningConfig& config,
   const double sv2 = config.initial_velocity_sigma_mps * config.initial_velocity_sigma_mps;
   const double sr2 = config.initial_yaw_rate_sigma_radps * config.initial_yaw_rate_sigma_radps;
   P_.bottomRightCorner<3, 3>().diagonal() << sv2, sv2, sr2;
-  mark();
+  for (int slot = 0; slot < kCloneSlots; ++slot) mark(slot);
 }
 
 void DeadReckoningEkf::predict(double t_s) {
@@ -53,7 +53,7 @@ void DeadReckoningEkf::predict(double t_s) {
   Q(2, 5) = Q(5, 2) = qr * dt2 / 2.0;
   Q(5, 5) = qr * dt;
   P_ = F * P_ * F.transpose() + Q;
-  P_x_clone_ = F * P_x_clone_;  // the clone does not move
+  for (Clone& clone : clones_) clone.P_x = F * clone.P_x;  // the clones do not move
   t_s_ = t_s;
 }
 
@@ -66,12 +66,14 @@ double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
   const double nis = innovation.dot(S_inv * innovation);
   if (gate_chi2 > 0.0 && nis > gate_chi2) return nis;
   const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S_inv;
-  // The clone's gain, through its correlation with the state; its blocks of (I - K H) P follow.
-  const Eigen::Matrix<double, 3, M> K_clone = P_x_clone_.transpose() * H.transpose() * S_inv;
-  clone_ += K_clone * innovation;
-  clone_(2) = normalize_angle(clone_(2));
-  P_clone_ -= K_clone * H * P_x_clone_;
-  P_x_clone_ -= K * H * P_x_clone_;
+  // Each clone's gain, through its correlation with the state; its blocks of (I - K H) P follow.
+  for (Clone& clone : clones_) {
+    const Eigen::Matrix<double, 3, M> K_clone = clone.P_x.transpose() * H.transpose() * S_inv;
+    clone.pose += K_clone * innovation;
+    clone.pose(2) = normalize_angle(clone.pose(2));
+    clone.P -= K_clone * H * clone.P_x;
+    clone.P_x -= K * H * clone.P_x;
+  }
   x_ += K * innovation;
   x_(2) = normalize_angle(x_(2));
   // Joseph form keeps P symmetric and positive definite.
@@ -103,20 +105,22 @@ double DeadReckoningEkf::update_heading(const HeadingReading& heading) {
   return update<1>(innovation, H, R, 0.0);
 }
 
-void DeadReckoningEkf::mark() {
-  clone_ = x_.head<3>();
-  P_clone_ = P_.topLeftCorner<3, 3>();
-  P_x_clone_ = P_.leftCols<3>();
+void DeadReckoningEkf::mark(int slot) {
+  Clone& clone = clones_[slot];
+  clone.pose = x_.head<3>();
+  clone.P = P_.topLeftCorner<3, 3>();
+  clone.P_x = P_.leftCols<3>();
 }
 
-GaussianPose2 DeadReckoningEkf::motion_since_mark() const {
+GaussianPose2 DeadReckoningEkf::motion_since_mark(int slot) const {
+  const Clone& clone = clones_[slot];
   Eigen::Matrix3d J_mark;
   Eigen::Matrix3d J_now;
   GaussianPose2 motion;
-  motion.mean = Pose2(clone_).between(Pose2(x_.head<3>()), &J_mark, &J_now);
-  const Eigen::Matrix3d P_now_mark = P_x_clone_.topRows<3>();
+  motion.mean = Pose2(clone.pose).between(Pose2(x_.head<3>()), &J_mark, &J_now);
+  const Eigen::Matrix3d P_now_mark = clone.P_x.topRows<3>();
   const Eigen::Matrix3d cross = J_now * P_now_mark * J_mark.transpose();
-  motion.cov = J_mark * P_clone_ * J_mark.transpose() +
+  motion.cov = J_mark * clone.P * J_mark.transpose() +
                J_now * P_.topLeftCorner<3, 3>() * J_now.transpose() + cross + cross.transpose();
   return motion;
 }
@@ -173,9 +177,11 @@ namespace msislab {
 std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReckoningConfig& config,
                                         const Eigen::Vector2d& p_vehicle_dvl_m,
                                         const StampedPose& initial,
-                                        const std::vector<double>& times_s) {
+                                        const std::vector<double>& times_s,
+                                        const KeySamples& keys) {
+  constexpr int kBeamSlot = 0, kKeySlot = 1;
   DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
-  Pose2 previous = initial.pose.mean;
+  Pose2 previous = initial.pose.mean, previous_key = initial.pose.mean;
   std::size_t i_dvl = 0, i_heading = 0;
   std::vector<OdometrySample> samples;
   samples.reserve(times_s.size());
@@ -197,11 +203,18 @@ std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReck
     // Mean: the difference of the filtered poses, so the motions compose back to the
     // dead-reckoning trajectory (with its absolute heading). Covariance: the clone's.
     const StampedPose pose = ekf.pose();
-    GaussianPose2 motion = ekf.motion_since_mark();
+    GaussianPose2 motion = ekf.motion_since_mark(kBeamSlot);
     motion.mean = previous.between(pose.pose.mean);
-    samples.push_back({t_s, motion, pose});
+    samples.push_back({t_s, motion, pose, std::nullopt});
     previous = pose.pose.mean;
-    ekf.mark();
+    ekf.mark(kBeamSlot);
+    if (keys.is_key(samples.size() - 1)) {
+      GaussianPose2 key_motion = ekf.motion_since_mark(kKeySlot);
+      key_motion.mean = previous_key.between(pose.pose.mean);
+      samples.back().motion_since_key = key_motion;
+      previous_key = pose.pose.mean;
+      ekf.mark(kKeySlot);
+    }
   }
   return samples;
 }

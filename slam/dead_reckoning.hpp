@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <optional>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -52,12 +53,14 @@ class DeadReckoningEkf {
   /// The vehicle pose in the world frame with its 3x3 marginal covariance.
   StampedPose pose() const;
 
-  /// Stochastic cloning: remembers the current pose (and its correlation with the state), so that
-  /// the motion from here on can be read with its exact covariance.
-  void mark();
-  /// The motion since the last mark(), in the marked pose's frame: (-)x_mark (+) x_now, with the
-  /// covariance of the pair (J_mark P_mm J_mark^T + J_now P_nn J_now^T + cross terms).
-  GaussianPose2 motion_since_mark() const;
+  /// Stochastic cloning: remembers the current pose (and its correlation with the state) in a
+  /// slot, so that the motion from here on can be read with its exact covariance. Each slot's
+  /// joint with the state evolves on its own, so slots can mark different times.
+  static constexpr int kCloneSlots = 2;
+  void mark(int slot = 0);
+  /// The motion since the slot's last mark(), in the marked pose's frame: (-)x_mark (+) x_now,
+  /// with the covariance of the pair (J_mark P_mm J_mark^T + J_now P_nn J_now^T + cross terms).
+  GaussianPose2 motion_since_mark(int slot = 0) const;
 
  private:
   template <int M>
@@ -69,11 +72,14 @@ class DeadReckoningEkf {
   double t_s_ = 0.0;
   Vector6d x_ = Vector6d::Zero();
   Matrix6d P_ = Matrix6d::Zero();
-  // The clone: the pose at the last mark(), its covariance and its cross-covariance with x_. It
-  // is the augmented state [x_; clone] of the EKF, kept in blocks.
-  Eigen::Vector3d clone_ = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d P_clone_ = Eigen::Matrix3d::Zero();
-  Eigen::Matrix<double, 6, 3> P_x_clone_ = Eigen::Matrix<double, 6, 3>::Zero();
+  // A clone: the pose at the slot's last mark(), its covariance and its cross-covariance with
+  // x_: the augmented state [x_; clone] of the EKF, kept in blocks.
+  struct Clone {
+    Eigen::Vector3d pose = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+    Eigen::Matrix<double, 6, 3> P_x = Eigen::Matrix<double, 6, 3>::Zero();
+  };
+  Clone clones_[kCloneSlots];
 };
 
 struct DeadReckoningResult {
@@ -100,6 +106,16 @@ struct OdometrySample {
   double t_s = 0.0;
   GaussianPose2 motion;  ///< since the previous sample (the first: since the start), its frame
   StampedPose pose;      ///< the vehicle in the world frame, marginal covariance
+  /// Key samples only: the motion since the previous key sample (the first: since the start),
+  /// with its exact covariance from a clone kept across all the samples in between.
+  std::optional<GaussianPose2> motion_since_key;
+};
+
+/// Which samples are keys: indices first, first + every, first + 2 every, ...
+struct KeySamples {
+  std::size_t first = 0;
+  std::size_t every = 0;  ///< 0: no keys
+  bool is_key(std::size_t i) const { return every > 0 && i >= first && (i - first) % every == 0; }
 };
 
 /// Runs the EKF from `initial` and samples it at the increasing times_s (times before the start
@@ -110,7 +126,8 @@ struct OdometrySample {
 std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReckoningConfig& config,
                                         const Eigen::Vector2d& p_vehicle_dvl_m,
                                         const StampedPose& initial,
-                                        const std::vector<double>& times_s);
+                                        const std::vector<double>& times_s,
+                                        const KeySamples& keys = {});
 
 /// The reference baseline: plain integration of the DVL velocities, each held until the next DVL
 /// sample and rotated by the heading reading nearest in time. No covariance (zero).

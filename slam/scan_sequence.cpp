@@ -13,8 +13,13 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                   [&](const BeamReadings& b) { return b.t_s >= initial.t_s; });
   std::vector<double> times_s;
   for (auto it = first; it != beams.end(); ++it) times_s.push_back(it->t_s);
+  // The scan centres are keys: their motions come from one clone each, exactly (composing the
+  // per-beam increments as independent would be about 100 times overconfident: they share the
+  // EKF's velocity error).
+  const std::size_t per_scan = static_cast<std::size_t>(config.beams_per_scan);
   const std::vector<OdometrySample> odometry =
-      odometry_at(navigation, dead_reckoning, p_vehicle_dvl_m, initial, times_s);
+      odometry_at(navigation, dead_reckoning, p_vehicle_dvl_m, initial, times_s,
+                  KeySamples{per_scan / 2, per_scan});
 
   ScanBuilder builder(config);
   std::vector<PlacedScan> scans;
@@ -25,6 +30,7 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
       // The scan frame is the vehicle at the revolution's central beam.
       const std::size_t centre =
           i + 1 - static_cast<std::size_t>(config.beams_per_scan) + centre_offset;
+      scan->motion = *odometry[centre].motion_since_key;
       scans.push_back({std::move(*scan), odometry[centre].pose});
     }
   }

@@ -22,7 +22,9 @@ struct PlacedScan {
 };
 
 /// Builds every complete revolution of beams taken at or after initial.t_s (earlier beams, when
-/// there is no navigation yet, are skipped; a last incomplete revolution is dropped).
+/// there is no navigation yet, are skipped; a last incomplete revolution is dropped). Each scan's
+/// motion (from the previous scan frame; the first: from the start pose) comes from the dead
+/// reckoning with its exact covariance (a clone from centre to centre).
 std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                     const NavigationLog& navigation,
                                     const DeadReckoningConfig& dead_reckoning,

@@ -1,0 +1,127 @@
+#include "slam/scan_matching.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <limits>
+
+namespace msislab {
+
+namespace {
+
+struct Association {
+  std::size_t current = 0;
+  std::size_t reference = 0;
+};
+
+/// E-step: each current point moved by the guess (covariance including the guess's) to its
+/// nearest reference point in Mahalanobis distance, when within the gate.
+std::vector<Association> associate(const std::vector<ScanPoint>& reference,
+                                   const std::vector<ScanPoint>& current, const GaussianPose2& q,
+                                   double gate_chi2) {
+  std::vector<Association> pairs;
+  for (std::size_t j = 0; j < current.size(); ++j) {
+    Matrix23d J_q;
+    Eigen::Matrix2d J_p;
+    const Eigen::Vector2d moved = q.mean.transform(current[j].p_m, &J_q, &J_p);
+    const Eigen::Matrix2d C =
+        J_q * q.cov * J_q.transpose() + J_p * current[j].cov * J_p.transpose();
+    double best = gate_chi2;
+    std::size_t best_i = reference.size();
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      const Eigen::Vector2d d = moved - reference[i].p_m;
+      const Eigen::Matrix2d S = C + reference[i].cov;
+      const double d2 = d.dot(S.inverse() * d);
+      if (d2 < best) best = d2, best_i = i;
+    }
+    if (best_i < reference.size()) pairs.push_back({j, best_i});
+  }
+  return pairs;
+}
+
+struct NormalEquations {
+  Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  double chi2 = 0.0;
+};
+
+/// M-step system at q: e_j = q (+) p_j - a_i, W_j = A_i + J_p C_j J_p^T, H = sum J^T W^-1 J,
+/// b = sum J^T W^-1 e.
+NormalEquations normal_equations(const std::vector<ScanPoint>& reference,
+                                 const std::vector<ScanPoint>& current, const Pose2& q,
+                                 const std::vector<Association>& pairs) {
+  NormalEquations eq;
+  for (const Association& a : pairs) {
+    Matrix23d J_q;
+    Eigen::Matrix2d J_p;
+    const Eigen::Vector2d e =
+        q.transform(current[a.current].p_m, &J_q, &J_p) - reference[a.reference].p_m;
+    const Eigen::Matrix2d W_inv =
+        (reference[a.reference].cov + J_p * current[a.current].cov * J_p.transpose()).inverse();
+    eq.H += J_q.transpose() * W_inv * J_q;
+    eq.b += J_q.transpose() * W_inv * e;
+    eq.chi2 += e.dot(W_inv * e);
+  }
+  return eq;
+}
+
+}  // namespace
+
+ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
+                            const std::vector<ScanPoint>& current, const GaussianPose2& guess,
+                            const ScanMatchConfig& config) {
+  ScanMatchResult result;
+  GaussianPose2 q = guess;
+  std::vector<Association> pairs;
+  NormalEquations eq;
+  for (result.iterations = 1; result.iterations <= config.max_iterations; ++result.iterations) {
+    pairs = associate(reference, current, q, config.association_gate_chi2);
+    if (static_cast<int>(pairs.size()) < config.min_inliers) return result;
+    eq = normal_equations(reference, current, q.mean, pairs);
+    const Eigen::Vector3d step = -eq.H.ldlt().solve(eq.b);
+    if (!step.allFinite()) return result;
+    q.mean = Pose2(q.mean.vector() + step);
+    if (step.head<2>().norm() < config.tolerance_m && std::abs(step(2)) < config.tolerance_rad) {
+      result.converged = true;
+      break;
+    }
+  }
+  // The final system at the final estimate and associations.
+  pairs = associate(reference, current, q, config.association_gate_chi2);
+  result.inliers = static_cast<int>(pairs.size());
+  if (result.inliers < config.min_inliers) return result;
+  eq = normal_equations(reference, current, q.mean, pairs);
+  result.information = eq.H;
+  result.chi2 = eq.chi2;
+  if (std::abs(eq.H.determinant()) < 1e-12) return result;
+  result.estimate.mean = q.mean;
+  result.estimate.cov = eq.H.inverse();
+  const double dof = 2.0 * result.inliers - 3.0;
+  if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
+    result.estimate.cov *= eq.chi2 / dof;
+  }
+  result.valid = true;
+  return result;
+}
+
+std::pair<double, double> average_chi2_bounds(int n, int dof, double alpha) {
+  // Wilson-Hilferty: chi2_p(k) ~ k (1 - 2/(9k) + z_p sqrt(2/(9k)))^3, k = n dof.
+  const double k = static_cast<double>(n) * dof;
+  // Normal quantile of 1 - alpha/2 by inverting erfc with Newton steps from 2.
+  auto z_of = [](double tail) {
+    double z = 2.0;
+    for (int i = 0; i < 50; ++i) {
+      const double f = 0.5 * std::erfc(z / std::sqrt(2.0)) - tail;
+      const double df = -std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI);
+      z -= f / df;
+    }
+    return z;
+  };
+  const double z = z_of(alpha / 2.0);
+  const double c = 2.0 / (9.0 * k);
+  const double lower = k * std::pow(1.0 - c - z * std::sqrt(c), 3.0);
+  const double upper = k * std::pow(1.0 - c + z * std::sqrt(c), 3.0);
+  return {lower / n, upper / n};
+}
+
+}  // namespace msislab

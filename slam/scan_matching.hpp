@@ -1,0 +1,49 @@
+// spIC: probabilistic scan matching of two scans with uncertain points and an uncertain initial
+// guess (Burguera, Gonzalez, Oliver 2008; Montesano et al. 2005; docs/scan_matching.md). Finds the
+// pose q of the current scan's frame in the reference scan's frame:
+//   E-step: each current point p_j, moved by the guess, q (+) p_j, with covariance
+//           J_q P_q J_q^T + J_p C_j J_p^T, is associated with the reference point a_i of least
+//           Mahalanobis distance, gated by a chi-square value (2 DOF);
+//   M-step: q minimises sum_j e_j^T W_j^-1 e_j, e_j = q (+) p_j - a_i, W_j = A_i + J_p C_j J_p^T,
+//           by Gauss-Newton; repeat until the step is negligible.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "slam/gaussian_pose.hpp"
+#include "slam/scan_builder.hpp"
+
+namespace msislab {
+
+struct ScanMatchConfig {
+  double association_gate_chi2 = 9.21;  ///< chi-square, 2 DOF (99%)
+  int max_iterations = 50;
+  int min_inliers = 8;          ///< fewer associations: the match is not valid
+  double tolerance_m = 1e-4;    ///< convergence: translation step below this...
+  double tolerance_rad = 1e-5;  ///< ...and rotation step below this
+  /// Scale the covariance by the residual's variance factor s^2 = chi^2 / (2n - 3) when above 1
+  /// (point-to-point residuals on sparse sonar points are larger than the point covariances say).
+  bool scale_covariance_by_residual = true;
+};
+
+struct ScanMatchResult {
+  GaussianPose2 estimate;  ///< q: the current scan's frame in the reference's frame
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  ///< H = sum J^T W^-1 J at the end
+  bool valid = false;  ///< enough associations and a well-posed H
+  bool converged = false;
+  int iterations = 0;
+  int inliers = 0;
+  double chi2 = 0.0;  ///< sum e^T W^-1 e at the end
+};
+
+/// Matches `current` against `reference` from the guess (its covariance gates the association).
+ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
+                            const std::vector<ScanPoint>& current, const GaussianPose2& guess,
+                            const ScanMatchConfig& config);
+
+/// Two-sided (1 - alpha) bounds of the average of n chi-square variables with dof degrees of
+/// freedom each (Wilson-Hilferty), as used for NEES tests: [lower, upper].
+std::pair<double, double> average_chi2_bounds(int n, int dof, double alpha = 0.05);
+
+}  // namespace msislab

@@ -1,0 +1,87 @@
+// spIC scan matching: recovery of a known relative pose from perturbed guesses, rejection of
+// scans that do not overlap, and the chi-square bounds used by the NEES tests.
+#include "slam/scan_matching.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <random>
+
+namespace msislab {
+namespace {
+
+/// A harbour-like corner: three walls sampled every 0.5 m, in the reference frame.
+std::vector<Eigen::Vector2d> corner_walls() {
+  std::vector<Eigen::Vector2d> points;
+  for (double s = -10.0; s <= 15.0; s += 0.5) points.emplace_back(s, 12.0);          // north wall
+  for (double s = -8.0; s <= 12.0; s += 0.5) points.emplace_back(15.0, s);           // east wall
+  for (double s = 0.0; s <= 6.0; s += 0.5) points.emplace_back(-4.0 + s, -8.0 + s);  // a mole
+  return points;
+}
+
+std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, double sigma_m,
+                             std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, sigma_m);
+  std::vector<ScanPoint> out;
+  for (const auto& p : points) {
+    ScanPoint sp;
+    sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
+    sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
+    out.push_back(sp);
+  }
+  return out;
+}
+
+TEST(ScanMatching, AverageChiSquareBoundsMatchTheTables) {
+  // ../shared/docs/field-notes.md: N=25 [2.12, 4.03], N=50 [2.36, 3.72], N=100 [2.54, 3.50].
+  const auto b25 = average_chi2_bounds(25, 3), b50 = average_chi2_bounds(50, 3),
+             b100 = average_chi2_bounds(100, 3);
+  EXPECT_NEAR(b25.first, 2.12, 0.01);
+  EXPECT_NEAR(b25.second, 4.03, 0.01);
+  EXPECT_NEAR(b50.first, 2.36, 0.01);
+  EXPECT_NEAR(b50.second, 3.72, 0.01);
+  EXPECT_NEAR(b100.first, 2.54, 0.01);
+  EXPECT_NEAR(b100.second, 3.50, 0.01);
+}
+
+TEST(ScanMatching, RecoversAKnownPoseFromPerturbedGuesses) {
+  const Pose2 q_true(1.2, -0.6, 0.15);  // current frame in the reference frame
+  std::mt19937 rng(3);
+  const auto world = corner_walls();
+  std::vector<Eigen::Vector2d> seen_from_current;
+  for (const auto& p : world) seen_from_current.push_back(q_true.inverse().transform(p));
+  int within_3_sigma = 0;
+  const int trials = 40;
+  std::normal_distribution<double> guess_noise(0.0, 1.0);
+  for (int t = 0; t < trials; ++t) {
+    const auto reference = noisy(world, 0.05, rng);
+    const auto current = noisy(seen_from_current, 0.05, rng);
+    GaussianPose2 guess;
+    guess.cov = Eigen::Vector3d(0.4 * 0.4, 0.4 * 0.4, 0.08 * 0.08).asDiagonal();
+    guess.mean = Pose2(q_true.x() + 0.4 * guess_noise(rng), q_true.y() + 0.4 * guess_noise(rng),
+                       q_true.yaw() + 0.08 * guess_noise(rng));
+    const ScanMatchResult r = match_scans(reference, current, guess, ScanMatchConfig{});
+    ASSERT_TRUE(r.valid) << "trial " << t;
+    EXPECT_TRUE(r.converged) << "trial " << t;
+    const Eigen::Vector3d e = pose_difference(r.estimate.mean, q_true);
+    EXPECT_LT(e.head<2>().norm(), 0.05) << "trial " << t;
+    EXPECT_LT(std::abs(e(2)), 0.005) << "trial " << t;
+    within_3_sigma += e.dot(r.estimate.cov.inverse() * e) < 14.16;  // chi2(3) 99.7%
+  }
+  EXPECT_GE(within_3_sigma, trials - 2);
+}
+
+TEST(ScanMatching, TooFewAssociationsIsNotValid) {
+  std::mt19937 rng(1);
+  const auto reference = noisy(corner_walls(), 0.05, rng);
+  std::vector<Eigen::Vector2d> far_away;
+  for (const auto& p : corner_walls()) far_away.push_back(p + Eigen::Vector2d(200.0, 0.0));
+  const auto current = noisy(far_away, 0.05, rng);
+  GaussianPose2 guess;
+  guess.cov = 0.01 * Eigen::Matrix3d::Identity();
+  EXPECT_FALSE(match_scans(reference, current, guess, ScanMatchConfig{}).valid);
+  EXPECT_FALSE(match_scans(reference, {}, guess, ScanMatchConfig{}).valid);
+}
+
+}  // namespace
+}  // namespace msislab

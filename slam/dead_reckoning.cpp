@@ -205,13 +205,13 @@ std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReck
     const StampedPose pose = ekf.pose();
     GaussianPose2 motion = ekf.motion_since_mark(kBeamSlot);
     motion.mean = previous.between(pose.pose.mean);
-    samples.push_back({t_s, motion, pose, std::nullopt});
+    GaussianPose2 since_key = ekf.motion_since_mark(kKeySlot);
+    since_key.mean = previous_key.between(pose.pose.mean);
+    const bool is_key = keys.is_key(samples.size());
+    samples.push_back({t_s, motion, pose, since_key, is_key});
     previous = pose.pose.mean;
     ekf.mark(kBeamSlot);
-    if (keys.is_key(samples.size() - 1)) {
-      GaussianPose2 key_motion = ekf.motion_since_mark(kKeySlot);
-      key_motion.mean = previous_key.between(pose.pose.mean);
-      samples.back().motion_since_key = key_motion;
+    if (is_key) {
       previous_key = pose.pose.mean;
       ekf.mark(kKeySlot);
     }

@@ -6,7 +6,6 @@
 
 #include <Eigen/Core>
 #include <cmath>
-#include <optional>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -106,9 +105,11 @@ struct OdometrySample {
   double t_s = 0.0;
   GaussianPose2 motion;  ///< since the previous sample (the first: since the start), its frame
   StampedPose pose;      ///< the vehicle in the world frame, marginal covariance
-  /// Key samples only: the motion since the previous key sample (the first: since the start),
-  /// with its exact covariance from a clone kept across all the samples in between.
-  std::optional<GaussianPose2> motion_since_key;
+  /// The motion since the last key sample before this one (the first: since the start), with its
+  /// exact covariance from a clone kept across all the samples in between. On a key sample it
+  /// reaches back to the previous key.
+  GaussianPose2 motion_since_key;
+  bool is_key = false;
 };
 
 /// Which samples are keys: indices first, first + every, first + 2 every, ...

@@ -23,6 +23,22 @@ ScanPoint reading_in_vehicle(const SonarReading& reading,
   return point;
 }
 
+void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPose2& x_centre_beam,
+                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points) {
+  for (const SonarReading& reading : readings) {
+    const ScanPoint in_vehicle = reading_in_vehicle(reading, p_vehicle_sonar_m);
+    Matrix23d J_pose;
+    Eigen::Matrix2d J_point;
+    ScanPoint point;
+    point.t_s = in_vehicle.t_s;
+    point.p_vehicle_m = in_vehicle.p_m;
+    point.p_m = x_centre_beam.mean.transform(in_vehicle.p_m, &J_pose, &J_point);
+    point.cov = J_pose * x_centre_beam.cov * J_pose.transpose() +
+                J_point * in_vehicle.cov * J_point.transpose();
+    points.push_back(point);
+  }
+}
+
 ScanBuilder::ScanBuilder(const ScanBuilderConfig& config) : config_(config) {}
 
 std::optional<Scan> ScanBuilder::add_beam(double t_s,
@@ -54,18 +70,7 @@ Scan ScanBuilder::build() {
   scan.t_s = beams_[centre].t_s;
   scan.beams = beams_.size();
   for (std::size_t i = 0; i < beams_.size(); ++i) {
-    for (const SonarReading& reading : beams_[i].readings) {
-      const ScanPoint in_vehicle = reading_in_vehicle(reading, config_.p_vehicle_sonar_m);
-      Matrix23d J_pose;
-      Eigen::Matrix2d J_point;
-      ScanPoint point;
-      point.t_s = in_vehicle.t_s;
-      point.p_vehicle_m = in_vehicle.p_m;
-      point.p_m = x_centre[i].mean.transform(in_vehicle.p_m, &J_pose, &J_point);
-      point.cov = J_pose * x_centre[i].cov * J_pose.transpose() +
-                  J_point * in_vehicle.cov * J_point.transpose();
-      scan.points.push_back(point);
-    }
+    add_scan_points(beams_[i].readings, x_centre[i], config_.p_vehicle_sonar_m, scan.points);
   }
 
   // Motion between scan frames: from the last centre to the end of its revolution, then through

@@ -42,6 +42,14 @@ struct ScanBuilderConfig {
 /// p = p_sonar + r [cos b, sin b], P = R(b) diag(sigma_r^2, (r sigma_b)^2) R(b)^T.
 ScanPoint reading_in_vehicle(const SonarReading& reading, const Eigen::Vector2d& p_vehicle_sonar_m);
 
+/// Appends the readings of one beam to `points`, in the scan frame: p_c = x_cb (+) p_v with
+/// P_c = J_pose P_cb J_pose^T + J_p P_v J_p^T, given the beam's vehicle pose x_cb in that frame.
+void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPose2& x_centre_beam,
+                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points);
+
+/// The streaming builder for when only per-beam increments are known. It composes them as
+/// independent, which is optimistic when they share an error (a velocity-state EKF's);
+/// build_scans (slam/scan_sequence) uses exact dead-reckoning clones instead.
 class ScanBuilder {
  public:
   explicit ScanBuilder(const ScanBuilderConfig& config);

@@ -4,6 +4,39 @@
 
 namespace msislab {
 
+namespace {
+
+/// The revolution of beams [begin, begin + n) (its odometry samples at the same indices), in
+/// the frame of its central beam c. Beam poses in that frame: means from the filtered poses;
+/// covariances exact after the centre (the key clone marked at c), and mirrored before it, the
+/// motion over t_c - t_i having about the covariance of the one over t_i' - t_c with i' = 2c - i
+/// (a stationary constant-velocity model is symmetric in time).
+PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
+                      const std::vector<OdometrySample>& odometry, std::size_t begin, std::size_t n,
+                      const Eigen::Vector2d& p_vehicle_sonar_m) {
+  const std::size_t centre = begin + n / 2;
+  const Pose2& x_centre = odometry[centre].pose.pose.mean;
+  PlacedScan placed;
+  placed.scan.t_s = odometry[centre].t_s;
+  placed.scan.beams = n;
+  placed.scan.motion = odometry[centre].motion_since_key;
+  placed.centre_world = odometry[centre].pose;
+  for (std::size_t i = begin; i < begin + n; ++i) {
+    GaussianPose2 x_centre_beam;
+    x_centre_beam.mean = x_centre.between(odometry[i].pose.pose.mean);
+    if (i > centre) {
+      x_centre_beam.cov = odometry[i].motion_since_key.cov;
+    } else if (i < centre) {
+      x_centre_beam.cov = odometry[std::min(2 * centre - i, begin + n - 1)].motion_since_key.cov;
+    }
+    add_scan_points((beams + static_cast<long>(i - begin))->readings, x_centre_beam,
+                    p_vehicle_sonar_m, placed.scan.points);
+  }
+  return placed;
+}
+
+}  // namespace
+
 std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                     const NavigationLog& navigation,
                                     const DeadReckoningConfig& dead_reckoning,
@@ -21,18 +54,10 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
       odometry_at(navigation, dead_reckoning, p_vehicle_dvl_m, initial, times_s,
                   KeySamples{per_scan / 2, per_scan});
 
-  ScanBuilder builder(config);
   std::vector<PlacedScan> scans;
-  const std::size_t centre_offset = static_cast<std::size_t>(config.beams_per_scan) / 2;
-  for (std::size_t i = 0; i < odometry.size(); ++i) {
-    const BeamReadings& beam = *(first + static_cast<long>(i));
-    if (auto scan = builder.add_beam(beam.t_s, odometry[i].motion, beam.readings)) {
-      // The scan frame is the vehicle at the revolution's central beam.
-      const std::size_t centre =
-          i + 1 - static_cast<std::size_t>(config.beams_per_scan) + centre_offset;
-      scan->motion = *odometry[centre].motion_since_key;
-      scans.push_back({std::move(*scan), odometry[centre].pose});
-    }
+  for (std::size_t begin = 0; begin + per_scan <= odometry.size(); begin += per_scan) {
+    scans.push_back(build_scan(first + static_cast<long>(begin), odometry, begin, per_scan,
+                               config.p_vehicle_sonar_m));
   }
   return scans;
 }

@@ -4,19 +4,24 @@
 #include <chrono>
 #include <filesystem>
 
+#include <Eigen/Cholesky>
+#include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"
+#include "io/tum.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/trajectory_correction.hpp"
+#include "slam/worldcentric_slam.hpp"
 
 namespace msislab::app {
 
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& available_methods() {
-  static const std::vector<std::string> methods = {"deadreckoning", "integration"};
+  static const std::vector<std::string> methods = {"deadreckoning", "integration", "worldcentric"};
   return methods;
 }
 
@@ -55,6 +60,59 @@ void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
 }
 }  // namespace
 
+namespace {
+
+struct SlamRun {
+  std::vector<PlacedScan> scans;  ///< with their corrected world poses
+  std::vector<StampedPose> trajectory;
+  int candidates = 0, matched = 0, accepted = 0;
+};
+
+/// World-centric trajectory SLAM over the dataset's scans, and the corrected trajectory.
+SlamRun run_worldcentric(const SonarInput& sonar, const RunInputs& in,
+                         const std::vector<StampedPose>& dead_reckoning) {
+  ScanBuilderConfig builder;
+  builder.beams_per_scan = sonar.beams_per_revolution;
+  builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
+  SlamRun run;
+  run.scans = build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
+                          {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
+  WorldCentricSlam slam(in.config.trajectory_slam, in.start.pose);
+  for (const PlacedScan& placed : run.scans) {
+    const SlamStepStats stats = slam.add_scan(placed.scan);
+    run.candidates += stats.candidates;
+    run.matched += stats.matched;
+    run.accepted += stats.accepted;
+  }
+  std::vector<StampedPose> dr_at_scans;
+  std::vector<GaussianPose2> corrected;
+  for (std::size_t i = 0; i < run.scans.size(); ++i) {
+    dr_at_scans.push_back(run.scans[i].centre_world);
+    corrected.push_back(slam.scan_pose_world(i));
+    run.scans[i].centre_world.pose = corrected.back();
+  }
+  run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
+  return run;
+}
+
+/// NEES of the scan poses against simulation truth, averaged over the scans; none otherwise.
+std::optional<double> scan_anees(const std::vector<PlacedScan>& scans, const RunInputs& in) {
+  if (in.truth.kind != "simulation" || scans.empty()) return std::nullopt;
+  std::vector<StampedPose> truth;
+  for (const io::TumPose& p : io::read_tum(*in.files.truth_trajectory)) {
+    truth.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
+  }
+  double sum = 0.0;
+  for (const PlacedScan& s : scans) {
+    const Eigen::Vector3d e =
+        pose_difference(s.centre_world.pose.mean, interpolate_pose(truth, s.scan.t_s));
+    sum += e.dot(s.centre_world.pose.cov.ldlt().solve(e));
+  }
+  return sum / static_cast<double>(scans.size());
+}
+
+}  // namespace
+
 RunOutcome run(const RunOptions& options) {
   check_method(options.method);
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
@@ -64,13 +122,23 @@ RunOutcome run(const RunOptions& options) {
   const Truth& truth = in.truth;
   const StampedPose& start = in.start;
 
+  // SLAM methods: the sonar readings are read before the clock starts, like the logs.
+  std::optional<SonarInput> sonar;
+  if (options.method == "worldcentric") {
+    sonar = load_sonar_readings(in.files, calibration, config.segmentation);
+  }
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
+  std::optional<SlamRun> slam;
   if (options.method == "integration") {
     dr.trajectory = integrate_velocities(navigation, start);
   } else {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
+  }
+  if (sonar) {
+    slam = run_worldcentric(*sonar, in, dr.trajectory);
+    dr.trajectory = slam->trajectory;
   }
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
@@ -84,6 +152,13 @@ RunOutcome run(const RunOptions& options) {
     outcome.metrics = score(truth, dr.trajectory, config, options.dataset_dir);
     outcome.metrics->method = options.method;
     outcome.metrics->runtime_s = runtime_s;
+    if (slam) {
+      outcome.metrics->scans = static_cast<int>(slam->scans.size());
+      outcome.metrics->matches_accepted = slam->accepted;
+      outcome.metrics->anees = scan_anees(slam->scans, in);
+      outcome.metrics->diagnostics = {{"scan_candidates", slam->candidates},
+                                      {"scan_matches_valid", slam->matched}};
+    }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {
           {"dvl_used", dr.dvl_used},
@@ -98,6 +173,16 @@ RunOutcome run(const RunOptions& options) {
   prepare_out_dir(options.out_dir, outcome.metrics.has_value());
   const fs::path out(options.out_dir);
   io::write_trajectory_tum((out / "trajectory.tum").string(), dr.trajectory, truth.depth_m);
+  if (slam) {
+    io::write_scans_csv((out / "scans.csv").string(), slam->scans);
+    std::vector<Eigen::Vector2d> points;
+    for (const PlacedScan& s : slam->scans) {
+      for (const ScanPoint& p : s.scan.points) {
+        points.push_back(s.centre_world.pose.mean.transform(p.p_m));
+      }
+    }
+    io::write_points_ply((out / "map.ply").string(), points);
+  }
   if (outcome.metrics) {
     io::write_metrics_json((out / "metrics.json").string(), *outcome.metrics,
                            fs::absolute(options.dataset_dir).lexically_normal().string());

@@ -6,12 +6,14 @@
 #include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/evaluation.hpp"
+#include "slam/worldcentric_slam.hpp"
 
 namespace msislab {
 
 struct SlamConfig {
   DeadReckoningConfig dead_reckoning;
   SegmentationConfig segmentation;
+  TrajectorySlamConfig trajectory_slam;
   std::vector<TimeSegment> segments;  ///< named windows scored separately in metrics.json
 };
 

@@ -103,8 +103,8 @@ bool WorldCentricSlam::update(std::size_t a, std::size_t b, const GaussianPose2&
       motions_[j] = Pose2(x_new.segment<3>(static_cast<Eigen::Index>(3 * j)));
     }
   }
-  const Eigen::MatrixXd I_KH = Eigen::MatrixXd::Identity(n, n) - K * H;
-  P_ = I_KH * P_;
+  // P = (I - K H) P, as P - K (H P): O(n^2) instead of a dense n x n product.
+  P_ -= K * (H * P_);
   P_ = 0.5 * (P_ + P_.transpose());
   return true;
 }

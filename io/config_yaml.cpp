@@ -108,6 +108,34 @@ void read_segmentation(YamlMap map, SegmentationConfig& c) {
   map.finish();
 }
 
+void read_count(YamlMap& map, const std::string& key, int& value, int min, int max) {
+  long long v = value;
+  if (map.integer(key, v) && (v < min || v > max)) {
+    map.fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  value = static_cast<int>(v);
+}
+
+void read_matching(YamlMap map, ScanMatchConfig& c) {
+  map.number("association_gate_chi2", c.association_gate_chi2);
+  require_positive(map, "association_gate_chi2", c.association_gate_chi2);
+  read_count(map, "max_iterations", c.max_iterations, 1, 1000);
+  read_count(map, "min_inliers", c.min_inliers, 3, 100000);
+  map.boolean("scale_covariance_by_residual", c.scale_covariance_by_residual);
+  map.finish();
+}
+
+void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
+  map.number("association_distance_m", c.association_distance_m);
+  require_positive(map, "association_distance_m", c.association_distance_m);
+  read_count(map, "max_matches_per_scan", c.max_matches_per_scan, 0, 1000);
+  read_count(map, "iekf_iterations", c.iekf_iterations, 1, 100);
+  map.number("innovation_gate_chi2", c.innovation_gate_chi2);
+  require_positive(map, "innovation_gate_chi2", c.innovation_gate_chi2);
+  read_matching(map.map("matching"), c.matching);
+  map.finish();
+}
+
 }  // namespace
 
 std::vector<TimeSegment> read_segments(YamlMap map) {
@@ -163,6 +191,7 @@ SlamConfig read_slam_config(const std::string& path) {
   SlamConfig config;
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
+  read_trajectory_slam(root.map("trajectory_slam"), config.trajectory_slam);
   config.segments = read_segments(root.map("segments"));
   root.finish();
   return config;

@@ -15,6 +15,9 @@ namespace msislab::io {
 /// Fails naming the key unless value > 0.
 void require_positive(YamlMap& map, const std::string& key, double value);
 
+/// Reads an integer into value if present; fails naming the key unless min <= value <= max.
+void read_count(YamlMap& map, const std::string& key, int& value, int min, int max);
+
 void read_mru_mount(YamlMap& map, MruMount& mount);  ///< yaw_offset_deg
 void read_dvl_mount(YamlMap& map, DvlMount& mount);  ///< yaw_deg, x_m, y_m
 void read_sonar_mount(YamlMap& map,

@@ -18,6 +18,14 @@ void require_positive(YamlMap& map, const std::string& key, double value) {
   if (!(value > 0.0)) map.fail(key, "must be > 0, got " + std::to_string(value));
 }
 
+void read_count(YamlMap& map, const std::string& key, int& value, int min, int max) {
+  long long v = value;
+  if (map.integer(key, v) && (v < min || v > max)) {
+    map.fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+  }
+  value = static_cast<int>(v);
+}
+
 void read_mru_mount(YamlMap& map, MruMount& mount) {
   map.number("yaw_offset_deg", mount.yaw_offset_deg);
 }
@@ -106,14 +114,6 @@ void read_segmentation(YamlMap map, SegmentationConfig& c) {
   require_positive(map, "sigma_bearing_deg", c.sigma_bearing_rad);
   if (c.min_range_m < 0.0) map.fail("min_range_m", "must be >= 0");
   map.finish();
-}
-
-void read_count(YamlMap& map, const std::string& key, int& value, int min, int max) {
-  long long v = value;
-  if (map.integer(key, v) && (v < min || v > max)) {
-    map.fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-  }
-  value = static_cast<int>(v);
 }
 
 void read_matching(YamlMap map, ScanMatchConfig& c) {

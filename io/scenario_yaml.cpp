@@ -10,15 +10,6 @@ namespace msislab::io {
 
 namespace {
 
-int read_count(YamlMap& map, const std::string& key, int value, int min, int max) {
-  long long v = value;
-  map.integer(key, v);
-  if (v < min || v > max) {
-    map.fail(key, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "]");
-  }
-  return static_cast<int>(v);
-}
-
 void read_fraction(YamlMap& map, const std::string& key, float& value) {
   double v = value;
   map.number(key, v);
@@ -95,11 +86,11 @@ void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
 }
 
 void read_sonar(YamlMap map, sim::SonarConfig& s) {
-  s.steps_per_revolution = read_count(map, "steps_per_revolution", s.steps_per_revolution, 4, 6400);
-  s.bins = read_count(map, "bins", s.bins, 1, 10000);
-  s.rays_horizontal = read_count(map, "rays_horizontal", s.rays_horizontal, 1, 64);
-  s.rays_vertical = read_count(map, "rays_vertical", s.rays_vertical, 1, 256);
-  s.multipath_bounces = read_count(map, "multipath_bounces", s.multipath_bounces, 0, 8);
+  read_count(map, "steps_per_revolution", s.steps_per_revolution, 4, 6400);
+  read_count(map, "bins", s.bins, 1, 10000);
+  read_count(map, "rays_horizontal", s.rays_horizontal, 1, 64);
+  read_count(map, "rays_vertical", s.rays_vertical, 1, 256);
+  read_count(map, "multipath_bounces", s.multipath_bounces, 0, 8);
   for (auto [key, value] : {std::pair<const char*, double*>{"revolution_s", &s.revolution_s},
                             {"bin_m", &s.bin_m},
                             {"horizontal_beamwidth_deg", &s.horizontal_beamwidth_deg},

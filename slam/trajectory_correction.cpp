@@ -16,8 +16,8 @@ std::vector<StampedPose> correct_trajectory(const std::vector<StampedPose>& dead
     }
     const StampedPose& anchor = dr_at_scans[k - 1];
     const Pose2 since_scan = anchor.pose.mean.between(d.pose.mean);
-    out.push_back({d.t_s, {corrected_scans[k - 1].mean.compose(since_scan),
-                           corrected_scans[k - 1].cov}});
+    out.push_back(
+        {d.t_s, {corrected_scans[k - 1].mean.compose(since_scan), corrected_scans[k - 1].cov}});
   }
   return out;
 }

@@ -1,0 +1,79 @@
+// Trajectory SLAM step time against state size (issue 5): a synthetic basin loop driven until the
+// state holds N scans, timing the scans added after that (each matched against up to 3 earlier
+// scans and updated). items_per_second is scans per second at that state size.
+#include <benchmark/benchmark.h>
+
+#include <random>
+
+#include "slam/worldcentric_slam.hpp"
+
+namespace {
+
+using namespace msislab;
+
+std::vector<Eigen::Vector2d> basin_walls() {
+  std::vector<Eigen::Vector2d> points;
+  auto wall = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
+    const int n = static_cast<int>((b - a).norm() / 0.5);
+    for (int i = 0; i <= n; ++i) points.push_back(a + (b - a) * i / n);
+  };
+  wall({-20, -15}, {20, -15});
+  wall({20, -15}, {20, 15});
+  wall({20, 15}, {-20, 15});
+  wall({-20, 15}, {-20, -15});
+  wall({0, 15}, {0, 8});
+  return points;
+}
+
+/// Scans every 4 m around a 24 x 16 m loop, repeated; about 150 points each.
+std::vector<Scan> loop_scans(std::size_t count) {
+  std::mt19937 rng(1);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const auto world = basin_walls();
+  std::vector<Pose2> path;
+  while (path.size() < count) {
+    for (int i = 0; i < 6; ++i) path.emplace_back(-12.0 + 4 * i, -8.0, 0.0);
+    for (int i = 0; i < 4; ++i) path.emplace_back(12.0, -8.0 + 4 * i, M_PI / 2);
+    for (int i = 0; i < 6; ++i) path.emplace_back(12.0 - 4 * i, 8.0, M_PI);
+    for (int i = 0; i < 4; ++i) path.emplace_back(-12.0, 8.0 - 4 * i, -M_PI / 2);
+  }
+  path.resize(count);
+  std::vector<Scan> scans;
+  for (std::size_t k = 0; k < count; ++k) {
+    Scan scan;
+    const Pose2 motion = k == 0 ? path[0] : path[k - 1].between(path[k]);
+    scan.motion.mean = Pose2(motion.vector() +
+                             Eigen::Vector3d(0.05 * n01(rng), 0.05 * n01(rng), 0.005 * n01(rng)));
+    scan.motion.cov = Eigen::Vector3d(0.0025, 0.0025, 2.5e-5).asDiagonal();
+    for (const auto& p_world : world) {
+      const Eigen::Vector2d p = path[k].inverse().transform(p_world);
+      if (p.norm() > 25.0) continue;
+      ScanPoint point;
+      point.p_m = p + 0.05 * Eigen::Vector2d(n01(rng), n01(rng));
+      point.cov = 0.0025 * Eigen::Matrix2d::Identity();
+      scan.points.push_back(point);
+    }
+    scans.push_back(scan);
+  }
+  return scans;
+}
+
+void BM_WorldCentricStep(benchmark::State& state) {
+  const auto state_scans = static_cast<std::size_t>(state.range(0));
+  const std::size_t timed = 10;
+  const std::vector<Scan> scans = loop_scans(state_scans + timed);
+  for (auto _ : state) {
+    state.PauseTiming();
+    WorldCentricSlam slam(TrajectorySlamConfig{}, GaussianPose2{});
+    for (std::size_t k = 0; k < state_scans; ++k) slam.add_scan(scans[k]);
+    state.ResumeTiming();
+    for (std::size_t k = state_scans; k < scans.size(); ++k) {
+      benchmark::DoNotOptimize(slam.add_scan(scans[k]));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(timed));
+  state.counters["state_dim"] = static_cast<double>(3 * state_scans);
+}
+BENCHMARK(BM_WorldCentricStep)->Arg(25)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+
+}  // namespace

@@ -11,7 +11,6 @@
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"
-#include "io/tum.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/trajectory_correction.hpp"
 #include "slam/worldcentric_slam.hpp"
@@ -97,11 +96,8 @@ SlamRun run_worldcentric(const SonarInput& sonar, const RunInputs& in,
 
 /// NEES of the scan poses against simulation truth, averaged over the scans; none otherwise.
 std::optional<double> scan_anees(const std::vector<PlacedScan>& scans, const RunInputs& in) {
-  if (in.truth.kind != "simulation" || scans.empty()) return std::nullopt;
-  std::vector<StampedPose> truth;
-  for (const io::TumPose& p : io::read_tum(*in.files.truth_trajectory)) {
-    truth.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
-  }
+  const std::vector<StampedPose>& truth = in.truth.poses;
+  if (truth.empty() || scans.empty()) return std::nullopt;
   double sum = 0.0;
   for (const PlacedScan& s : scans) {
     const Eigen::Vector3d e =
@@ -130,26 +126,24 @@ RunOutcome run(const RunOptions& options) {
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
-  std::optional<SlamRun> slam;
   if (options.method == "integration") {
     dr.trajectory = integrate_velocities(navigation, start);
   } else {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
   }
-  if (sonar) {
-    slam = run_worldcentric(*sonar, in, dr.trajectory);
-    dr.trajectory = slam->trajectory;
-  }
+  std::optional<SlamRun> slam;
+  if (sonar) slam = run_worldcentric(*sonar, in, dr.trajectory);
+  const std::vector<StampedPose>& trajectory = slam ? slam->trajectory : dr.trajectory;
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
-  if (dr.trajectory.size() < 2) {
+  if (trajectory.size() < 2) {
     io::fail_file(options.dataset_dir, "no navigation data after the start time");
   }
 
   RunOutcome outcome;
-  outcome.trajectory = dr.trajectory;
+  outcome.trajectory = trajectory;
   if (!truth.kind.empty()) {
-    outcome.metrics = score(truth, dr.trajectory, config, options.dataset_dir);
+    outcome.metrics = score(truth, trajectory, config, options.dataset_dir);
     outcome.metrics->method = options.method;
     outcome.metrics->runtime_s = runtime_s;
     if (slam) {
@@ -172,16 +166,10 @@ RunOutcome run(const RunOptions& options) {
 
   prepare_out_dir(options.out_dir, outcome.metrics.has_value());
   const fs::path out(options.out_dir);
-  io::write_trajectory_tum((out / "trajectory.tum").string(), dr.trajectory, truth.depth_m);
+  io::write_trajectory_tum((out / "trajectory.tum").string(), trajectory, truth.depth_m);
   if (slam) {
     io::write_scans_csv((out / "scans.csv").string(), slam->scans);
-    std::vector<Eigen::Vector2d> points;
-    for (const PlacedScan& s : slam->scans) {
-      for (const ScanPoint& p : s.scan.points) {
-        points.push_back(s.centre_world.pose.mean.transform(p.p_m));
-      }
-    }
-    io::write_points_ply((out / "map.ply").string(), points);
+    io::write_points_ply((out / "map.ply").string(), world_points(slam->scans));
   }
   if (outcome.metrics) {
     io::write_metrics_json((out / "metrics.json").string(), *outcome.metrics,

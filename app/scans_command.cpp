@@ -8,7 +8,6 @@
 #include "io/input_error.hpp"
 #include "io/results.hpp"
 #include "io/scan_figures.hpp"
-#include "io/tum.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {
@@ -16,14 +15,6 @@ namespace msislab::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::vector<StampedPose> truth_poses(const std::string& path) {
-  std::vector<StampedPose> poses;
-  for (const io::TumPose& p : io::read_tum(path)) {
-    poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
-  }
-  return poses;
-}
 
 /// Mean distance of the scan points from where their readings really were, through the true
 /// centre pose: with the compensated point, and with the reading left in its own vehicle frame.
@@ -48,21 +39,17 @@ void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
                    const std::vector<Eigen::Vector2d>& truth_track, const std::string& truth_kind,
                    int figure_scan) {
   io::write_scans_csv((out / "scans.csv").string(), scans);
-  std::vector<Eigen::Vector2d> world_points, centres;
-  for (const PlacedScan& s : scans) {
-    centres.push_back(s.centre_world.pose.mean.translation());
-    for (const ScanPoint& p : s.scan.points) {
-      world_points.push_back(s.centre_world.pose.mean.transform(p.p_m));
-    }
-  }
-  io::write_points_ply((out / "map.ply").string(), world_points);
+  const std::vector<Eigen::Vector2d> points = world_points(scans);
+  std::vector<Eigen::Vector2d> centres;
+  for (const PlacedScan& s : scans) centres.push_back(s.centre_world.pose.mean.translation());
+  io::write_points_ply((out / "map.ply").string(), points);
   std::vector<io::Track> tracks;
   if (!truth_track.empty()) tracks.push_back({truth_kind + " truth", truth_track, 0x00a000});
   tracks.push_back({"dead reckoning", centres, 0x0000ff});
   io::write_map_png(
       (out / "map.png").string(),
-      "Scan points placed by dead reckoning (" + std::to_string(scans.size()) + " scans)",
-      world_points, tracks);
+      "Scan points placed by dead reckoning (" + std::to_string(scans.size()) + " scans)", points,
+      tracks);
   const std::size_t k = figure_scan >= 0 && static_cast<std::size_t>(figure_scan) < scans.size()
                             ? static_cast<std::size_t>(figure_scan)
                             : scans.size() / 2;
@@ -82,10 +69,9 @@ void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
 ScansSummary build_scans_command(const ScansOptions& options) {
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
   const SlamConfig& config = in.config;
-  const io::DatasetFiles& files = in.files;
   const Calibration& calibration = in.calibration;
   const Truth& truth = in.truth;
-  const SonarInput sonar = load_sonar_readings(files, calibration, config.segmentation);
+  const SonarInput sonar = load_sonar_readings(in.files, calibration, config.segmentation);
 
   ScanBuilderConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
@@ -103,8 +89,8 @@ ScansSummary build_scans_command(const ScansOptions& options) {
   for (const BeamReadings& b : sonar.beams) summary.beams_with_readings += !b.readings.empty();
   summary.scans = scans.size();
   for (const PlacedScan& s : scans) summary.points += s.scan.points.size();
-  if (files.truth_trajectory) {
-    const auto [with, without] = compensation_errors(scans, truth_poses(*files.truth_trajectory));
+  if (!truth.poses.empty()) {
+    const auto [with, without] = compensation_errors(scans, truth.poses);
     summary.compensated_error_m = with;
     summary.uncompensated_error_m = without;
   }

@@ -14,7 +14,9 @@ Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration) 
     const std::vector<io::TumPose> poses = io::read_tum(*files.truth_trajectory);
     truth.kind = "simulation";
     for (const io::TumPose& p : poses) truth.positions.push_back({p.t_s, {p.x_m, p.y_m}});
-    truth.first_pose = Pose2(poses.front().x_m, poses.front().y_m, poses.front().yaw_rad);
+    for (const io::TumPose& p : poses) {
+      truth.poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
+    }
     truth.depth_m = -poses.front().z_m;
   } else if (files.gps) {
     truth.kind = "gps";
@@ -31,9 +33,9 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
   // The start is exact by definition (every method starts on the truth); a tiny variance keeps the
   // covariance positive definite.
   start.pose.cov = Eigen::Vector3d(1e-9, 1e-9, heading_sigma_rad * heading_sigma_rad).asDiagonal();
-  if (truth.first_pose) {
+  if (!truth.poses.empty()) {
     start.t_s = truth.positions.front().t_s;
-    start.pose.mean = *truth.first_pose;
+    start.pose.mean = truth.poses.front().pose.mean;
     start.pose.cov(2, 2) = 1e-9;
     return start;
   }

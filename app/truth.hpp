@@ -15,8 +15,8 @@ namespace msislab::app {
 struct Truth {
   std::string kind;  ///< "simulation", "gps" or empty when the dataset has none
   std::vector<PositionFix> positions;
-  std::optional<Pose2> first_pose;  ///< simulation truth has yaw; GPS does not
-  double depth_m = 0.0;             ///< vehicle depth for the TUM z (0 when unknown)
+  std::vector<StampedPose> poses;  ///< simulation truth only (GPS has no heading)
+  double depth_m = 0.0;            ///< vehicle depth for the TUM z (0 when unknown)
 };
 
 Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);

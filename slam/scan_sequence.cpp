@@ -62,4 +62,14 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
   return scans;
 }
 
+std::vector<Eigen::Vector2d> world_points(const std::vector<PlacedScan>& scans) {
+  std::vector<Eigen::Vector2d> points;
+  for (const PlacedScan& s : scans) {
+    for (const ScanPoint& p : s.scan.points) {
+      points.push_back(s.centre_world.pose.mean.transform(p.p_m));
+    }
+  }
+  return points;
+}
+
 }  // namespace msislab

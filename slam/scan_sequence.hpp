@@ -31,4 +31,7 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                     const Eigen::Vector2d& p_vehicle_dvl_m,
                                     const StampedPose& initial, const ScanBuilderConfig& config);
 
+/// Every scan point placed in the world through its scan's pose.
+std::vector<Eigen::Vector2d> world_points(const std::vector<PlacedScan>& scans);
+
 }  // namespace msislab

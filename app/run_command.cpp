@@ -70,7 +70,7 @@ struct SlamRun {
 /// World-centric trajectory SLAM over the dataset's scans, and the corrected trajectory.
 SlamRun run_worldcentric(const SonarInput& sonar, const RunInputs& in,
                          const std::vector<StampedPose>& dead_reckoning) {
-  ScanBuilderConfig builder;
+  ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
   SlamRun run;

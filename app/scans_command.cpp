@@ -73,7 +73,7 @@ ScansSummary build_scans_command(const ScansOptions& options) {
   const Truth& truth = in.truth;
   const SonarInput sonar = load_sonar_readings(in.files, calibration, config.segmentation);
 
-  ScanBuilderConfig builder;
+  ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {calibration.sonar.x_m, calibration.sonar.y_m};
   const std::vector<PlacedScan> scans =

@@ -1,13 +1,11 @@
-// Scan building (paper Sec. II-B; Burguera et al. IROS 2010): an MSIS revolution takes 13.8 s, so
-// the readings of its 200 beams were taken from 200 different poses. The builder keeps the
-// readings history and the transformations history (the dead-reckoning motion between consecutive
-// beams, with covariance). When a revolution completes, it expresses every reading in the frame of
-// the revolution's central pose, propagating the reading noise and the motion uncertainty, and
-// gives the motion between consecutive scan frames: the x_k = N(x_hat, P) of the paper's state.
+// Scans (paper Sec. II-B; Burguera et al. IROS 2010): an MSIS revolution takes 13.8 s, so the
+// readings of its 200 beams were taken from 200 different poses. A scan holds every reading in
+// the frame of the revolution's central pose, with the reading noise and the motion uncertainty
+// propagated, and the motion from the previous scan frame: the x_k = N(x_hat, P) of the paper's
+// state. slam/scan_sequence builds them from the dead reckoning.
 #pragma once
 
 #include <Eigen/Core>
-#include <optional>
 #include <vector>
 
 #include "slam/beam_segmentation.hpp"
@@ -26,13 +24,12 @@ struct ScanPoint {
 struct Scan {
   double t_s = 0.0;  ///< time of the central beam (the scan frame's time)
   std::vector<ScanPoint> points;
-  /// Motion from the previous scan's frame to this one; for the first scan, from the vehicle
-  /// pose at the first beam.
+  /// Motion from the previous scan's frame to this one; for the first scan, from the start pose.
   GaussianPose2 motion;
   std::size_t beams = 0;
 };
 
-struct ScanBuilderConfig {
+struct ScanConfig {
   int beams_per_scan = 200;  ///< one revolution
   Eigen::Vector2d p_vehicle_sonar_m =
       Eigen::Vector2d(0.33, 0.0);  ///< the head in the vehicle frame
@@ -46,32 +43,5 @@ ScanPoint reading_in_vehicle(const SonarReading& reading, const Eigen::Vector2d&
 /// P_c = J_pose P_cb J_pose^T + J_p P_v J_p^T, given the beam's vehicle pose x_cb in that frame.
 void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPose2& x_centre_beam,
                      const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points);
-
-/// The streaming builder for when only per-beam increments are known. It composes them as
-/// independent, which is optimistic when they share an error (a velocity-state EKF's);
-/// build_scans (slam/scan_sequence) uses exact dead-reckoning clones instead.
-class ScanBuilder {
- public:
-  explicit ScanBuilder(const ScanBuilderConfig& config);
-
-  /// Adds the next beam: the vehicle motion since the previous beam (in the previous beam's
-  /// vehicle frame; for the very first beam, ignored) and the beam's readings. Returns the scan
-  /// when this beam completes a revolution.
-  std::optional<Scan> add_beam(double t_s, const GaussianPose2& motion_since_previous_beam,
-                               const std::vector<SonarReading>& readings);
-
- private:
-  struct Beam {
-    double t_s = 0.0;
-    GaussianPose2 motion;  ///< from the previous beam
-    std::vector<SonarReading> readings;
-  };
-  Scan build();
-
-  ScanBuilderConfig config_;
-  std::vector<Beam> beams_;          ///< the current revolution
-  GaussianPose2 after_last_centre_;  ///< motion from the last scan's centre to its last beam
-  bool first_scan_ = true;
-};
 
 }  // namespace msislab

@@ -10,7 +10,7 @@ namespace {
 /// the frame of its central beam c. Beam poses in that frame: means from the filtered poses;
 /// covariances exact after the centre (the key clone marked at c), and mirrored before it, the
 /// motion over t_c - t_i having about the covariance of the one over t_i' - t_c with i' = 2c - i
-/// (a stationary constant-velocity model is symmetric in time).
+/// (a stationary constant-velocity model is symmetric in time). i' < c + n, the next key.
 PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
                       const std::vector<OdometrySample>& odometry, std::size_t begin, std::size_t n,
                       const Eigen::Vector2d& p_vehicle_sonar_m) {
@@ -27,7 +27,10 @@ PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
     if (i > centre) {
       x_centre_beam.cov = odometry[i].motion_since_key.cov;
     } else if (i < centre) {
-      x_centre_beam.cov = odometry[std::min(2 * centre - i, begin + n - 1)].motion_since_key.cov;
+      // The mirror may lie past this revolution: every sample up to the next centre still
+      // measures from this centre's clone. Only the end of the data clamps it.
+      x_centre_beam.cov =
+          odometry[std::min(2 * centre - i, odometry.size() - 1)].motion_since_key.cov;
     }
     add_scan_points((beams + static_cast<long>(i - begin))->readings, x_centre_beam,
                     p_vehicle_sonar_m, placed.scan.points);
@@ -41,7 +44,7 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                     const NavigationLog& navigation,
                                     const DeadReckoningConfig& dead_reckoning,
                                     const Eigen::Vector2d& p_vehicle_dvl_m,
-                                    const StampedPose& initial, const ScanBuilderConfig& config) {
+                                    const StampedPose& initial, const ScanConfig& config) {
   const auto first = std::find_if(beams.begin(), beams.end(),
                                   [&](const BeamReadings& b) { return b.t_s >= initial.t_s; });
   std::vector<double> times_s;

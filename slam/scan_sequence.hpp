@@ -29,7 +29,7 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
                                     const NavigationLog& navigation,
                                     const DeadReckoningConfig& dead_reckoning,
                                     const Eigen::Vector2d& p_vehicle_dvl_m,
-                                    const StampedPose& initial, const ScanBuilderConfig& config);
+                                    const StampedPose& initial, const ScanConfig& config);
 
 /// Every scan point placed in the world through its scan's pose.
 std::vector<Eigen::Vector2d> world_points(const std::vector<PlacedScan>& scans);

@@ -39,7 +39,7 @@ TEST(ScanMatchingConsistency, ReplicaScanPairs) {
             std::nullopt, 2});
   const RunInputs in = load_run_inputs(dataset, "");
   const SonarInput sonar = load_sonar_readings(in.files, in.calibration, in.config.segmentation);
-  ScanBuilderConfig builder;
+  ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
   const auto scans =

@@ -3,6 +3,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "slam/se2.hpp"
 
@@ -133,6 +134,39 @@ StampedPose DeadReckoningEkf::pose() const {
   return out;
 }
 
+namespace {
+
+/// A navigation log's measurements fed to an EKF in time order (DVL first on equal times), those
+/// before the start skipped. After each update, on_dvl(nis) or on_heading(nis) is called.
+class MeasurementFeed {
+ public:
+  MeasurementFeed(const NavigationLog& log, double t_start_s) : log_(log), t_start_s_(t_start_s) {}
+
+  template <typename OnDvl, typename OnHeading>
+  void run_until(double t_end_s, DeadReckoningEkf& ekf, OnDvl on_dvl, OnHeading on_heading) {
+    while (true) {
+      const bool dvl = i_dvl_ < log_.dvl.size() && log_.dvl[i_dvl_].t_s <= t_end_s;
+      const bool heading =
+          i_heading_ < log_.heading.size() && log_.heading[i_heading_].t_s <= t_end_s;
+      if (!dvl && !heading) return;
+      if (dvl && (!heading || log_.dvl[i_dvl_].t_s <= log_.heading[i_heading_].t_s)) {
+        const DvlVelocity& m = log_.dvl[i_dvl_++];
+        if (m.t_s >= t_start_s_) on_dvl(ekf.update_dvl(m));
+      } else {
+        const HeadingReading& m = log_.heading[i_heading_++];
+        if (m.t_s >= t_start_s_) on_heading(ekf.update_heading(m));
+      }
+    }
+  }
+
+ private:
+  const NavigationLog& log_;
+  double t_start_s_;
+  std::size_t i_dvl_ = 0, i_heading_ = 0;
+};
+
+}  // namespace
+
 DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadReckoningConfig& config,
                                        const Eigen::Vector2d& p_vehicle_dvl_m,
                                        const StampedPose& initial) {
@@ -142,29 +176,23 @@ DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadRecko
   auto record = [&] {
     if (ekf.time() > result.trajectory.back().t_s) result.trajectory.push_back(ekf.pose());
   };
-  std::size_t i_dvl = 0, i_heading = 0;
-  while (i_dvl < log.dvl.size() || i_heading < log.heading.size()) {
-    const bool dvl_next =
-        i_heading == log.heading.size() ||
-        (i_dvl < log.dvl.size() && log.dvl[i_dvl].t_s <= log.heading[i_heading].t_s);
-    if (dvl_next) {
-      const DvlVelocity& dvl = log.dvl[i_dvl++];
-      if (dvl.t_s < initial.t_s) continue;
-      const double nis = ekf.update_dvl(dvl);
-      if (config.dvl_gate_chi2 > 0.0 && nis > config.dvl_gate_chi2) {
-        ++result.dvl_rejected;
-      } else {
-        ++result.dvl_used;
-        result.dvl_mean_nis += nis;
-      }
-    } else {
-      const HeadingReading& heading = log.heading[i_heading++];
-      if (heading.t_s < initial.t_s) continue;
-      result.heading_mean_nis += ekf.update_heading(heading);
-      ++result.heading_used;
-    }
-    record();
-  }
+  MeasurementFeed(log, initial.t_s)
+      .run_until(
+          std::numeric_limits<double>::infinity(), ekf,
+          [&](double nis) {
+            if (config.dvl_gate_chi2 > 0.0 && nis > config.dvl_gate_chi2) {
+              ++result.dvl_rejected;
+            } else {
+              ++result.dvl_used;
+              result.dvl_mean_nis += nis;
+            }
+            record();
+          },
+          [&](double nis) {
+            result.heading_mean_nis += nis;
+            ++result.heading_used;
+            record();
+          });
   if (result.dvl_used) result.dvl_mean_nis /= result.dvl_used;
   if (result.heading_used) result.heading_mean_nis /= result.heading_used;
   return result;
@@ -182,23 +210,12 @@ std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReck
   constexpr int kBeamSlot = 0, kKeySlot = 1;
   DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
   Pose2 previous = initial.pose.mean, previous_key = initial.pose.mean;
-  std::size_t i_dvl = 0, i_heading = 0;
+  MeasurementFeed feed(log, initial.t_s);
   std::vector<OdometrySample> samples;
   samples.reserve(times_s.size());
   for (const double t_s : times_s) {
-    // Every measurement up to t_s, in time order, then a prediction to t_s itself.
-    while (true) {
-      const bool dvl = i_dvl < log.dvl.size() && log.dvl[i_dvl].t_s <= t_s;
-      const bool heading = i_heading < log.heading.size() && log.heading[i_heading].t_s <= t_s;
-      if (!dvl && !heading) break;
-      if (dvl && (!heading || log.dvl[i_dvl].t_s <= log.heading[i_heading].t_s)) {
-        if (log.dvl[i_dvl].t_s >= initial.t_s) ekf.update_dvl(log.dvl[i_dvl]);
-        ++i_dvl;
-      } else {
-        if (log.heading[i_heading].t_s >= initial.t_s) ekf.update_heading(log.heading[i_heading]);
-        ++i_heading;
-      }
-    }
+    feed.run_until(
+        t_s, ekf, [](double) {}, [](double) {});
     ekf.predict(t_s);
     // Mean: the difference of the filtered poses, so the motions compose back to the
     // dead-reckoning trajectory (with its absolute heading). Covariance: the clone's.

@@ -67,14 +67,9 @@ double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
   const double nis = innovation.dot(S_inv * innovation);
   if (gate_chi2 > 0.0 && nis > gate_chi2) return nis;
   const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S_inv;
-  // Each clone's gain, through its correlation with the state; its blocks of (I - K H) P follow.
-  for (Clone& clone : clones_) {
-    const Eigen::Matrix<double, 3, M> K_clone = clone.P_x.transpose() * H.transpose() * S_inv;
-    clone.pose += K_clone * innovation;
-    clone.pose(2) = normalize_angle(clone.pose(2));
-    clone.P -= K_clone * H * clone.P_x;
-    clone.P_x -= K * H * clone.P_x;
-  }
+  // The clones keep the estimate made at their mark (frozen, not smoothed): only the correlation
+  // of the state's error with theirs changes, e+ = (I - K H) e - K v.
+  for (Clone& clone : clones_) clone.P_x -= K * H * clone.P_x;
   x_ += K * innovation;
   x_(2) = normalize_angle(x_(2));
   // Joseph form keeps P symmetric and positive definite.
@@ -209,7 +204,6 @@ std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReck
                                         const KeySamples& keys) {
   constexpr int kBeamSlot = 0, kKeySlot = 1;
   DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
-  Pose2 previous = initial.pose.mean, previous_key = initial.pose.mean;
   MeasurementFeed feed(log, initial.t_s);
   std::vector<OdometrySample> samples;
   samples.reserve(times_s.size());
@@ -217,21 +211,11 @@ std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReck
     feed.run_until(
         t_s, ekf, [](double) {}, [](double) {});
     ekf.predict(t_s);
-    // Mean: the difference of the filtered poses, so the motions compose back to the
-    // dead-reckoning trajectory (with its absolute heading). Covariance: the clone's.
-    const StampedPose pose = ekf.pose();
-    GaussianPose2 motion = ekf.motion_since_mark(kBeamSlot);
-    motion.mean = previous.between(pose.pose.mean);
-    GaussianPose2 since_key = ekf.motion_since_mark(kKeySlot);
-    since_key.mean = previous_key.between(pose.pose.mean);
     const bool is_key = keys.is_key(samples.size());
-    samples.push_back({t_s, motion, pose, since_key, is_key});
-    previous = pose.pose.mean;
+    samples.push_back({t_s, ekf.motion_since_mark(kBeamSlot), ekf.pose(),
+                       ekf.motion_since_mark(kKeySlot), is_key});
     ekf.mark(kBeamSlot);
-    if (is_key) {
-      previous_key = pose.pose.mean;
-      ekf.mark(kKeySlot);
-    }
+    if (is_key) ekf.mark(kKeySlot);
   }
   return samples;
 }

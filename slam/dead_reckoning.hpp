@@ -52,13 +52,15 @@ class DeadReckoningEkf {
   /// The vehicle pose in the world frame with its 3x3 marginal covariance.
   StampedPose pose() const;
 
-  /// Stochastic cloning: remembers the current pose (and its correlation with the state) in a
-  /// slot, so that the motion from here on can be read with its exact covariance. Each slot's
-  /// joint with the state evolves on its own, so slots can mark different times.
+  /// Stochastic cloning: remembers the current pose estimate in a slot, frozen, and keeps the
+  /// correlation of the state's error with its error, so that the motion from here on,
+  /// (-)x_mark (+) x_now between the two filtered estimates, has its exact covariance. Each slot's
+  /// correlation evolves on its own, so slots can mark different times.
   static constexpr int kCloneSlots = 2;
   void mark(int slot = 0);
   /// The motion since the slot's last mark(), in the marked pose's frame: (-)x_mark (+) x_now,
   /// with the covariance of the pair (J_mark P_mm J_mark^T + J_now P_nn J_now^T + cross terms).
+  /// Chained over consecutive marks, these motions compose back to the filtered trajectory.
   GaussianPose2 motion_since_mark(int slot = 0) const;
 
  private:
@@ -71,8 +73,8 @@ class DeadReckoningEkf {
   double t_s_ = 0.0;
   Vector6d x_ = Vector6d::Zero();
   Matrix6d P_ = Matrix6d::Zero();
-  // A clone: the pose at the slot's last mark(), its covariance and its cross-covariance with
-  // x_: the augmented state [x_; clone] of the EKF, kept in blocks.
+  // A clone: the estimate at the slot's last mark() (frozen), its error covariance and the
+  // cross-covariance of the state's error with it.
   struct Clone {
     Eigen::Vector3d pose = Eigen::Vector3d::Zero();
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
@@ -120,10 +122,9 @@ struct KeySamples {
 };
 
 /// Runs the EKF from `initial` and samples it at the increasing times_s (times before the start
-/// give the start pose and no motion). Each motion's mean is the difference of the filtered poses
-/// at consecutive samples, so the motions compose back to the dead-reckoning trajectory; its
-/// covariance comes from stochastic cloning (that of the smoothed difference, which later
-/// measurements refine: a close stand-in, docs/front_end.md).
+/// give the start pose and no motion). Each motion is the difference of the filtered poses at
+/// consecutive samples (so the motions compose back to the dead-reckoning trajectory), with its
+/// exact covariance from a frozen clone.
 std::vector<OdometrySample> odometry_at(const NavigationLog& log, const DeadReckoningConfig& config,
                                         const Eigen::Vector2d& p_vehicle_dvl_m,
                                         const StampedPose& initial,

@@ -61,6 +61,13 @@ Simulation simulate(const DeadReckoningConfig& c, double duration_s, unsigned se
   return sim;
 }
 
+/// The first truth sample at or after t_s.
+TruthState truth_at(const Simulation& sim, double t_s) {
+  std::size_t i = 0;
+  while (i + 1 < sim.truth.size() && sim.truth[i].t_s < t_s - 1e-9) ++i;
+  return sim.truth[i];
+}
+
 StampedPose start_of(const Simulation& sim, const DeadReckoningConfig& c) {
   StampedPose start;
   start.t_s = 0.0;
@@ -118,22 +125,16 @@ TEST(DeadReckoning, ConsistentWhenTheModelHolds) {
   std::vector<double> nees_sum(checkpoints_s.size(), 0.0);
   for (int run = 0; run < runs; ++run) {
     const Simulation sim = simulate(c, 610.0, 100 + static_cast<unsigned>(run), {0, 0}, 1.0);
-    DeadReckoningEkf ekf(c, Eigen::Vector2d::Zero(), start_of(sim, c));
-    std::size_t i_dvl = 0, i_heading = 0, i_check = 0, i_truth = 0;
-    while (i_check < checkpoints_s.size()) {
-      const double t_check = checkpoints_s[i_check];
-      while (i_dvl < sim.log.dvl.size() && sim.log.dvl[i_dvl].t_s <= t_check) {
-        while (i_heading < sim.log.heading.size() &&
-               sim.log.heading[i_heading].t_s < sim.log.dvl[i_dvl].t_s) {
-          ekf.update_heading(sim.log.heading[i_heading++]);
-        }
-        ekf.update_dvl(sim.log.dvl[i_dvl++]);
-      }
-      while (i_truth < sim.truth.size() && sim.truth[i_truth].t_s < t_check - 1e-9) ++i_truth;
-      ekf.predict(sim.truth[i_truth].t_s);
-      const StampedPose est = ekf.pose();
-      const Eigen::Vector3d e = pose_difference(est.pose.mean, sim.truth[i_truth].pose);
-      nees_sum[i_check++] += e.dot(est.pose.cov.inverse() * e);
+    // The filter sampled at the truth stamps nearest the checkpoints (the production path).
+    std::vector<TruthState> at_checks;
+    for (const double t : checkpoints_s) at_checks.push_back(truth_at(sim, t));
+    std::vector<double> times;
+    for (const TruthState& t : at_checks) times.push_back(t.t_s);
+    const auto samples = odometry_at(sim.log, c, Eigen::Vector2d::Zero(), start_of(sim, c), times);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const StampedPose& est = samples[i].pose;
+      const Eigen::Vector3d e = pose_difference(est.pose.mean, at_checks[i].pose);
+      nees_sum[i] += e.dot(est.pose.cov.inverse() * e);
     }
   }
   int inside = 0;
@@ -148,10 +149,10 @@ TEST(DeadReckoning, ConsistentWhenTheModelHolds) {
   EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
 }
 
-// The motion since a mark (stochastic cloning) has an honest covariance: over 50 runs with truth
-// from the filter's own model, the average 3-DOF NEES of the relative motion after 7, 14 and 30 s
-// (half a sonar revolution, one, about two) lies inside the 95% bounds [2.36, 3.72].
-TEST(DeadReckoning, MotionSinceMarkIsConsistent) {
+// The motion since a key sample (stochastic cloning) has an honest covariance: over 50 runs with
+// truth from the filter's own model, the average 3-DOF NEES of the relative motion after 7, 14 and
+// 30 s (half a sonar revolution, one, about two) lies inside the 95% bounds [2.36, 3.72].
+TEST(DeadReckoning, MotionSinceKeyIsConsistent) {
   DeadReckoningConfig c;
   const int runs = 50;
   const double t_mark_s = 100.0;
@@ -159,37 +160,18 @@ TEST(DeadReckoning, MotionSinceMarkIsConsistent) {
   std::vector<double> nees_sum(spans_s.size(), 0.0);
   for (int run = 0; run < runs; ++run) {
     const Simulation sim = simulate(c, 140.0, 500 + static_cast<unsigned>(run), {0, 0}, 1.0);
-    DeadReckoningEkf ekf(c, Eigen::Vector2d::Zero(), start_of(sim, c));
-    std::size_t i_dvl = 0, i_heading = 0;
-    auto run_until = [&](double t_s) {
-      while (true) {
-        const bool dvl_left = i_dvl < sim.log.dvl.size() && sim.log.dvl[i_dvl].t_s <= t_s;
-        const bool heading_left =
-            i_heading < sim.log.heading.size() && sim.log.heading[i_heading].t_s <= t_s;
-        if (!dvl_left && !heading_left) break;
-        if (dvl_left &&
-            (!heading_left || sim.log.dvl[i_dvl].t_s <= sim.log.heading[i_heading].t_s)) {
-          ekf.update_dvl(sim.log.dvl[i_dvl++]);
-        } else {
-          ekf.update_heading(sim.log.heading[i_heading++]);
-        }
-      }
-      ekf.predict(t_s);
-    };
-    auto truth_at = [&](double t_s) {
-      std::size_t i = 0;
-      while (i + 1 < sim.truth.size() && sim.truth[i].t_s < t_s - 1e-9) ++i;
-      return sim.truth[i];
-    };
-    run_until(t_mark_s);
-    const TruthState marked = truth_at(t_mark_s);
-    ekf.predict(marked.t_s);
-    ekf.mark();
+    // Marked at t_mark (a key sample), read at the spans after it: odometry_at's motion since the
+    // key, the production path (filtered-difference mean, clone covariance).
+    std::vector<TruthState> states = {truth_at(sim, t_mark_s)};
+    for (const double span : spans_s) states.push_back(truth_at(sim, t_mark_s + span));
+    std::vector<double> times;
+    for (const TruthState& t : states) times.push_back(t.t_s);
+    const auto samples = odometry_at(sim.log, c, Eigen::Vector2d::Zero(), start_of(sim, c), times,
+                                     KeySamples{0, times.size()});
     for (std::size_t k = 0; k < spans_s.size(); ++k) {
-      const TruthState now = truth_at(t_mark_s + spans_s[k]);
-      run_until(now.t_s);
-      const GaussianPose2 motion = ekf.motion_since_mark();
-      const Eigen::Vector3d e = pose_difference(motion.mean, marked.pose.between(now.pose));
+      const GaussianPose2& motion = samples[k + 1].motion_since_key;
+      const Eigen::Vector3d e =
+          pose_difference(motion.mean, states[0].pose.between(states[k + 1].pose));
       nees_sum[k] += e.dot(motion.cov.inverse() * e);
     }
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 
 #include <Eigen/Cholesky>
 #include "app/sonar_readings.hpp"
@@ -12,6 +13,7 @@
 #include "io/input_error.hpp"
 #include "io/results.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/robocentric_slam.hpp"
 #include "slam/trajectory_correction.hpp"
 #include "slam/worldcentric_slam.hpp"
 
@@ -20,7 +22,8 @@ namespace msislab::app {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& available_methods() {
-  static const std::vector<std::string> methods = {"deadreckoning", "integration", "worldcentric"};
+  static const std::vector<std::string> methods = {"deadreckoning", "integration", "robocentric",
+                                                   "worldcentric"};
   return methods;
 }
 
@@ -61,33 +64,39 @@ void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
 
 namespace {
 
+bool is_slam_method(const std::string& method) {
+  return method == "robocentric" || method == "worldcentric";
+}
+
 struct SlamRun {
   std::vector<PlacedScan> scans;  ///< with their corrected world poses
   std::vector<StampedPose> trajectory;
-  int candidates = 0, matched = 0, accepted = 0;
+  SlamTotals totals;
 };
 
-/// World-centric trajectory SLAM over the dataset's scans, and the corrected trajectory.
-SlamRun run_worldcentric(const SonarInput& sonar, const RunInputs& in,
-                         const std::vector<StampedPose>& dead_reckoning) {
+/// Trajectory SLAM (robocentric or world-centric) over the dataset's scans, and the corrected
+/// trajectory.
+SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, const RunInputs& in,
+                            const std::vector<StampedPose>& dead_reckoning) {
   ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
   SlamRun run;
   run.scans = build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
                           {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
-  WorldCentricSlam slam(in.config.trajectory_slam, in.start.pose);
-  for (const PlacedScan& placed : run.scans) {
-    const SlamStepStats stats = slam.add_scan(placed.scan);
-    run.candidates += stats.candidates;
-    run.matched += stats.matched;
-    run.accepted += stats.accepted;
+  std::unique_ptr<TrajectorySlam> slam;
+  if (method == "robocentric") {
+    slam = std::make_unique<RoboCentricSlam>(in.config.trajectory_slam, in.start.pose);
+  } else {
+    slam = std::make_unique<WorldCentricSlam>(in.config.trajectory_slam, in.start.pose);
   }
+  for (const PlacedScan& placed : run.scans) slam->add_scan(placed.scan);
+  run.totals = slam->totals();
   std::vector<StampedPose> dr_at_scans;
   std::vector<GaussianPose2> corrected;
   for (std::size_t i = 0; i < run.scans.size(); ++i) {
     dr_at_scans.push_back(run.scans[i].centre_world);
-    corrected.push_back(slam.scan_pose_world(i));
+    corrected.push_back(slam->scan_pose_world(i));
     run.scans[i].centre_world.pose = corrected.back();
   }
   run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
@@ -120,7 +129,7 @@ RunOutcome run(const RunOptions& options) {
 
   // SLAM methods: the sonar readings are read before the clock starts, like the logs.
   std::optional<SonarInput> sonar;
-  if (options.method == "worldcentric") {
+  if (is_slam_method(options.method)) {
     sonar = load_sonar_readings(in.files, calibration, config.segmentation);
   }
   const auto t_begin = std::chrono::steady_clock::now();
@@ -132,7 +141,7 @@ RunOutcome run(const RunOptions& options) {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
   }
   std::optional<SlamRun> slam;
-  if (sonar) slam = run_worldcentric(*sonar, in, dr.trajectory);
+  if (sonar) slam = run_trajectory_slam(options.method, *sonar, in, dr.trajectory);
   const std::vector<StampedPose>& trajectory = slam ? slam->trajectory : dr.trajectory;
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
@@ -148,10 +157,11 @@ RunOutcome run(const RunOptions& options) {
     outcome.metrics->runtime_s = runtime_s;
     if (slam) {
       outcome.metrics->scans = static_cast<int>(slam->scans.size());
-      outcome.metrics->matches_accepted = slam->accepted;
+      outcome.metrics->matches_accepted = slam->totals.accepted;
       outcome.metrics->anees = scan_anees(slam->scans, in);
-      outcome.metrics->diagnostics = {{"scan_candidates", slam->candidates},
-                                      {"scan_matches_valid", slam->matched}};
+      outcome.metrics->diagnostics = {{"scan_candidates", slam->totals.candidates},
+                                      {"scan_matches_valid", slam->totals.matched},
+                                      {"scans_skipped", slam->totals.skipped}};
     }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {

@@ -129,9 +129,11 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.number("association_distance_m", c.association_distance_m);
   require_positive(map, "association_distance_m", c.association_distance_m);
   read_count(map, "max_matches_per_scan", c.max_matches_per_scan, 0, 1000);
+  read_count(map, "min_scan_gap", c.min_scan_gap, 1, 1000000);
   read_count(map, "iekf_iterations", c.iekf_iterations, 1, 100);
   map.number("innovation_gate_chi2", c.innovation_gate_chi2);
   require_positive(map, "innovation_gate_chi2", c.innovation_gate_chi2);
+  map.boolean("update_whole_state", c.update_whole_state);
   read_matching(map.map("matching"), c.matching);
   map.finish();
 }

@@ -6,7 +6,7 @@
 #include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/evaluation.hpp"
-#include "slam/worldcentric_slam.hpp"
+#include "slam/trajectory_slam.hpp"
 
 namespace msislab {
 

@@ -1,0 +1,143 @@
+#include "slam/trajectory_slam.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+namespace msislab {
+
+namespace {
+
+/// A motion whose covariance says "unknown": 100 m and pi rad standard deviation.
+GaussianPose2 unknown_motion() {
+  return {Pose2(), Eigen::Vector3d(1e4, 1e4, M_PI * M_PI).asDiagonal()};
+}
+
+std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
+  std::vector<ScanPoint> finite;
+  finite.reserve(points.size());
+  for (const ScanPoint& p : points) {
+    if (p.p_m.allFinite() && p.cov.allFinite()) finite.push_back(p);
+  }
+  return finite;
+}
+
+}  // namespace
+
+TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
+    : config_(config), start_world_(start_world) {}
+
+void TrajectorySlam::predict(const GaussianPose2& motion) {
+  const Eigen::Index n = static_cast<Eigen::Index>(3 * elements_.size());
+  elements_.push_back(motion.mean);
+  P_.conservativeResize(n + 3, n + 3);
+  P_.rightCols<3>().setZero();
+  P_.bottomRows<3>().setZero();
+  P_.bottomRightCorner<3, 3>() = motion.cov;
+}
+
+Eigen::Matrix3d TrajectorySlam::propagate(std::size_t first, const Eigen::MatrixXd& J) const {
+  const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
+  return J * P_.block(f, f, J.cols(), J.cols()) * J.transpose();
+}
+
+SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
+  SlamStepStats stats;
+  const bool motion_ok = scan.motion.mean.vector().allFinite() && scan.motion.cov.allFinite();
+  predict(motion_ok ? scan.motion : unknown_motion());
+  group_start_.push_back(elements_.size() - 1);
+  points_.push_back(finite_points(scan.points));
+  ++totals_.scans;
+
+  const std::size_t k = elements_.size() - 1;
+  if (!motion_ok || static_cast<int>(points_[k].size()) < config_.matching.min_inliers) {
+    stats.skipped = true;
+    ++totals_.skipped;
+    finish_step();
+    return stats;
+  }
+
+  // Associate (paper Eq. 3-4): past scans within gamma, nearest first.
+  const std::vector<double> distances_m = distances_to_newest();
+  std::vector<std::pair<double, std::size_t>> candidates;
+  for (std::size_t j = 0; j + static_cast<std::size_t>(config_.min_scan_gap) <= k; ++j) {
+    if (distances_m[j] < config_.association_distance_m &&
+        static_cast<int>(points_[j].size()) >= config_.matching.min_inliers) {
+      candidates.emplace_back(distances_m[j], j);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  if (static_cast<int>(candidates.size()) > config_.max_matches_per_scan) {
+    candidates.resize(static_cast<std::size_t>(config_.max_matches_per_scan));
+  }
+  stats.candidates = static_cast<int>(candidates.size());
+
+  // Observe and update, one match at a time.
+  for (const auto& [distance_m, j] : candidates) {
+    Eigen::MatrixXd H;
+    GaussianPose2 guess;
+    guess.mean = relative_pose(j, k, &H);
+    guess.cov = propagate(j + 1, H);
+    const ScanMatchResult match = match_scans(points_[j], points_[k], guess, config_.matching);
+    if (!match.valid) continue;
+    ++stats.matched;
+    if (update(j, k, match.estimate, stats.window_elements)) ++stats.accepted;
+  }
+  totals_.candidates += stats.candidates;
+  totals_.matched += stats.matched;
+  totals_.accepted += stats.accepted;
+  finish_step();
+  return stats;
+}
+
+bool TrajectorySlam::update(std::size_t a, std::size_t b, const GaussianPose2& z,
+                            int& window_elements) {
+  // The window: from the start of the group holding element a+1 to b (the newest element), which
+  // takes in every element correlated with the ones h depends on.
+  const std::size_t first = config_.update_whole_state ? 0 : group_start_[a + 1];
+  const std::size_t count = b + 1 - first;
+  const Eigen::Index m = static_cast<Eigen::Index>(3 * count);
+  const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
+  const Eigen::Index h_col = static_cast<Eigen::Index>(3 * (a + 1 - first));
+  const Eigen::MatrixXd P_window = P_.block(f, f, m, m);
+
+  // Iterated EKF (paper Eq. 9-10): X_{i+1} = X^ + K_i (z - h(X_i) - H_i (X^ - X_i)),
+  // K_i = P H_i^T (H_i P H_i^T + R)^-1; then P = (I - K H) P at the last linearisation.
+  const std::vector<Pose2> prior(elements_.begin() + static_cast<long>(first),
+                                 elements_.begin() + static_cast<long>(b) + 1);
+  Eigen::VectorXd x_prior(m);
+  for (std::size_t j = 0; j < count; ++j) {
+    x_prior.segment<3>(static_cast<Eigen::Index>(3 * j)) = prior[j].vector();
+  }
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, m), H_chain, K;
+  for (int iteration = 0; iteration < std::max(1, config_.iekf_iterations); ++iteration) {
+    const Pose2 h = relative_pose(a, b, &H_chain);
+    H.middleCols(h_col, H_chain.cols()) = H_chain;
+    Eigen::VectorXd dx(m);  // X^ - X_i, angles wrapped
+    for (std::size_t j = 0; j < count; ++j) {
+      dx.segment<3>(static_cast<Eigen::Index>(3 * j)) =
+          pose_difference(prior[j], elements_[first + j]);
+    }
+    const Eigen::Matrix3d S = H * P_window * H.transpose() + z.cov;
+    const Eigen::Vector3d innovation = pose_difference(z.mean, h) - H * dx;
+    if (iteration == 0 &&
+        innovation.dot(S.ldlt().solve(innovation)) > config_.innovation_gate_chi2) {
+      return false;  // the match disagrees with the prediction: leave the state as it was
+    }
+    K = P_window * H.transpose() * S.inverse();
+    const Eigen::VectorXd x_new = x_prior + K * innovation;
+    for (std::size_t j = 0; j < count; ++j) {
+      elements_[first + j] = Pose2(x_new.segment<3>(static_cast<Eigen::Index>(3 * j)));
+    }
+  }
+  // P = (I - K H) P on the window, as P - K (H P); the rest of P is uncorrelated with it and
+  // unchanged.
+  Eigen::MatrixXd P_new = P_window - K * (H * P_window);
+  P_.block(f, f, m, m) = 0.5 * (P_new + P_new.transpose());
+  std::fill(group_start_.begin() + static_cast<long>(first), group_start_.end(), first);
+  window_elements = std::max(window_elements, static_cast<int>(count));
+  return true;
+}
+
+}  // namespace msislab

@@ -1,0 +1,109 @@
+// Trajectory SLAM over relative motions between scans (paper Sec. III-IV; docs/trajectory_slam.md).
+// The state is a chain of n relative motions X = [x_0, ..., x_{n-1}] with its full covariance;
+// element i links scan i-1 and scan i (element 0 links the start pose and scan 0). Each new scan:
+//   predict:   the dead-reckoning motion is appended, uncorrelated with the past (paper Eq. 2);
+//   associate: past scans whose estimated centre lies within gamma of the new one (Eq. 3-4);
+//   observe:   z = spIC(scan_j, scan_k) ~ h(X), the pose of scan k in scan j's frame (Eq. 5-8);
+//   update:    an iterated EKF (Eq. 9-10) gated on the innovation's NIS.
+// How the elements are stored is what the two variants differ in: the world-centric one keeps
+// x_i = pose of scan i in scan i-1's frame (a chain from the world forward); the robocentric one
+// keeps the inverses, the chain from the current robot back to the world, and inverts each new
+// motion only after its update (delayed inversion, Eq. 11-13).
+//
+// Updating only the loop (the paper's remark): an observation between scans j and k involves
+// elements j+1..k. Motions enter uncorrelated and an update correlates only the elements of its
+// window, so the elements form contiguous groups with no correlation between groups. The update of
+// the window "group of j+1 up to k" is then exactly the full EKF update, at a cost that grows with
+// the loop's length instead of the whole state.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "slam/gaussian_pose.hpp"
+#include "slam/scan_builder.hpp"
+#include "slam/scan_matching.hpp"
+
+namespace msislab {
+
+struct TrajectorySlamConfig {
+  double association_distance_m = 10.0;  ///< gamma: match past scans closer than this (m)
+  int max_matches_per_scan = 3;          ///< the nearest candidates first
+  int min_scan_gap = 1;     ///< match scans at least this many steps back (1: the previous one too)
+  int iekf_iterations = 5;  ///< relinearisations of the update (1 = plain EKF)
+  double innovation_gate_chi2 = 11.34;  ///< 3 DOF, 99%: inconsistent matches are rejected
+  /// Update every element instead of the loop's window (the same result at a higher cost; for
+  /// checks and timing).
+  bool update_whole_state = false;
+  ScanMatchConfig matching;
+};
+
+/// What one step did.
+struct SlamStepStats {
+  int candidates = 0;
+  int matched = 0;   ///< spIC valid
+  int accepted = 0;  ///< passed the innovation gate and updated the state
+  /// The scan could not be matched (too few finite points) or its motion was not finite; the step
+  /// only predicted.
+  bool skipped = false;
+  int window_elements = 0;  ///< state elements touched by the largest update of the step
+};
+
+/// The totals over a run.
+struct SlamTotals {
+  int scans = 0;
+  int skipped = 0;
+  int candidates = 0;
+  int matched = 0;
+  int accepted = 0;
+};
+
+class TrajectorySlam {
+ public:
+  TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world);
+  virtual ~TrajectorySlam() = default;
+
+  /// Adds a scan (its points in its own frame, its motion from the previous scan's frame) and
+  /// closes the loops it finds. A scan with a non-finite motion is chained with a zero motion of
+  /// very large covariance (the filter loses track instead of failing); non-finite points are
+  /// dropped.
+  SlamStepStats add_scan(const Scan& scan);
+
+  std::size_t scans() const { return elements_.size(); }
+  const SlamTotals& totals() const { return totals_; }
+
+  /// The world pose of scan i with its covariance.
+  virtual GaussianPose2 scan_pose_world(std::size_t i) const = 0;
+  /// h(X) for scans a < b: the pose of scan b in scan a's frame; with H, its Jacobian with
+  /// respect to the state elements a+1..b (3 x 3(b-a)).
+  virtual Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const = 0;
+
+  /// The state elements as stored (see the derived classes) and their covariance.
+  const std::vector<Pose2>& elements() const { return elements_; }
+  const Eigen::MatrixXd& covariance() const { return P_; }
+
+ protected:
+  /// Appends the new motion as the state stores it during the update of its step.
+  virtual void predict(const GaussianPose2& motion);
+  /// After all updates of a step (the robocentric inversion).
+  virtual void finish_step() {}
+  /// Estimated distance of each past scan j < k to the newest scan k.
+  virtual std::vector<double> distances_to_newest() const = 0;
+
+  /// The covariance of a function of elements [first, first + m) with Jacobian J (3 x 3m).
+  Eigen::Matrix3d propagate(std::size_t first, const Eigen::MatrixXd& J) const;
+
+  TrajectorySlamConfig config_;
+  GaussianPose2 start_world_;
+  std::vector<Pose2> elements_;
+  Eigen::MatrixXd P_;
+
+ private:
+  bool update(std::size_t a, std::size_t b, const GaussianPose2& z, int& window_elements);
+
+  std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
+  std::vector<std::vector<ScanPoint>> points_;
+  SlamTotals totals_;
+};
+
+}  // namespace msislab

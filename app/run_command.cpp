@@ -161,7 +161,8 @@ RunOutcome run(const RunOptions& options) {
       outcome.metrics->anees = scan_anees(slam->scans, in);
       outcome.metrics->diagnostics = {{"scan_candidates", slam->totals.candidates},
                                       {"scan_matches_valid", slam->totals.matched},
-                                      {"scans_skipped", slam->totals.skipped}};
+                                      {"scans_skipped", slam->totals.skipped},
+                                      {"compass_accepted", slam->totals.compass_accepted}};
     }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {

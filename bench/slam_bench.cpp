@@ -51,6 +51,7 @@ std::vector<Scan> loop_scans(std::size_t count) {
       ScanPoint point;
       point.p_m = p + 0.05 * Eigen::Vector2d(n01(rng), n01(rng));
       point.cov = 0.0025 * Eigen::Matrix2d::Identity();
+      point.cov_reading = point.cov;
       scan.points.push_back(point);
     }
     scans.push_back(scan);

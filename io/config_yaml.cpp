@@ -122,6 +122,7 @@ void read_matching(YamlMap map, ScanMatchConfig& c) {
   read_count(map, "max_iterations", c.max_iterations, 1, 1000);
   read_count(map, "min_inliers", c.min_inliers, 3, 100000);
   map.boolean("scale_covariance_by_residual", c.scale_covariance_by_residual);
+  map.boolean("shared_point_errors", c.shared_point_errors);
   map.finish();
 }
 
@@ -133,6 +134,9 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   read_count(map, "iekf_iterations", c.iekf_iterations, 1, 100);
   map.number("innovation_gate_chi2", c.innovation_gate_chi2);
   require_positive(map, "innovation_gate_chi2", c.innovation_gate_chi2);
+  map.boolean("compass_updates", c.compass_updates);
+  map.number("compass_gate_chi2", c.compass_gate_chi2);
+  require_positive(map, "compass_gate_chi2", c.compass_gate_chi2);
   map.boolean("update_whole_state", c.update_whole_state);
   read_matching(map.map("matching"), c.matching);
   map.finish();

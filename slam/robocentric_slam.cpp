@@ -48,6 +48,10 @@ Pose2 RoboCentricSlam::relative_pose(std::size_t a, std::size_t b, Eigen::Matrix
   return chain_pose(a + 1, b, H);
 }
 
+Pose2 RoboCentricSlam::pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const {
+  return chain_pose(0, b, H);
+}
+
 GaussianPose2 RoboCentricSlam::scan_pose_world(std::size_t i) const {
   Eigen::MatrixXd H;
   const Pose2 relative = chain_pose(0, i, &H);

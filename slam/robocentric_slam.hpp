@@ -20,6 +20,7 @@ class RoboCentricSlam : public TrajectorySlam {
 
   GaussianPose2 scan_pose_world(std::size_t i) const override;
   Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const override;
+  Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const override;
 
   /// Whether the newest element is still the un-inverted motion (inside a step).
   bool newest_inverted() const { return newest_inverted_; }

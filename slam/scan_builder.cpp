@@ -18,13 +18,15 @@ ScanPoint reading_in_vehicle(const SonarReading& reading,
                               sigma_across_m * sigma_across_m)
                   .asDiagonal() *
               R.transpose();
+  point.cov_reading = point.cov;
   point.t_s = reading.t_s;
   point.p_vehicle_m = point.p_m;
   return point;
 }
 
 void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPose2& x_centre_beam,
-                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points) {
+                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points,
+                     const BeamDistortion& distortion) {
   for (const SonarReading& reading : readings) {
     const ScanPoint in_vehicle = reading_in_vehicle(reading, p_vehicle_sonar_m);
     Matrix23d J_pose;
@@ -33,8 +35,10 @@ void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPo
     point.t_s = in_vehicle.t_s;
     point.p_vehicle_m = in_vehicle.p_m;
     point.p_m = x_centre_beam.mean.transform(in_vehicle.p_m, &J_pose, &J_point);
-    point.cov = J_pose * x_centre_beam.cov * J_pose.transpose() +
-                J_point * in_vehicle.cov * J_point.transpose();
+    point.cov_reading = J_point * in_vehicle.cov * J_point.transpose();
+    point.cov = J_pose * x_centre_beam.cov * J_pose.transpose() + point.cov_reading;
+    point.distortion = J_pose * distortion.loading;
+    point.side = distortion.side;
     points.push_back(point);
   }
 }

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 #include <vector>
 
 #include "slam/beam_segmentation.hpp"
@@ -19,6 +20,21 @@ struct ScanPoint {
   Eigen::Matrix2d cov = Eigen::Matrix2d::Zero();  ///< reading noise + motion uncertainty
   double t_s = 0.0;                               ///< when the beam was taken
   Eigen::Vector2d p_vehicle_m = Eigen::Vector2d::Zero();  ///< the reading in its own vehicle frame
+  /// The reading noise alone, in the scan frame: the part of `cov` no other point shares (spIC's
+  /// covariance counts only this part as independent; whoever builds points must set it).
+  Eigen::Matrix2d cov_reading = Eigen::Matrix2d::Zero();
+  /// The motion part of the error is shared by the points of one half of the scan (the beams
+  /// before or after the centre ride on the same dead-reckoning error): it is modelled as
+  /// distortion * xi_side with xi_side ~ N(0, I) common to the half (docs/scan_matching.md).
+  Matrix23d distortion = Matrix23d::Zero();
+  int side = 0;  ///< 0: taken before the centre beam, 1: from it on
+};
+
+/// How a beam's pose error loads on its half-scan's shared error xi ~ N(0, I):
+/// x_centre_beam error = loading * xi.
+struct BeamDistortion {
+  int side = 0;
+  Eigen::Matrix3d loading = Eigen::Matrix3d::Zero();
 };
 
 struct Scan {
@@ -27,10 +43,15 @@ struct Scan {
   /// Motion from the previous scan's frame to this one; for the first scan, from the start pose.
   GaussianPose2 motion;
   std::size_t beams = 0;
+  /// The MRU's absolute heading at the scan's time (the vehicle's yaw in the world frame) and its
+  /// standard deviation; NaN when there is none.
+  double compass_yaw_world_rad = std::numeric_limits<double>::quiet_NaN();
+  double compass_sigma_rad = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct ScanConfig {
-  int beams_per_scan = 200;  ///< one revolution
+  int beams_per_scan = 200;        ///< one revolution
+  double max_compass_gap_s = 1.0;  ///< a scan takes the heading reading nearest its time within
   Eigen::Vector2d p_vehicle_sonar_m =
       Eigen::Vector2d(0.33, 0.0);  ///< the head in the vehicle frame
 };
@@ -40,8 +61,10 @@ struct ScanConfig {
 ScanPoint reading_in_vehicle(const SonarReading& reading, const Eigen::Vector2d& p_vehicle_sonar_m);
 
 /// Appends the readings of one beam to `points`, in the scan frame: p_c = x_cb (+) p_v with
-/// P_c = J_pose P_cb J_pose^T + J_p P_v J_p^T, given the beam's vehicle pose x_cb in that frame.
+/// P_c = J_pose P_cb J_pose^T + J_p P_v J_p^T, given the beam's vehicle pose x_cb in that frame,
+/// and the shared part of the error J_pose * distortion.loading.
 void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPose2& x_centre_beam,
-                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points);
+                     const Eigen::Vector2d& p_vehicle_sonar_m, std::vector<ScanPoint>& points,
+                     const BeamDistortion& distortion = {});
 
 }  // namespace msislab

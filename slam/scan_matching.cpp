@@ -67,6 +67,46 @@ NormalEquations normal_equations(const std::vector<ScanPoint>& reference,
   return eq;
 }
 
+/// The covariance of the estimate as a function of every point's error (first order, at the
+/// solution): dq = -H^-1 sum_j G_j de_j with G_j = J_q^T W_j^-1, de_j = J_p dp_j - da_i + ds_j, so
+/// cov(q) = H^-1 A H^-1 with A summing, over the joint covariance of all de_j,
+///   the current points' reading noise (own to each), the sampling error (own to each pair),
+///   each reference point's reading noise times (sum of the G_j associated with it) on both sides,
+///   and each half-scan's shared motion error (distortion * xi_side) summed over its points.
+Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
+                                        const std::vector<Eigen::Matrix2d>& sampling,
+                                        const std::vector<ScanPoint>& current, const Pose2& q,
+                                        const std::vector<Association>& pairs,
+                                        const Eigen::Matrix3d& H_inverse) {
+  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  std::vector<Eigen::Matrix<double, 3, 2>> U(reference.size(), Eigen::Matrix<double, 3, 2>::Zero());
+  Eigen::Matrix3d B_current[2] = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+  Eigen::Matrix3d B_reference[2] = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+  for (const Association& a : pairs) {
+    const ScanPoint& p = current[a.current];
+    const ScanPoint& r = reference[a.reference];
+    Matrix23d J_q;
+    Eigen::Matrix2d J_p;
+    q.transform(p.p_m, &J_q, &J_p);
+    const Eigen::Matrix2d W_inv =
+        (r.cov + sampling[a.reference] + J_p * p.cov * J_p.transpose()).inverse();
+    const Eigen::Matrix<double, 3, 2> G = J_q.transpose() * W_inv;
+    A += G * (J_p * p.cov_reading * J_p.transpose() + sampling[a.reference]) * G.transpose();
+    U[a.reference] += G;
+    B_current[p.side == 1] += G * J_p * p.distortion;
+    B_reference[r.side == 1] -= G * r.distortion;
+  }
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    A += U[i] * reference[i].cov_reading * U[i].transpose();
+  }
+  for (int side = 0; side < 2; ++side) {
+    A += B_current[side] * B_current[side].transpose() +
+         B_reference[side] * B_reference[side].transpose();
+  }
+  const Eigen::Matrix3d cov = H_inverse * A * H_inverse;
+  return 0.5 * (cov + cov.transpose());
+}
+
 /// The sampling error of point-to-point residuals: a surface sampled every d metres has the true
 /// counterpart of a point anywhere within +-d/2 along it, a variance of d^2/12 along the direction
 /// u to the nearest neighbour: (d^2 / 12) u u^T per reference point.
@@ -116,6 +156,10 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
   if (std::abs(eq.H.determinant()) < 1e-12) return result;
   result.estimate.mean = q.mean;
   result.estimate.cov = eq.H.inverse();
+  if (config.shared_point_errors) {
+    result.estimate.cov =
+        shared_error_covariance(reference, sampling, current, q.mean, pairs, result.estimate.cov);
+  }
   const double dof = 2.0 * result.inliers - 3.0;
   if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
     result.estimate.cov *= eq.chi2 / dof;

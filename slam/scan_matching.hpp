@@ -25,6 +25,11 @@ struct ScanMatchConfig {
   /// Scale the covariance by the residual's variance factor s^2 = chi^2 / (2n - 3) when above 1
   /// (point-to-point residuals on sparse sonar points are larger than the point covariances say).
   bool scale_covariance_by_residual = true;
+  /// The covariance counts the errors points share: a reference point's noise is shared by every
+  /// current point associated with it, and each half-scan's dead-reckoning error by all its
+  /// points; cov = H^-1 A H^-1 (a sandwich, as Censi's) instead of H^-1, which takes every
+  /// residual as independent and is overconfident (docs/scan_matching.md).
+  bool shared_point_errors = true;
 };
 
 struct ScanMatchResult {

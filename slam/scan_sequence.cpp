@@ -1,10 +1,19 @@
 #include "slam/scan_sequence.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
+#include <cmath>
 
 namespace msislab {
 
 namespace {
+
+/// A square root L (L L^T = P) of a motion covariance, zero when it is not positive definite.
+Eigen::Matrix3d square_root(const Eigen::Matrix3d& P) {
+  const Eigen::LLT<Eigen::Matrix3d> llt(P);
+  if (llt.info() != Eigen::Success) return Eigen::Matrix3d::Zero();
+  return llt.matrixL();
+}
 
 /// The revolution of beams [begin, begin + n) (its odometry samples at the same indices), in
 /// the frame of its central beam c. Beam poses in that frame: means from the filtered poses;
@@ -21,6 +30,14 @@ PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
   placed.scan.beams = n;
   placed.scan.motion = odometry[centre].motion_since_key;
   placed.centre_world = odometry[centre].pose;
+  // The shared error of each half (docs/scan_matching.md): a beam's pose error is taken as
+  // f_i L xi_side, with L L^T the motion covariance over the whole half and f_i^2 =
+  // tr(P_i) / tr(P_half) the beam's share of it, so the marginal matches its own clone's size.
+  const std::size_t last = begin + n - 1;
+  const std::size_t mirror_of_first = std::min(2 * centre - begin, odometry.size() - 1);
+  const Eigen::Matrix3d& P_after = odometry[last].motion_since_key.cov;
+  const Eigen::Matrix3d& P_before = odometry[mirror_of_first].motion_since_key.cov;
+  const Eigen::Matrix3d L_after = square_root(P_after), L_before = square_root(P_before);
   for (std::size_t i = begin; i < begin + n; ++i) {
     GaussianPose2 x_centre_beam;
     x_centre_beam.mean = x_centre.between(odometry[i].pose.pose.mean);
@@ -32,8 +49,15 @@ PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
       x_centre_beam.cov =
           odometry[std::min(2 * centre - i, odometry.size() - 1)].motion_since_key.cov;
     }
+    BeamDistortion distortion;
+    distortion.side = i >= centre ? 1 : 0;
+    const Eigen::Matrix3d& P_half = i >= centre ? P_after : P_before;
+    if (P_half.trace() > 0.0) {
+      distortion.loading = std::sqrt(std::min(1.0, x_centre_beam.cov.trace() / P_half.trace())) *
+                           (i >= centre ? L_after : L_before);
+    }
     add_scan_points((beams + static_cast<long>(i - begin))->readings, x_centre_beam,
-                    p_vehicle_sonar_m, placed.scan.points);
+                    p_vehicle_sonar_m, placed.scan.points, distortion);
   }
   return placed;
 }
@@ -61,6 +85,14 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
   for (std::size_t begin = 0; begin + per_scan <= odometry.size(); begin += per_scan) {
     scans.push_back(build_scan(first + static_cast<long>(begin), odometry, begin, per_scan,
                                config.p_vehicle_sonar_m));
+    Scan& scan = scans.back().scan;
+    if (!navigation.heading.empty()) {
+      const HeadingReading& heading = nearest_heading(navigation.heading, scan.t_s);
+      if (std::abs(heading.t_s - scan.t_s) <= config.max_compass_gap_s) {
+        scan.compass_yaw_world_rad = heading.yaw_rad;
+        scan.compass_sigma_rad = dead_reckoning.heading_sigma_rad;
+      }
+    }
   }
   return scans;
 }

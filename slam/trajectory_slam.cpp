@@ -51,6 +51,12 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   ++totals_.scans;
 
   const std::size_t k = elements_.size() - 1;
+  if (config_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
+      scan.compass_sigma_rad > 0.0) {
+    stats.compass_accepted = update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad,
+                                            stats.window_elements);
+    totals_.compass_accepted += stats.compass_accepted;
+  }
   if (!motion_ok || static_cast<int>(points_[k].size()) < config_.matching.min_inliers) {
     stats.skipped = true;
     ++totals_.skipped;
@@ -82,7 +88,7 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
     const ScanMatchResult match = match_scans(points_[j], points_[k], guess, config_.matching);
     if (!match.valid) continue;
     ++stats.matched;
-    if (update(j, k, match.estimate, stats.window_elements)) ++stats.accepted;
+    if (update_match(j, k, match.estimate, stats.window_elements)) ++stats.accepted;
   }
   totals_.candidates += stats.candidates;
   totals_.matched += stats.matched;
@@ -91,15 +97,17 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   return stats;
 }
 
-bool TrajectorySlam::update(std::size_t a, std::size_t b, const GaussianPose2& z,
-                            int& window_elements) {
-  // The window: from the start of the group holding element a+1 to b (the newest element), which
-  // takes in every element correlated with the ones h depends on.
-  const std::size_t first = config_.update_whole_state ? 0 : group_start_[a + 1];
+template <class Residual>
+bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Residual& residual,
+                            const Eigen::MatrixXd& R, double gate_chi2, int& window_elements) {
+  // The window: from the start of the group holding the first involved element to b (the newest
+  // element), which takes in every element correlated with the ones h depends on.
+  const std::size_t first = config_.update_whole_state ? 0 : group_start_[first_involved];
   const std::size_t count = b + 1 - first;
   const Eigen::Index m = static_cast<Eigen::Index>(3 * count);
   const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
-  const Eigen::Index h_col = static_cast<Eigen::Index>(3 * (a + 1 - first));
+  const Eigen::Index h_col = static_cast<Eigen::Index>(3 * (first_involved - first));
+  const Eigen::Index d = R.rows();
   const Eigen::MatrixXd P_window = P_.block(f, f, m, m);
 
   // Iterated EKF (paper Eq. 9-10): X_{i+1} = X^ + K_i (z - h(X_i) - H_i (X^ - X_i)),
@@ -110,20 +118,19 @@ bool TrajectorySlam::update(std::size_t a, std::size_t b, const GaussianPose2& z
   for (std::size_t j = 0; j < count; ++j) {
     x_prior.segment<3>(static_cast<Eigen::Index>(3 * j)) = prior[j].vector();
   }
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(3, m), H_chain, K;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(d, m), H_involved, K;
   for (int iteration = 0; iteration < std::max(1, config_.iekf_iterations); ++iteration) {
-    const Pose2 h = relative_pose(a, b, &H_chain);
-    H.middleCols(h_col, H_chain.cols()) = H_chain;
+    const Eigen::VectorXd z_minus_h = residual(&H_involved);
+    H.middleCols(h_col, H_involved.cols()) = H_involved;
     Eigen::VectorXd dx(m);  // X^ - X_i, angles wrapped
     for (std::size_t j = 0; j < count; ++j) {
       dx.segment<3>(static_cast<Eigen::Index>(3 * j)) =
           pose_difference(prior[j], elements_[first + j]);
     }
-    const Eigen::Matrix3d S = H * P_window * H.transpose() + z.cov;
-    const Eigen::Vector3d innovation = pose_difference(z.mean, h) - H * dx;
-    if (iteration == 0 &&
-        innovation.dot(S.ldlt().solve(innovation)) > config_.innovation_gate_chi2) {
-      return false;  // the match disagrees with the prediction: leave the state as it was
+    const Eigen::MatrixXd S = H * P_window * H.transpose() + R;
+    const Eigen::VectorXd innovation = z_minus_h - H * dx;
+    if (iteration == 0 && innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
+      return false;  // the observation disagrees with the prediction: leave the state as it was
     }
     K = P_window * H.transpose() * S.inverse();
     const Eigen::VectorXd x_new = x_prior + K * innovation;
@@ -138,6 +145,29 @@ bool TrajectorySlam::update(std::size_t a, std::size_t b, const GaussianPose2& z
   std::fill(group_start_.begin() + static_cast<long>(first), group_start_.end(), first);
   window_elements = std::max(window_elements, static_cast<int>(count));
   return true;
+}
+
+bool TrajectorySlam::update_match(std::size_t a, std::size_t b, const GaussianPose2& z,
+                                  int& window_elements) {
+  // z = spIC(scan_a, scan_b) observes h(X) = the pose of scan b in scan a (Eq. 5-8).
+  const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
+    return pose_difference(z.mean, relative_pose(a, b, H));
+  };
+  return update(a + 1, b, residual, z.cov, config_.innovation_gate_chi2, window_elements);
+}
+
+bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double sigma_rad,
+                                    int& window_elements) {
+  // z = the MRU heading observes the yaw of scan b in the world: start yaw + the chain's yaw.
+  const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
+    Eigen::MatrixXd H_pose;
+    const Pose2 pose = pose_in_start_frame(b, &H_pose);
+    *H = H_pose.row(2);
+    return Eigen::VectorXd::Constant(
+        1, normalize_angle(yaw_world_rad - start_world_.mean.yaw() - pose.yaw()));
+  };
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
+  return update(0, b, residual, R, config_.compass_gate_chi2, window_elements);
 }
 
 }  // namespace msislab

@@ -32,6 +32,10 @@ struct TrajectorySlamConfig {
   int min_scan_gap = 1;     ///< match scans at least this many steps back (1: the previous one too)
   int iekf_iterations = 5;  ///< relinearisations of the update (1 = plain EKF)
   double innovation_gate_chi2 = 11.34;  ///< 3 DOF, 99%: inconsistent matches are rejected
+  /// Update each scan's world heading with the MRU's absolute heading (a relative chain forgets
+  /// that the compass bounds the heading error; docs/trajectory_slam.md).
+  bool compass_updates = true;
+  double compass_gate_chi2 = 6.63;  ///< 1 DOF, 99%
   /// Update every element instead of the loop's window (the same result at a higher cost; for
   /// checks and timing).
   bool update_whole_state = false;
@@ -47,6 +51,7 @@ struct SlamStepStats {
   /// only predicted.
   bool skipped = false;
   int window_elements = 0;  ///< state elements touched by the largest update of the step
+  bool compass_accepted = false;
 };
 
 /// The totals over a run.
@@ -56,6 +61,7 @@ struct SlamTotals {
   int candidates = 0;
   int matched = 0;
   int accepted = 0;
+  int compass_accepted = 0;
 };
 
 class TrajectorySlam {
@@ -78,6 +84,10 @@ class TrajectorySlam {
   /// respect to the state elements a+1..b (3 x 3(b-a)).
   virtual Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const = 0;
 
+  /// The pose of scan b in the start frame (h(X) of an absolute measurement); with H, its
+  /// Jacobian with respect to the elements 0..b (3 x 3(b+1)).
+  virtual Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const = 0;
+
   /// The state elements as stored (see the derived classes) and their covariance.
   const std::vector<Pose2>& elements() const { return elements_; }
   const Eigen::MatrixXd& covariance() const { return P_; }
@@ -99,7 +109,13 @@ class TrajectorySlam {
   Eigen::MatrixXd P_;
 
  private:
-  bool update(std::size_t a, std::size_t b, const GaussianPose2& z, int& window_elements);
+  /// An observation: the wrapped residual z - h(X) and, with H, its Jacobian with respect to the
+  /// elements first..b.
+  template <class Residual>
+  bool update(std::size_t first, std::size_t b, const Residual& residual, const Eigen::MatrixXd& R,
+              double gate_chi2, int& window_elements);
+  bool update_match(std::size_t a, std::size_t b, const GaussianPose2& z, int& window_elements);
+  bool update_compass(std::size_t b, double yaw_world_rad, double sigma_rad, int& window_elements);
 
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
   std::vector<std::vector<ScanPoint>> points_;

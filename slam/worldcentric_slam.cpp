@@ -25,11 +25,18 @@ Pose2 WorldCentricSlam::relative_pose(std::size_t a, std::size_t b, Eigen::Matri
   return pose;
 }
 
-GaussianPose2 WorldCentricSlam::scan_pose_world(std::size_t i) const {
-  const std::vector<Pose2> chain(elements_.begin(), elements_.begin() + static_cast<long>(i) + 1);
+Pose2 WorldCentricSlam::pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const {
+  const std::vector<Pose2> chain(elements_.begin(), elements_.begin() + static_cast<long>(b) + 1);
   std::vector<Eigen::Matrix3d> J;
-  const Pose2 relative = compose_chain(chain, &J);
-  return compose(start_world_, GaussianPose2{relative, propagate(0, side_by_side(J))});
+  const Pose2 pose = compose_chain(chain, H ? &J : nullptr);
+  if (H) *H = side_by_side(J);
+  return pose;
+}
+
+GaussianPose2 WorldCentricSlam::scan_pose_world(std::size_t i) const {
+  Eigen::MatrixXd H;
+  const Pose2 relative = pose_in_start_frame(i, &H);
+  return compose(start_world_, GaussianPose2{relative, propagate(0, H)});
 }
 
 std::vector<double> WorldCentricSlam::distances_to_newest() const {

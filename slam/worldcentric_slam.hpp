@@ -15,6 +15,7 @@ class WorldCentricSlam : public TrajectorySlam {
 
   GaussianPose2 scan_pose_world(std::size_t i) const override;
   Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const override;
+  Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const override;
 
  protected:
   std::vector<double> distances_to_newest() const override;

@@ -27,6 +27,7 @@ std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, double 
     ScanPoint sp;
     sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
     sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
+    sp.cov_reading = sp.cov;  // all of it is the point's own noise
     out.push_back(sp);
   }
   return out;

@@ -70,6 +70,7 @@ Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0) {
       ScanPoint point;
       point.p_m = p + sigma_point_m * Eigen::Vector2d(n01(rng), n01(rng));
       point.cov = sigma_point_m * sigma_point_m * Eigen::Matrix2d::Identity();
+      point.cov_reading = point.cov;
       point.p_vehicle_m = point.p_m;
       scan.points.push_back(point);
     }
@@ -177,9 +178,6 @@ TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(TrajectorySlam, BothMethods,
-                         testing::Values("robocentric", "worldcentric"));
-
 TEST(TrajectorySlam, FiltersAgreeInTheLinearLimit) {
   // With noise 1e-4 of the usual, linearisation errors vanish and the two parameterisations of
   // the same Gaussian give the same world poses and covariances.
@@ -208,6 +206,7 @@ class OpenRoboCentric : public RoboCentricSlam {
 
 class OpenWorldCentric : public WorldCentricSlam {
  public:
+  using WorldCentricSlam::predict;
   using WorldCentricSlam::WorldCentricSlam;
   std::vector<Pose2>& state() { return elements_; }
 };
@@ -233,6 +232,72 @@ void expect_jacobian_matches(Filter& slam, std::size_t a, std::size_t b) {
     const Eigen::Vector3d numeric = pose_difference(plus, minus) / (2 * step);
     EXPECT_LT((H.col(c) - numeric).norm(), 1e-6) << "a " << a << " b " << b << " column " << c;
   }
+}
+
+/// Checks the Jacobian of pose_in_start_frame(b) against central differences over elements 0..b.
+template <class Filter>
+void expect_start_frame_jacobian_matches(Filter& slam, std::size_t b) {
+  Eigen::MatrixXd H;
+  slam.pose_in_start_frame(b, &H);
+  ASSERT_EQ(H.cols(), static_cast<Eigen::Index>(3 * (b + 1)));
+  const double step = 1e-6;
+  for (Eigen::Index c = 0; c < H.cols(); ++c) {
+    const std::size_t element = static_cast<std::size_t>(c / 3);
+    const Pose2 saved = slam.state()[element];
+    Eigen::Vector3d d = Eigen::Vector3d::Zero();
+    d(c % 3) = step;
+    slam.state()[element] = Pose2(saved.vector() + d);
+    const Pose2 plus = slam.pose_in_start_frame(b, nullptr);
+    slam.state()[element] = Pose2(saved.vector() - d);
+    const Pose2 minus = slam.pose_in_start_frame(b, nullptr);
+    slam.state()[element] = saved;
+    EXPECT_LT((H.col(c) - pose_difference(plus, minus) / (2 * step)).norm(), 1e-6)
+        << "b " << b << " column " << c;
+  }
+}
+
+TEST(TrajectorySlam, CompassObservationJacobians) {
+  const Loop loop = make_loop(2, false);
+  OpenWorldCentric world(TrajectorySlamConfig{}, GaussianPose2{});
+  OpenRoboCentric robot(TrajectorySlamConfig{}, GaussianPose2{});
+  for (std::size_t k = 0; k < 8; ++k) world.add_scan(loop.scans[k]), robot.add_scan(loop.scans[k]);
+  expect_start_frame_jacobian_matches(world, 7);
+  expect_start_frame_jacobian_matches(world, 3);
+  expect_start_frame_jacobian_matches(robot, 7);
+  robot.predict(loop.scans[8].motion);  // the raw newest element, as during a step
+  expect_start_frame_jacobian_matches(robot, 8);
+}
+
+TEST_P(BothMethods, CompassBoundsTheHeadingOfABlindRun) {
+  // No scan sees anything and the odometry turns 0.5 deg too far at every step: the chain's
+  // heading drifts, the compass (1 deg) holds it.
+  Loop loop = make_loop(6, false);
+  const double sigma_rad = M_PI / 180.0;
+  std::mt19937 rng(6);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (std::size_t k = 0; k < loop.scans.size(); ++k) {
+    Scan& scan = loop.scans[k];
+    scan.points.clear();
+    if (k > 0)
+      scan.motion.mean = Pose2(scan.motion.mean.vector() + Eigen::Vector3d(0, 0, 0.5 * M_PI / 180));
+    scan.compass_yaw_world_rad = normalize_angle(loop.truth[k].yaw() + sigma_rad * n01(rng));
+    scan.compass_sigma_rad = sigma_rad;
+  }
+  TrajectorySlamConfig without;
+  without.compass_updates = false;
+  const auto with_compass = make_slam(GetParam()), blind = make_slam(GetParam(), without);
+  const std::vector<GaussianPose2> a = run(*with_compass, loop.scans), b = run(*blind, loop.scans);
+  // A few readings fall outside the 99% gate against the biased prediction (37 of 40 pass).
+  EXPECT_GE(with_compass->totals().compass_accepted, static_cast<int>(loop.scans.size()) * 9 / 10);
+  const double yaw_error_with =
+      std::abs(normalize_angle(a.back().mean.yaw() - loop.truth.back().yaw()));
+  const double yaw_error_without =
+      std::abs(normalize_angle(b.back().mean.yaw() - loop.truth.back().yaw()));
+  std::cout << GetParam() << ": final yaw error " << yaw_error_with * 180 / M_PI
+            << " deg with the compass, " << yaw_error_without * 180 / M_PI << " deg without\n";
+  EXPECT_GT(yaw_error_without, 10 * M_PI / 180);
+  EXPECT_LT(yaw_error_with, 3 * sigma_rad);
+  EXPECT_LT(a.back().cov(2, 2), b.back().cov(2, 2));
 }
 
 TEST(TrajectorySlam, WorldCentricObservationJacobian) {
@@ -304,6 +369,9 @@ TEST(TrajectorySlam, RoboCentricInversionMovesTheCovarianceByItsJacobian) {
   EXPECT_LT(pose_difference(slam.state().back(), raw.inverse()).norm(), 1e-15);
   EXPECT_LT((slam.P() - G * P_before * G.transpose()).cwiseAbs().maxCoeff(), 1e-9);
 }
+
+INSTANTIATE_TEST_SUITE_P(TrajectorySlam, BothMethods,
+                         testing::Values("robocentric", "worldcentric"));
 
 }  // namespace
 }  // namespace msislab

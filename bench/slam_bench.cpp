@@ -1,10 +1,13 @@
 // Trajectory SLAM step time against state size (issue 5): a synthetic basin loop driven until the
 // state holds N scans, timing the scans added after that (each matched against up to 3 earlier
-// scans and updated). items_per_second is scans per second at that state size.
+// scans and updated), for both filters; with the update restricted to the loop's window (the
+// default) or over the whole state, and with or without the per-scan compass update (which
+// involves every element). items_per_second is scans per second at that state size.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
+#include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 
 namespace {
@@ -45,6 +48,8 @@ std::vector<Scan> loop_scans(std::size_t count) {
     scan.motion.mean = Pose2(motion.vector() +
                              Eigen::Vector3d(0.05 * n01(rng), 0.05 * n01(rng), 0.005 * n01(rng)));
     scan.motion.cov = Eigen::Vector3d(0.0025, 0.0025, 2.5e-5).asDiagonal();
+    scan.compass_yaw_world_rad = normalize_angle(path[k].yaw() + 0.017 * n01(rng));
+    scan.compass_sigma_rad = 0.017;
     for (const auto& p_world : world) {
       const Eigen::Vector2d p = path[k].inverse().transform(p_world);
       if (p.norm() > 25.0) continue;
@@ -59,13 +64,18 @@ std::vector<Scan> loop_scans(std::size_t count) {
   return scans;
 }
 
-void BM_WorldCentricStep(benchmark::State& state) {
+/// Args: state size in scans, compass updates (0/1), whole-state update (0/1).
+template <class Filter>
+void BM_Step(benchmark::State& state) {
   const auto state_scans = static_cast<std::size_t>(state.range(0));
+  TrajectorySlamConfig config;
+  config.compass_updates = state.range(1) != 0;
+  config.update_whole_state = state.range(2) != 0;
   const std::size_t timed = 10;
   const std::vector<Scan> scans = loop_scans(state_scans + timed);
   for (auto _ : state) {
     state.PauseTiming();
-    WorldCentricSlam slam(TrajectorySlamConfig{}, GaussianPose2{});
+    Filter slam(config, GaussianPose2{});
     for (std::size_t k = 0; k < state_scans; ++k) slam.add_scan(scans[k]);
     state.ResumeTiming();
     for (std::size_t k = state_scans; k < scans.size(); ++k) {
@@ -75,6 +85,15 @@ void BM_WorldCentricStep(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(timed));
   state.counters["state_dim"] = static_cast<double>(3 * state_scans);
 }
-BENCHMARK(BM_WorldCentricStep)->Arg(25)->Arg(50)->Arg(100)->Arg(200)->Unit(benchmark::kMillisecond);
+
+void step_args(benchmark::internal::Benchmark* b) {
+  b->ArgNames({"scans", "compass", "whole"});
+  for (int n : {25, 50, 100, 200, 400}) {
+    b->Args({n, 0, 0})->Args({n, 0, 1})->Args({n, 1, 0});
+  }
+  b->Unit(benchmark::kMillisecond);
+}
+BENCHMARK_TEMPLATE(BM_Step, RoboCentricSlam)->Apply(step_args);
+BENCHMARK_TEMPLATE(BM_Step, WorldCentricSlam)->Apply(step_args);
 
 }  // namespace

@@ -108,7 +108,7 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
   const Eigen::Index h_col = static_cast<Eigen::Index>(3 * (first_involved - first));
   const Eigen::Index d = R.rows();
-  const Eigen::MatrixXd P_window = P_.block(f, f, m, m);
+  const auto P_window = P_.block(f, f, m, m);
 
   // Iterated EKF (paper Eq. 9-10): X_{i+1} = X^ + K_i (z - h(X_i) - H_i (X^ - X_i)),
   // K_i = P H_i^T (H_i P H_i^T + R)^-1; then P = (I - K H) P at the last linearisation.
@@ -118,7 +118,7 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   for (std::size_t j = 0; j < count; ++j) {
     x_prior.segment<3>(static_cast<Eigen::Index>(3 * j)) = prior[j].vector();
   }
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(d, m), H_involved, K;
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(d, m), H_involved, K, PHt;
   for (int iteration = 0; iteration < std::max(1, config_.iekf_iterations); ++iteration) {
     const Eigen::VectorXd z_minus_h = residual(&H_involved);
     H.middleCols(h_col, H_involved.cols()) = H_involved;
@@ -127,21 +127,21 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
       dx.segment<3>(static_cast<Eigen::Index>(3 * j)) =
           pose_difference(prior[j], elements_[first + j]);
     }
-    const Eigen::MatrixXd S = H * P_window * H.transpose() + R;
+    PHt.noalias() = P_window * H.transpose();
+    const Eigen::MatrixXd S = H * PHt + R;
     const Eigen::VectorXd innovation = z_minus_h - H * dx;
     if (iteration == 0 && innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
       return false;  // the observation disagrees with the prediction: leave the state as it was
     }
-    K = P_window * H.transpose() * S.inverse();
+    K.noalias() = PHt * S.inverse();
     const Eigen::VectorXd x_new = x_prior + K * innovation;
     for (std::size_t j = 0; j < count; ++j) {
       elements_[first + j] = Pose2(x_new.segment<3>(static_cast<Eigen::Index>(3 * j)));
     }
   }
-  // P = (I - K H) P on the window, as P - K (H P); the rest of P is uncorrelated with it and
-  // unchanged.
-  Eigen::MatrixXd P_new = P_window - K * (H * P_window);
-  P_.block(f, f, m, m) = 0.5 * (P_new + P_new.transpose());
+  // P = (I - K H) P on the window, as the symmetric rank-d downdate P - K (P H^T)^T; the rest of
+  // P is uncorrelated with the window and unchanged.
+  P_.block(f, f, m, m).noalias() -= K * PHt.transpose();
   std::fill(group_start_.begin() + static_cast<long>(first), group_start_.end(), first);
   window_elements = std::max(window_elements, static_cast<int>(count));
   return true;

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, then
-#  1. simulates the default scenario (scenarios/stpere_replica.yaml) and runs dead reckoning and
-#     the plain-integration reference on it, scored against the exact simulation truth;
-#  2. runs both on the real St. Pere dataset (when ../shared/datasets/stpere is there), scored
+#  1. simulates the default scenario (scenarios/stpere_replica.yaml) and runs robocentric and
+#     world-centric trajectory SLAM, dead reckoning and the plain-integration reference on it,
+#     scored against the exact simulation truth;
+#  2. runs them on the real St. Pere dataset (when ../shared/datasets/stpere is there), scored
 #     against GPS;
 #  3. draws an acoustic image of one simulated revolution.
 set -euo pipefail
@@ -13,7 +14,7 @@ cmake --preset release
 cmake --build --preset release
 
 msislab=build/release/tools/msislab
-methods=(deadreckoning integration)
+methods=(robocentric worldcentric deadreckoning integration)
 
 summary() {  # summary DIR...: one line per result directory
   for dir in "$@"; do
@@ -50,6 +51,6 @@ fi
 
 echo
 echo "Results (mean, final and max position error; the paper's Table I uses the mean):"
-summary out/sim/deadreckoning out/sim/integration ${real[@]+"${real[@]}"}
+summary "${methods[@]/#/out/sim/}" ${real[@]+"${real[@]}"}
 echo "Trajectories and metrics: out/sim/<method>/ and out/stpere/<method>/;"
 echo "the simulated dataset: out/sim/stpere_replica/; acoustic image: out/sim/acoustic_image.png."

@@ -44,7 +44,7 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   ASSERT_TRUE(dr.metrics && wc.metrics && rc.metrics);
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("replica", *r->metrics);
   // Measured (seed 42): robocentric 2.163 m (loop 0.94, canal 3.84), world-centric 2.163 m
-  // (0.94, 3.84), dead reckoning 6.28 m (loop 5.0, canal 7.9).
+  // (0.94, 3.84), dead reckoning 6.28 m (loop 4.14, canal 9.22).
   for (const RunOutcome* slam : {&wc, &rc}) {
     const RunMetrics& m = *slam->metrics;
     EXPECT_GT(m.scans, 200);

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "app/eval_command.hpp"
 #include "app/image_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scans_command.hpp"
@@ -35,6 +36,20 @@ void add_run_command(CLI::App& app, msislab::app::RunOptions& options) {
       ->required();
   run->add_option("--config,-c", options.config_path,
                   "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+}
+
+void add_eval_command(CLI::App& app, msislab::app::EvalOptions& options) {
+  CLI::App* eval = app.add_subcommand(
+      "eval",
+      "Re-score a result directory of `msislab run` against truth; rewrites metrics.json and "
+      "nees.csv");
+  eval->add_option("RESULT_DIR", options.result_dir,
+                   "Result directory (trajectory.tum, metrics.json, scans.csv)")
+      ->required();
+  eval->add_option("--truth,-t", options.truth_path,
+                   "TUM truth file (default: the truth of the dataset recorded in metrics.json)");
+  eval->add_option("--config,-c", options.config_path,
+                   "SLAM config YAML whose segments replace the recorded segment windows");
 }
 
 void add_simulate_command(CLI::App& app, msislab::app::SimulateOptions& options) {
@@ -106,6 +121,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "msislab 0.1.0");
   msislab::app::RunOptions run_options;
   add_run_command(app, run_options);
+  msislab::app::EvalOptions eval_options;
+  add_eval_command(app, eval_options);
   msislab::app::SimulateOptions simulate_options;
   add_simulate_command(app, simulate_options);
   msislab::app::ImageOptions image_options;
@@ -160,6 +177,17 @@ int main(int argc, char** argv) {
         std::cout << std::fixed << std::setprecision(3) << "; mean error "
                   << outcome.metrics->errors.mean_m << " m against " << outcome.metrics->truth
                   << ", metrics.json";
+      }
+      std::cout << std::endl;
+    }
+    if (app.got_subcommand("eval")) {
+      const msislab::app::EvalOutcome outcome = msislab::app::evaluate(eval_options);
+      std::cout << std::fixed << std::setprecision(3) << "wrote " << eval_options.result_dir
+                << "/metrics.json: mean error " << outcome.metrics.errors.mean_m << " m against "
+                << outcome.metrics.truth;
+      if (outcome.metrics.anees) {
+        std::cout << ", ANEES " << *outcome.metrics.anees << " over " << outcome.nees_rows
+                  << " scans (nees.csv)";
       }
       std::cout << std::endl;
     }

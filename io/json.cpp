@@ -111,7 +111,9 @@ class Parser {
       value.type = JsonValue::Type::boolean;
     } else {
       value.type = JsonValue::Type::number;
+      const std::size_t begin = at_;
       value.number = parse_number();
+      value.text = std::string(text_.substr(begin, at_ - begin));
     }
     return value;
   }

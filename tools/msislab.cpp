@@ -1,5 +1,6 @@
 // The msislab command line: parses arguments and calls the app/ commands. Exit status 0 on success,
 // 2 on bad input with one line on stderr naming the file, line or key (docs/cli.md).
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 
 #include "app/eval_command.hpp"
 #include "app/image_command.hpp"
+#include "app/montecarlo_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scans_command.hpp"
 #include "app/segment_command.hpp"
@@ -18,6 +20,14 @@ namespace {
 
 constexpr int kBadInput = 2;
 
+std::string method_list() {
+  std::string methods;
+  for (const std::string& m : msislab::app::available_methods()) {
+    methods += (methods.empty() ? "" : ", ") + m;
+  }
+  return methods;
+}
+
 void add_run_command(CLI::App& app, msislab::app::RunOptions& options) {
   CLI::App* run = app.add_subcommand(
       "run",
@@ -26,11 +36,7 @@ void add_run_command(CLI::App& app, msislab::app::RunOptions& options) {
                   "Dataset directory (*_DVL.log, *_MTi.log, optional *_DGPS.log, calibration.yaml, "
                   "truth/)")
       ->required();
-  std::string methods;
-  for (const std::string& m : msislab::app::available_methods()) {
-    methods += (methods.empty() ? "" : ", ") + m;
-  }
-  run->add_option("--method,-m", options.method, "Method: " + methods)->required();
+  run->add_option("--method,-m", options.method, "Method: " + method_list())->required();
   run->add_option("--out,-o", options.out_dir,
                   "Result directory (trajectory.tum, metrics.json when truth exists)")
       ->required();
@@ -50,6 +56,67 @@ void add_eval_command(CLI::App& app, msislab::app::EvalOptions& options) {
                    "TUM truth file (default: the truth of the dataset recorded in metrics.json)");
   eval->add_option("--config,-c", options.config_path,
                    "SLAM config YAML whose segments replace the recorded segment windows");
+}
+
+void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,
+                            msislab::app::MergeOptions& merge) {
+  CLI::App* mc = app.add_subcommand(
+      "montecarlo",
+      "N seeded simulate + run repetitions per method, as child processes; resumable and "
+      "shardable; writes per-run results, summary.json and nees.csv");
+  mc->add_option("SCENARIO", options.scenario_path, "Scenario YAML (required unless merge)");
+  mc->add_option("--runs,-n", options.runs, "Number of runs N (required); run r uses seed + r");
+  mc->add_option("--out,-o", options.out_dir,
+                 "Monte Carlo directory (required); an existing one is resumed");
+  mc->add_option("--methods,-m", options.methods,
+                 "Comma-separated methods (default: robocentric,worldcentric; available: " +
+                     method_list() + ")")
+      ->delimiter(',');
+  mc->add_option("--jobs,-j", options.jobs,
+                 "Runs at once (default: one per hardware thread; above 1 each simulation uses "
+                 "one thread)");
+  mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
+  mc->add_option("--shard", options.shard,
+                 "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");
+  mc->require_subcommand(0, 1);
+  CLI::App* m = mc->add_subcommand(
+      "merge", "Merge shard directories into OUT_DIR and write its summary over every run");
+  m->add_option("OUT_DIR", merge.out_dir, "Monte Carlo directory to write")->required();
+  m->add_option("SHARD_DIR", merge.shard_dirs, "Shard directories made with --shard")->required();
+}
+
+void check_montecarlo_options(const msislab::app::MonteCarloOptions& options,
+                              const CLI::App& montecarlo) {
+  const auto missing = [](const std::string& what) {
+    throw msislab::io::InputError("montecarlo: " + what + " is required");
+  };
+  if (options.scenario_path.empty()) missing("SCENARIO");
+  if (montecarlo.count("--runs") == 0) missing("--runs");
+  if (options.out_dir.empty()) missing("--out");
+}
+
+void print_montecarlo(const msislab::app::MonteCarloOutcome& outcome, const std::string& dir,
+                      bool merged) {
+  std::cout << "montecarlo: " << dir << " holds " << outcome.runs << " runs";
+  if (merged) {
+    std::cout << " (merged)";
+  } else {
+    std::cout << " (" << outcome.executed << " run now, " << outcome.runs - outcome.executed
+              << " already done)";
+  }
+  std::cout << ", " << outcome.failed << " with a failed method; wrote summary.json and nees.csv\n"
+            << std::fixed << std::setprecision(3);
+  for (const msislab::MethodSummary& s : outcome.summary) {
+    std::cout << "  " << s.method << ": " << s.runs << " finished, " << s.failed << " failed";
+    if (s.mean_error_m) std::cout << ", mean error " << *s.mean_error_m << " m";
+    if (s.anees) std::cout << ", ANEES " << *s.anees;
+    if (s.nees_in_bounds_fraction) {
+      std::cout << std::setprecision(1) << ", NEES in bounds " << 100.0 * *s.nees_in_bounds_fraction
+                << " %" << std::setprecision(3);
+    }
+    std::cout << "\n";
+  }
+  std::cout << std::flush;
 }
 
 void add_simulate_command(CLI::App& app, msislab::app::SimulateOptions& options) {
@@ -125,6 +192,9 @@ int main(int argc, char** argv) {
   add_eval_command(app, eval_options);
   msislab::app::SimulateOptions simulate_options;
   add_simulate_command(app, simulate_options);
+  msislab::app::MonteCarloOptions montecarlo_options;
+  msislab::app::MergeOptions merge_options;
+  add_montecarlo_command(app, montecarlo_options, merge_options);
   msislab::app::ImageOptions image_options;
   add_image_command(app, image_options);
   msislab::app::ScansOptions scans_options;
@@ -190,6 +260,18 @@ int main(int argc, char** argv) {
                   << " scans (nees.csv)";
       }
       std::cout << std::endl;
+    }
+    if (app.got_subcommand("montecarlo")) {
+      CLI::App* montecarlo = app.get_subcommand("montecarlo");
+      if (montecarlo->got_subcommand("merge")) {
+        print_montecarlo(msislab::app::merge_montecarlo(merge_options), merge_options.out_dir,
+                         true);
+      } else {
+        check_montecarlo_options(montecarlo_options, *montecarlo);
+        print_montecarlo(
+            msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1}),
+            montecarlo_options.out_dir, false);
+      }
     }
   } catch (const msislab::io::InputError& e) {
     std::cerr << "msislab: " << e.what() << "\n";

@@ -24,15 +24,16 @@ const std::vector<std::string>& available_methods() {
   return methods;
 }
 
-namespace {
-void check_method(const std::string& method) {
+void check_method(const std::string& method, const std::string& option) {
   const auto& methods = available_methods();
   if (std::find(methods.begin(), methods.end(), method) != methods.end()) return;
   std::string list;
   for (const std::string& m : methods) list += (list.empty() ? "" : ", ") + m;
-  throw io::InputError("--method '" + method +
+  throw io::InputError(option + " '" + method +
                        "': not available in this build (available: " + list + ")");
 }
+
+namespace {
 
 /// Creates the result directory and removes result files a previous run left that this run
 /// will not rewrite, so the directory never mixes two runs.

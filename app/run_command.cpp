@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <memory>
 
-#include <Eigen/Cholesky>
+#include "app/eval_command.hpp"
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
@@ -27,37 +27,25 @@ const std::vector<std::string>& available_methods() {
   return methods;
 }
 
-namespace {
-void check_method(const std::string& method) {
+void check_method(const std::string& method, const std::string& option) {
   const auto& methods = available_methods();
   if (std::find(methods.begin(), methods.end(), method) != methods.end()) return;
   std::string list;
   for (const std::string& m : methods) list += (list.empty() ? "" : ", ") + m;
-  throw io::InputError("--method '" + method +
+  throw io::InputError(option + " '" + method +
                        "': not available in this build (available: " + list + ")");
 }
 
-RunMetrics score(const Truth& truth, const std::vector<StampedPose>& trajectory,
-                 const SlamConfig& config, const std::string& dataset_dir) {
-  const std::vector<ErrorSample> errors = position_errors(trajectory, truth.positions);
-  const std::optional<ErrorStats> stats = error_stats(errors);
-  if (!stats) io::fail_file(dataset_dir, "no " + truth.kind + " truth inside the estimated span");
-  RunMetrics metrics;
-  metrics.truth = truth.kind;
-  metrics.errors = *stats;
-  for (const TimeSegment& segment : config.segments) {
-    metrics.segments.emplace_back(segment.name,
-                                  segment_mean_error(errors, truth.positions.front().t_s, segment));
-  }
-  return metrics;
-}
+namespace {
 
 /// Creates the result directory and removes result files a previous run left that this run
 /// will not rewrite, so the directory never mixes two runs.
 void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
   io::create_output_dir(out_dir);
   std::error_code ec;
-  for (const char* stale : {"scans.csv", "map.ply"}) fs::remove(fs::path(out_dir) / stale, ec);
+  for (const char* stale : {"scans.csv", "map.ply", "nees.csv"}) {
+    fs::remove(fs::path(out_dir) / stale, ec);
+  }
   if (!writes_metrics) fs::remove(fs::path(out_dir) / "metrics.json", ec);
 }
 }  // namespace
@@ -103,17 +91,11 @@ SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, 
   return run;
 }
 
-/// NEES of the scan poses against simulation truth, averaged over the scans; none otherwise.
-std::optional<double> scan_anees(const std::vector<PlacedScan>& scans, const RunInputs& in) {
-  const std::vector<StampedPose>& truth = in.truth.poses;
-  if (truth.empty() || scans.empty()) return std::nullopt;
-  double sum = 0.0;
-  for (const PlacedScan& s : scans) {
-    const Eigen::Vector3d e =
-        pose_difference(s.centre_world.pose.mean, interpolate_pose(truth, s.scan.t_s));
-    sum += e.dot(s.centre_world.pose.cov.ldlt().solve(e));
-  }
-  return sum / static_cast<double>(scans.size());
+/// The scans' corrected world poses.
+std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
+  std::vector<StampedPose> poses;
+  for (const PlacedScan& s : scans) poses.push_back({s.scan.t_s, s.centre_world.pose});
+  return poses;
 }
 
 }  // namespace
@@ -151,14 +133,16 @@ RunOutcome run(const RunOptions& options) {
 
   RunOutcome outcome;
   outcome.trajectory = trajectory;
+  std::vector<io::NeesSample> nees;
   if (!truth.kind.empty()) {
-    outcome.metrics = score(truth, trajectory, config, options.dataset_dir);
+    outcome.metrics = score_trajectory(truth, trajectory, config.segments, options.dataset_dir);
     outcome.metrics->method = options.method;
     outcome.metrics->runtime_s = runtime_s;
     if (slam) {
       outcome.metrics->scans = static_cast<int>(slam->scans.size());
       outcome.metrics->matches_accepted = slam->totals.accepted;
-      outcome.metrics->anees = scan_anees(slam->scans, in);
+      nees = scan_nees(scan_poses(slam->scans), truth);
+      outcome.metrics->anees = average_nees(nees);
       outcome.metrics->diagnostics = {{"scan_candidates", slam->totals.candidates},
                                       {"scan_matches_valid", slam->totals.matched},
                                       {"scans_skipped", slam->totals.skipped},
@@ -183,8 +167,8 @@ RunOutcome run(const RunOptions& options) {
     io::write_points_ply((out / "map.ply").string(), world_points(slam->scans));
   }
   if (outcome.metrics) {
-    io::write_metrics_json((out / "metrics.json").string(), *outcome.metrics,
-                           fs::absolute(options.dataset_dir).lexically_normal().string());
+    write_scores(options.out_dir, *outcome.metrics, nees,
+                 fs::absolute(options.dataset_dir).lexically_normal().string());
   }
   return outcome;
 }

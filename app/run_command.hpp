@@ -19,6 +19,8 @@ struct RunOptions {
 
 /// The methods this build can run.
 const std::vector<std::string>& available_methods();
+/// InputError "OPTION 'm': not available in this build (available: ...)" unless m is one of them.
+void check_method(const std::string& method, const std::string& option = "--method");
 
 struct RunOutcome {
   std::vector<StampedPose> trajectory;

@@ -8,16 +8,23 @@
 
 namespace msislab::app {
 
+Truth read_tum_truth(const std::string& path, const std::string& kind) {
+  const std::vector<io::TumPose> poses = io::read_tum(path);
+  if (poses.empty()) io::fail_file(path, "no poses");
+  Truth truth;
+  truth.kind = kind;
+  for (const io::TumPose& p : poses) {
+    truth.positions.push_back({p.t_s, {p.x_m, p.y_m}});
+    truth.poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
+  }
+  truth.depth_m = -poses.front().z_m;
+  return truth;
+}
+
 Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration) {
   Truth truth;
   if (files.truth_trajectory) {
-    const std::vector<io::TumPose> poses = io::read_tum(*files.truth_trajectory);
-    truth.kind = "simulation";
-    for (const io::TumPose& p : poses) truth.positions.push_back({p.t_s, {p.x_m, p.y_m}});
-    for (const io::TumPose& p : poses) {
-      truth.poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
-    }
-    truth.depth_m = -poses.front().z_m;
+    truth = read_tum_truth(*files.truth_trajectory, "simulation");
   } else if (files.gps) {
     truth.kind = "gps";
     truth.positions = io::load_gps_fixes(files, calibration);

@@ -21,6 +21,10 @@ struct Truth {
 
 Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);
 
+/// Pose truth from a TUM file (the simulation's truth/trajectory.tum, or a file given to
+/// `msislab eval --truth`), recorded as `kind`.
+Truth read_tum_truth(const std::string& path, const std::string& kind);
+
 /// Where every method starts: the first truth pose (GPS: first fix once heading is available,
 /// heading from the MRU), else the origin at the first heading reading. Throws io::InputError when
 /// the navigation log has no heading at all.

@@ -1,9 +1,13 @@
 #include "io/results.hpp"
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/json.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
 
@@ -53,12 +57,13 @@ void write_trajectory_tum(const std::string& path, const std::vector<StampedPose
 }
 
 void write_metrics_json(const std::string& path, const RunMetrics& m,
-                        const std::string& dataset_dir) {
+                        const std::string& dataset_dir, const std::string& truth_file) {
   write_file_atomically(path, [&](std::ostream& out) {
     out << "{\n"
         << "  \"method\": " << json_string(m.method) << ",\n"
-        << "  \"truth\": " << json_string(m.truth) << ",\n"
-        << "  \"dataset\": " << json_string(dataset_dir) << ",\n"
+        << "  \"truth\": " << json_string(m.truth) << ",\n";
+    if (!truth_file.empty()) out << "  \"truth_file\": " << json_string(truth_file) << ",\n";
+    out << "  \"dataset\": " << (dataset_dir.empty() ? "null" : json_string(dataset_dir)) << ",\n"
         << "  \"mean_error_m\": " << json_number(m.errors.mean_m) << ",\n"
         << "  \"rmse_m\": " << json_number(m.errors.rmse_m) << ",\n"
         << "  \"median_error_m\": " << json_number(m.errors.median_m) << ",\n"
@@ -70,6 +75,13 @@ void write_metrics_json(const std::string& path, const RunMetrics& m,
       const auto& [name, mean] = m.segments[i];
       out << (i ? ", " : "") << json_string(name) << ": "
           << (mean ? json_number(*mean) : std::string("null"));
+    }
+    out << "},\n"
+        << "  \"segment_windows\": {";
+    for (std::size_t i = 0; i < m.segment_windows.size(); ++i) {
+      const TimeSegment& w = m.segment_windows[i];
+      out << (i ? ", " : "") << json_string(w.name) << ": [" << json_number(w.begin_s) << ", "
+          << json_number(w.end_s) << "]";
     }
     out << "},\n"
         << "  \"scans\": " << m.scans << ",\n"
@@ -101,6 +113,156 @@ void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& sca
     }
     out << text;
   });
+}
+
+namespace {
+
+double number_or_nan(const JsonObject& object, const std::string& key) {
+  return object.number_or_null(key).value_or(std::numeric_limits<double>::quiet_NaN());
+}
+
+int count_of(const JsonObject& object, const std::string& key) {
+  const double value = object.number(key);
+  if (value < 0.0 || value != std::floor(value) || value > std::numeric_limits<int>::max()) {
+    object.fail(key, "expected a count, got " + format_number(value));
+  }
+  return static_cast<int>(value);
+}
+
+std::vector<TimeSegment> read_segment_windows(const JsonObject& windows) {
+  std::vector<TimeSegment> segments;
+  for (const auto& [name, value] : windows.value().members) {
+    if (value.type != JsonValue::Type::array || value.items.size() != 2 ||
+        value.items[0].type != JsonValue::Type::number ||
+        value.items[1].type != JsonValue::Type::number) {
+      windows.fail(name, "expected [begin_s, end_s]");
+    }
+    segments.push_back({name, value.items[0].number, value.items[1].number});
+  }
+  return segments;
+}
+
+}  // namespace
+
+StoredMetrics read_metrics_json(const std::string& path) {
+  const JsonValue root = read_json_file(path);
+  const JsonObject json(root, path);
+  StoredMetrics stored;
+  RunMetrics& m = stored.metrics;
+  m.method = json.string("method");
+  m.truth = json.string("truth");
+  stored.dataset_dir = json.string_or_null("dataset").value_or("");
+  m.errors.mean_m = json.number("mean_error_m");
+  m.errors.rmse_m = json.number("rmse_m");
+  m.errors.median_m = json.number("median_error_m");
+  m.errors.max_m = json.number("max_error_m");
+  m.errors.final_m = json.number("final_error_m");
+  m.errors.count = static_cast<std::size_t>(count_of(json, "truth_samples"));
+  const JsonObject segments = json.object("segments");
+  for (const auto& [name, value] : segments.value().members) {
+    m.segments.emplace_back(name, segments.number_or_null(name));
+  }
+  if (json.has("segment_windows")) {
+    m.segment_windows = read_segment_windows(json.object("segment_windows"));
+  }
+  m.scans = count_of(json, "scans");
+  m.matches_accepted = count_of(json, "matches_accepted");
+  m.anees = json.number_or_null("anees");
+  m.runtime_s = number_or_nan(json, "runtime_s");
+  const JsonObject diagnostics = json.object("diagnostics");
+  for (const auto& [name, value] : diagnostics.value().members) {
+    m.diagnostics.emplace_back(name, number_or_nan(diagnostics, name));
+  }
+  return stored;
+}
+
+namespace {
+
+// The data lines of a CSV file after its header line, which must be `header`.
+template <typename RowFn>
+void for_each_csv_row(const std::string& path, const std::string& header, RowFn&& row_fn) {
+  const std::string text = read_whole_file(path);
+  std::size_t begin = 0, line = 0;
+  bool header_seen = false;
+  while (begin < text.size()) {
+    std::size_t end = text.find('\n', begin);
+    if (end == std::string::npos) end = text.size();
+    const std::string_view row = strip_cr(std::string_view(text).substr(begin, end - begin));
+    begin = end + 1;
+    ++line;
+    if (row.empty()) continue;
+    if (!header_seen) {
+      if (row != header) fail_at(path, line, "expected the header '" + header + "'");
+      header_seen = true;
+      continue;
+    }
+    row_fn(row, line);
+  }
+  if (!header_seen) fail_file(path, "empty file (expected the header '" + header + "')");
+}
+
+// A number that may be nan or inf (a NEES of a singular covariance).
+double parse_any_number(std::string_view token, const FieldAt& at) {
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (ec != std::errc() || ptr != token.data() + token.size()) {
+    fail_field(at, token, "is not a number");
+  }
+  return value;
+}
+
+}  // namespace
+
+std::vector<StampedPose> read_scans_csv(const std::string& path) {
+  static const char* const kColumns[] = {"t_s",      "x_m",        "y_m",      "yaw_rad",
+                                         "cov_xx",   "cov_xy",     "cov_xyaw", "cov_yy",
+                                         "cov_yyaw", "cov_yawyaw", "points"};
+  std::vector<StampedPose> scans;
+  for_each_csv_row(path,
+                   "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points",
+                   [&](std::string_view row, std::size_t line) {
+                     const auto fields = split_csv<11>(row, path, line);
+                     double v[10];
+                     for (std::size_t i = 0; i < 10; ++i)
+                       v[i] = parse_finite(fields[i], {path, line, i + 1, kColumns[i]});
+                     parse_integer(fields[10], {path, line, 11, kColumns[10]});
+                     StampedPose scan;
+                     scan.t_s = v[0];
+                     scan.pose.mean = Pose2(v[1], v[2], v[3]);
+                     scan.pose.cov << v[4], v[5], v[6], v[5], v[7], v[8], v[6], v[8], v[9];
+                     scans.push_back(scan);
+                   });
+  return scans;
+}
+
+void write_nees_csv(const std::string& path, const std::vector<NeesSample>& samples) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "scan,t_s,nees\n";
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      text += std::to_string(i) + ',';
+      append_number(text, samples[i].t_s);
+      text += ',';
+      append_number(text, samples[i].nees);
+      text += '\n';
+    }
+    out << text;
+  });
+}
+
+std::vector<NeesSample> read_nees_csv(const std::string& path) {
+  std::vector<NeesSample> samples;
+  for_each_csv_row(path, "scan,t_s,nees", [&](std::string_view row, std::size_t line) {
+    const auto fields = split_csv<3>(row, path, line);
+    const std::int64_t scan = parse_integer(fields[0], {path, line, 1, "scan"});
+    if (scan != static_cast<std::int64_t>(samples.size())) {
+      fail_at(path, line,
+              "scan " + std::to_string(scan) + " out of order (expected " +
+                  std::to_string(samples.size()) + ")");
+    }
+    samples.push_back({parse_finite(fields[1], {path, line, 2, "t_s"}),
+                       parse_any_number(fields[2], {path, line, 3, "nees"})});
+  });
+  return samples;
 }
 
 void write_points_ply(const std::string& path, const std::vector<Eigen::Vector2d>& points_m) {

@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include <Eigen/Cholesky>
+
 namespace msislab {
 
 Pose2 interpolate_pose(const std::vector<StampedPose>& trajectory, double t_s) {
@@ -69,6 +71,26 @@ std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors,
   }
   if (count == 0) return std::nullopt;
   return sum / static_cast<double>(count);
+}
+
+std::vector<double> pose_nees(const std::vector<StampedPose>& estimate,
+                              const std::vector<StampedPose>& truth) {
+  assert(!truth.empty());
+  std::vector<double> nees;
+  nees.reserve(estimate.size());
+  for (const StampedPose& p : estimate) {
+    const Eigen::Vector3d e = pose_difference(p.pose.mean, interpolate_pose(truth, p.t_s));
+    const Eigen::LDLT<Eigen::Matrix3d, Eigen::Upper> P(p.pose.cov);
+    nees.push_back(e.dot(P.solve(e)));
+  }
+  return nees;
+}
+
+std::optional<double> mean_of(const std::vector<double>& values) {
+  if (values.empty()) return std::nullopt;
+  double sum = 0.0;
+  for (const double v : values) sum += v;
+  return sum / static_cast<double>(values.size());
 }
 
 }  // namespace msislab

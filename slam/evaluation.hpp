@@ -54,12 +54,23 @@ struct TimeSegment {
 std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors, double t0_s,
                                          const TimeSegment& segment);
 
+/// NEES e^T P^-1 e of each estimated pose against the truth interpolated at its time, with
+/// e = pose_difference(estimate, truth) (angle wrapped). P is read from its upper triangle only, so
+/// a covariance written to and read back from scans.csv gives the same value to the bit. Requires
+/// a non-empty truth.
+std::vector<double> pose_nees(const std::vector<StampedPose>& estimate,
+                              const std::vector<StampedPose>& truth);
+
+/// The mean of the values; nullopt when there are none.
+std::optional<double> mean_of(const std::vector<double>& values);
+
 /// What metrics.json holds (docs/formats.md).
 struct RunMetrics {
   std::string method;
   std::string truth;  ///< "gps" or "simulation"
   ErrorStats errors;
   std::vector<std::pair<std::string, std::optional<double>>> segments;  ///< name -> mean error
+  std::vector<TimeSegment> segment_windows;  ///< the windows behind `segments`, same order
   int scans = 0;
   int matches_accepted = 0;
   double runtime_s = 0.0;

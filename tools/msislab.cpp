@@ -1,12 +1,15 @@
 // The msislab command line: parses arguments and calls the app/ commands. Exit status 0 on success,
 // 2 on bad input with one line on stderr naming the file, line or key (docs/cli.md).
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
 
+#include "app/eval_command.hpp"
 #include "app/image_command.hpp"
+#include "app/montecarlo_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scans_command.hpp"
 #include "app/segment_command.hpp"
@@ -17,6 +20,14 @@ namespace {
 
 constexpr int kBadInput = 2;
 
+std::string method_list() {
+  std::string methods;
+  for (const std::string& m : msislab::app::available_methods()) {
+    methods += (methods.empty() ? "" : ", ") + m;
+  }
+  return methods;
+}
+
 void add_run_command(CLI::App& app, msislab::app::RunOptions& options) {
   CLI::App* run = app.add_subcommand(
       "run",
@@ -25,16 +36,87 @@ void add_run_command(CLI::App& app, msislab::app::RunOptions& options) {
                   "Dataset directory (*_DVL.log, *_MTi.log, optional *_DGPS.log, calibration.yaml, "
                   "truth/)")
       ->required();
-  std::string methods;
-  for (const std::string& m : msislab::app::available_methods()) {
-    methods += (methods.empty() ? "" : ", ") + m;
-  }
-  run->add_option("--method,-m", options.method, "Method: " + methods)->required();
+  run->add_option("--method,-m", options.method, "Method: " + method_list())->required();
   run->add_option("--out,-o", options.out_dir,
                   "Result directory (trajectory.tum, metrics.json when truth exists)")
       ->required();
   run->add_option("--config,-c", options.config_path,
                   "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+}
+
+void add_eval_command(CLI::App& app, msislab::app::EvalOptions& options) {
+  CLI::App* eval = app.add_subcommand(
+      "eval",
+      "Re-score a result directory of `msislab run` against truth; rewrites metrics.json and "
+      "nees.csv");
+  eval->add_option("RESULT_DIR", options.result_dir,
+                   "Result directory (trajectory.tum, metrics.json, scans.csv)")
+      ->required();
+  eval->add_option("--truth,-t", options.truth_path,
+                   "TUM truth file (default: the truth of the dataset recorded in metrics.json)");
+  eval->add_option("--config,-c", options.config_path,
+                   "SLAM config YAML whose segments replace the recorded segment windows");
+}
+
+void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,
+                            msislab::app::MergeOptions& merge) {
+  CLI::App* mc = app.add_subcommand(
+      "montecarlo",
+      "N seeded simulate + run repetitions per method, as child processes; resumable and "
+      "shardable; writes per-run results, summary.json and nees.csv");
+  mc->add_option("SCENARIO", options.scenario_path, "Scenario YAML (required unless merge)");
+  mc->add_option("--runs,-n", options.runs, "Number of runs N (required); run r uses seed + r");
+  mc->add_option("--out,-o", options.out_dir,
+                 "Monte Carlo directory (required); an existing one is resumed");
+  mc->add_option("--methods,-m", options.methods,
+                 "Comma-separated methods (default: robocentric,worldcentric; available: " +
+                     method_list() + ")")
+      ->delimiter(',');
+  mc->add_option("--jobs,-j", options.jobs,
+                 "Runs at once (default: one per hardware thread; above 1 each simulation uses "
+                 "one thread)");
+  mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
+  mc->add_option("--shard", options.shard,
+                 "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");
+  mc->require_subcommand(0, 1);
+  CLI::App* m = mc->add_subcommand(
+      "merge", "Merge shard directories into OUT_DIR and write its summary over every run");
+  m->add_option("OUT_DIR", merge.out_dir, "Monte Carlo directory to write")->required();
+  m->add_option("SHARD_DIR", merge.shard_dirs, "Shard directories made with --shard")->required();
+}
+
+void check_montecarlo_options(const msislab::app::MonteCarloOptions& options,
+                              const CLI::App& montecarlo) {
+  const auto missing = [](const std::string& what) {
+    throw msislab::io::InputError("montecarlo: " + what + " is required");
+  };
+  if (options.scenario_path.empty()) missing("SCENARIO");
+  if (montecarlo.count("--runs") == 0) missing("--runs");
+  if (options.out_dir.empty()) missing("--out");
+}
+
+void print_montecarlo(const msislab::app::MonteCarloOutcome& outcome, const std::string& dir,
+                      bool merged) {
+  std::cout << "montecarlo: " << dir << " holds " << outcome.runs << " runs";
+  if (merged) {
+    std::cout << " (merged)";
+  } else {
+    std::cout << " (" << outcome.executed << " run now, " << outcome.runs - outcome.executed
+              << " already done)";
+  }
+  std::cout << ", " << outcome.failed << " with a failed method; wrote summary.json and nees.csv\n"
+            << std::fixed << std::setprecision(3);
+  for (const msislab::MethodSummary& s : outcome.summary) {
+    std::cout << "  " << s.method << ": " << s.runs << " finished, " << s.failed << " failed";
+    if (s.mean_error_m) std::cout << ", mean error " << *s.mean_error_m << " m";
+    if (s.anees) std::cout << ", ANEES " << *s.anees;
+    if (s.nees_in_bounds_fraction) {
+      std::cout << std::setprecision(1) << ", NEES in bounds " << 100.0 * *s.nees_in_bounds_fraction
+                << " %" << std::setprecision(3);
+    }
+    std::cout << "\n";
+  }
+  std::cout << std::flush;
 }
 
 void add_simulate_command(CLI::App& app, msislab::app::SimulateOptions& options) {
@@ -106,8 +188,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "msislab 0.1.0");
   msislab::app::RunOptions run_options;
   add_run_command(app, run_options);
+  msislab::app::EvalOptions eval_options;
+  add_eval_command(app, eval_options);
   msislab::app::SimulateOptions simulate_options;
   add_simulate_command(app, simulate_options);
+  msislab::app::MonteCarloOptions montecarlo_options;
+  msislab::app::MergeOptions merge_options;
+  add_montecarlo_command(app, montecarlo_options, merge_options);
   msislab::app::ImageOptions image_options;
   add_image_command(app, image_options);
   msislab::app::ScansOptions scans_options;
@@ -162,6 +249,29 @@ int main(int argc, char** argv) {
                   << ", metrics.json";
       }
       std::cout << std::endl;
+    }
+    if (app.got_subcommand("eval")) {
+      const msislab::app::EvalOutcome outcome = msislab::app::evaluate(eval_options);
+      std::cout << std::fixed << std::setprecision(3) << "wrote " << eval_options.result_dir
+                << "/metrics.json: mean error " << outcome.metrics.errors.mean_m << " m against "
+                << outcome.metrics.truth;
+      if (outcome.metrics.anees) {
+        std::cout << ", ANEES " << *outcome.metrics.anees << " over " << outcome.nees_rows
+                  << " scans (nees.csv)";
+      }
+      std::cout << std::endl;
+    }
+    if (app.got_subcommand("montecarlo")) {
+      CLI::App* montecarlo = app.get_subcommand("montecarlo");
+      if (montecarlo->got_subcommand("merge")) {
+        print_montecarlo(msislab::app::merge_montecarlo(merge_options), merge_options.out_dir,
+                         true);
+      } else {
+        check_montecarlo_options(montecarlo_options, *montecarlo);
+        print_montecarlo(
+            msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1}),
+            montecarlo_options.out_dir, false);
+      }
     }
   } catch (const msislab::io::InputError& e) {
     std::cerr << "msislab: " << e.what() << "\n";

@@ -75,8 +75,8 @@ TEST(ScanMatchingConsistency, ReplicaScanPairs) {
   const auto bounds = average_chi2_bounds(gated.pairs, 3);
   std::cout << scans.size() << " scans; spIC: " << matched.pairs << " pairs (" << invalid
             << " invalid), ANEES " << matched.anees() << "; " << gated.pairs
-            << " pass the gate: ANEES " << gated.anees() << " (95% bounds " << bounds.first
-            << " - " << bounds.second << "), mean error " << matched.mean_error_m()
+            << " pass the gate: ANEES " << gated.anees() << " (95% bounds " << bounds.first << " - "
+            << bounds.second << "), mean error " << matched.mean_error_m()
             << " m; dead reckoning: ANEES " << dead_reckoning.anees() << ", mean error "
             << dead_reckoning.mean_error_m() << " m\n";
   const auto dr_bounds = average_chi2_bounds(dead_reckoning.pairs, 3);

@@ -1,4 +1,4 @@
-// Trajectory scoring: interpolation, error statistics and segments.
+// Trajectory scoring: interpolation, error statistics, segments and pose NEES.
 #include "slam/evaluation.hpp"
 
 #include <gtest/gtest.h>
@@ -54,6 +54,30 @@ TEST(Evaluation, SegmentMeansUseTimeFromTheFirstTruthStamp) {
   EXPECT_DOUBLE_EQ(*segment_mean_error(errors, 100.0, {"a", 0.0, 2.0}), 2.0);
   EXPECT_DOUBLE_EQ(*segment_mean_error(errors, 100.0, {"b", 2.0, 10.0}), 15.0);
   EXPECT_FALSE(segment_mean_error(errors, 100.0, {"c", 50.0, 60.0}));
+}
+
+TEST(Evaluation, PoseNeesAgainstInterpolatedTruthWithWrappedAngle) {
+  // Truth along x at 1 m/s with yaw pi - 0.05; the estimate at t = 2.5 s is off by (0.3, -0.4) m
+  // and by +0.1 rad, which wraps through pi.
+  std::vector<StampedPose> truth;
+  for (int i = 0; i <= 5; ++i) truth.push_back({double(i), {Pose2(i, 0.0, M_PI - 0.05)}});
+  StampedPose estimate{2.5, {Pose2(2.8, -0.4, M_PI + 0.05)}};
+  estimate.pose.cov << 0.09, 0.0, 0.0, 0.0, 0.04, 0.0, 0.0, 0.0, 0.01;
+  // By hand: (0.3^2 / 0.09) + (0.4^2 / 0.04) + (0.1^2 / 0.01) = 1 + 4 + 1.
+  const std::vector<double> nees = pose_nees({estimate}, truth);
+  ASSERT_EQ(nees.size(), 1u);
+  EXPECT_NEAR(nees[0], 6.0, 1e-9);
+
+  // Correlated covariance: e^T P^-1 e with P^-1 by hand. Only the upper triangle is read.
+  estimate.pose.mean = Pose2(2.5 + 1.0, 1.0, M_PI - 0.05);
+  estimate.pose.cov << 2.0, 1.0, 0.0, 999.0, 2.0, 0.0, 0.0, 0.0, 1.0;
+  // P_xy = [[2, 1], [1, 2]], P_xy^-1 = [[2, -1], [-1, 2]] / 3; e = (1, 1, 0): (2 - 2 + 2) / 3.
+  EXPECT_NEAR(pose_nees({estimate}, truth)[0], 2.0 / 3.0, 1e-12);
+}
+
+TEST(Evaluation, MeanOfValues) {
+  EXPECT_FALSE(mean_of({}));
+  EXPECT_DOUBLE_EQ(*mean_of({1.0, 2.0, 6.0}), 3.0);
 }
 
 }  // namespace

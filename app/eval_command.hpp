@@ -1,0 +1,49 @@
+// `msislab eval RESULT_DIR [--truth FILE] [--config SLAM.yaml]`: (re)scores a result directory
+// against truth, and the scoring that `msislab run` shares with it (docs/cli.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/truth.hpp"
+#include "io/results.hpp"
+#include "slam/evaluation.hpp"
+
+namespace msislab::app {
+
+/// Position errors of a trajectory against the truth, their statistics and the segment means
+/// (windows in seconds from the first truth stamp). InputError naming `source` when no truth stamp
+/// falls inside the trajectory's span.
+RunMetrics score_trajectory(const Truth& truth, const std::vector<StampedPose>& trajectory,
+                            const std::vector<TimeSegment>& segments, const std::string& source);
+
+/// The NEES of each scan pose against the pose truth; empty when the truth has no poses (GPS).
+std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
+                                      const Truth& truth);
+
+/// The average NEES (ANEES) of the samples; nullopt when there are none.
+std::optional<double> average_nees(const std::vector<io::NeesSample>& nees);
+
+/// Writes metrics.json and nees.csv into a result directory; a stale nees.csv is removed when
+/// there are no NEES samples.
+void write_scores(const std::string& out_dir, const RunMetrics& metrics,
+                  const std::vector<io::NeesSample>& nees, const std::string& dataset_dir,
+                  const std::string& truth_file = "");
+
+struct EvalOptions {
+  std::string result_dir;
+  std::string truth_path;   ///< empty: the truth of the dataset recorded in metrics.json
+  std::string config_path;  ///< empty: the segment windows recorded in metrics.json
+};
+
+struct EvalOutcome {
+  RunMetrics metrics;
+  std::size_t nees_rows = 0;  ///< rows written to nees.csv
+};
+
+/// Reads the result directory and the truth, re-scores the trajectory and the scan poses, and
+/// rewrites metrics.json (keeping the run's own figures) and nees.csv. Throws io::InputError.
+EvalOutcome evaluate(const EvalOptions& options);
+
+}  // namespace msislab::app

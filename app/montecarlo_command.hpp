@@ -1,0 +1,54 @@
+// `msislab montecarlo SCENARIO.yaml --runs N --out DIR [--methods a,b] [--jobs J]
+// [--config SLAM.yaml] [--shard i/N]` and `msislab montecarlo merge OUT_DIR SHARD_DIR...`:
+// N seeded simulate + run repetitions per method, each a child process of the msislab executable,
+// resumable and shardable, summarised into consistency statistics (docs/cli.md, docs/formats.md).
+#pragma once
+
+#include <cstddef>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "slam/monte_carlo.hpp"
+
+namespace msislab::app {
+
+struct MonteCarloOptions {
+  std::string scenario_path;
+  int runs = 0;
+  std::string out_dir;
+  std::vector<std::string> methods = {"robocentric", "worldcentric"};
+  int jobs = 0;             ///< concurrent runs; 0: one per hardware thread
+  std::string config_path;  ///< SLAM config for every run; empty: the defaults
+  std::string shard;        ///< "i/N": only the runs r with r % N == i; empty: every run
+  std::string executable;   ///< the msislab executable the runs start; empty: this process's
+};
+
+/// Where the messages go: progress on `log` (a bar redrawn in place when `terminal`).
+struct MonteCarloLog {
+  std::ostream& log;
+  bool terminal = false;
+};
+
+struct MonteCarloOutcome {
+  std::size_t runs = 0;      ///< runs in this directory (its shard)
+  std::size_t executed = 0;  ///< runs (re)done by this call; the others were finished already
+  std::size_t failed = 0;    ///< runs with at least one failed method
+  std::vector<MethodSummary> summary;
+};
+
+/// Checks every input (methods, shard, scenario, config, an existing DIR made from the same
+/// scenario and config), then runs what is not finished yet and writes DIR/summary.json,
+/// DIR/nees.csv and DIR/seeds.csv. Failed runs are recorded, not thrown. Throws io::InputError.
+MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloLog& log);
+
+struct MergeOptions {
+  std::string out_dir;
+  std::vector<std::string> shard_dirs;
+};
+
+/// Copies the finished and failed runs of the shard directories (made by montecarlo with the same
+/// scenario, config, runs and methods) into out_dir and writes its summary over every run.
+MonteCarloOutcome merge_montecarlo(const MergeOptions& options);
+
+}  // namespace msislab::app

@@ -1,0 +1,116 @@
+#include "app/montecarlo_directory.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/results.hpp"
+#include "io/text_lines.hpp"
+
+namespace msislab::app {
+
+namespace fs = std::filesystem;
+
+std::string run_name(int run) {
+  char name[32];
+  std::snprintf(name, sizeof(name), "run_%04d", run);
+  return name;
+}
+
+std::string run_dir(const std::string& dir, const std::string& method, int run) {
+  return (fs::path(dir) / "runs" / method / run_name(run)).string();
+}
+
+std::vector<int> runs_of(const io::MonteCarloManifest& manifest) {
+  std::vector<int> runs;
+  for (int r = manifest.shard_index; r < manifest.runs; r += manifest.shard_count) {
+    runs.push_back(r);
+  }
+  return runs;
+}
+
+namespace {
+void write_text(const std::string& path, const std::string& text) {
+  io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+}  // namespace
+
+void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
+                     const std::string& config_text, const std::string& scenario_path) {
+  const fs::path d(dir);
+  if (!fs::exists(d / "montecarlo.json")) return;
+  const auto differs = [&](const char* name, bool present, const std::string& text) {
+    const fs::path file = d / name;
+    if (!fs::exists(file)) return present;
+    return !present || io::read_whole_file(file.string()) != text;
+  };
+  if (differs("scenario.yaml", true, scenario_text)) {
+    io::fail_file(dir, "holds runs of another scenario (its scenario.yaml differs from " +
+                           scenario_path + "); choose another --out");
+  }
+  if (differs("config.yaml", has_config, config_text)) {
+    io::fail_file(dir,
+                  "holds runs made with another SLAM config (config.yaml); choose another --out");
+  }
+}
+
+void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
+                            const std::string& scenario_text, const std::string& config_text) {
+  io::create_output_dir(dir);
+  const fs::path d(dir);
+  write_text((d / "scenario.yaml").string(), scenario_text);
+  if (manifest.has_config) write_text((d / "config.yaml").string(), config_text);
+  io::write_manifest_json((d / "montecarlo.json").string(), manifest);
+}
+
+namespace {
+
+MonteCarloRun read_run(const std::string& dir, const std::string& method, int run) {
+  const fs::path rd(run_dir(dir, method, run));
+  MonteCarloRun record;
+  record.index = run;
+  if (fs::exists(rd / "metrics.json")) {
+    record.metrics = io::read_metrics_json((rd / "metrics.json").string()).metrics;
+    if (fs::exists(rd / "nees.csv")) {
+      for (const io::NeesSample& s : io::read_nees_csv((rd / "nees.csv").string())) {
+        record.nees.push_back(s.nees);
+      }
+    }
+  } else {
+    record.failed = fs::exists(rd / "failed.json");
+  }
+  return record;
+}
+
+}  // namespace
+
+std::vector<MethodSummary> write_summary_files(const std::string& dir,
+                                               const io::MonteCarloManifest& manifest,
+                                               const std::vector<int>& runs) {
+  std::vector<MethodSummary> summaries;
+  for (const std::string& method : manifest.methods) {
+    std::vector<MonteCarloRun> records;
+    for (const int r : runs) records.push_back(read_run(dir, method, r));
+    summaries.push_back(summarise_runs(method, records));
+  }
+  const fs::path d(dir);
+  io::write_summary_json((d / "summary.json").string(), summaries);
+  io::write_montecarlo_nees_csv((d / "nees.csv").string(), summaries);
+  io::write_seeds_csv((d / "seeds.csv").string(), runs, manifest.first_seed);
+  return summaries;
+}
+
+std::size_t failed_runs(const std::string& dir, const std::vector<std::string>& methods,
+                        const std::vector<int>& runs) {
+  std::size_t failed = 0;
+  for (const int r : runs) {
+    bool any = false;
+    for (const std::string& m : methods)
+      any |= fs::exists(fs::path(run_dir(dir, m, r)) / "failed.json");
+    failed += any;
+  }
+  return failed;
+}
+
+}  // namespace msislab::app

@@ -1,0 +1,41 @@
+// The layout of a Monte Carlo directory (docs/formats.md) shared by `montecarlo` and its merge:
+// the run directories, the header files (scenario.yaml, config.yaml, montecarlo.json) and the
+// summary files computed from the run directories alone, so that a merge of shards writes the
+// same bytes as one full run.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/montecarlo_files.hpp"
+#include "slam/monte_carlo.hpp"
+
+namespace msislab::app {
+
+/// "run_0042".
+std::string run_name(int run);
+/// DIR/runs/<method>/run_<rrrr>: the result directory of run r of a method.
+std::string run_dir(const std::string& dir, const std::string& method, int run);
+
+/// The run indices of the manifest's shard, in increasing order.
+std::vector<int> runs_of(const io::MonteCarloManifest& manifest);
+
+/// InputError unless dir is new or holds runs made from the same scenario and config bytes.
+void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
+                     const std::string& config_text, const std::string& scenario_path);
+
+/// Creates dir and writes scenario.yaml, config.yaml (when has_config) and montecarlo.json.
+void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
+                            const std::string& scenario_text, const std::string& config_text);
+
+/// Summarises the given runs of every method from their run directories and writes summary.json,
+/// nees.csv and seeds.csv.
+std::vector<MethodSummary> write_summary_files(const std::string& dir,
+                                               const io::MonteCarloManifest& manifest,
+                                               const std::vector<int>& runs);
+
+/// How many of the runs have a failed.json for at least one method.
+std::size_t failed_runs(const std::string& dir, const std::vector<std::string>& methods,
+                        const std::vector<int>& runs);
+
+}  // namespace msislab::app

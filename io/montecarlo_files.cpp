@@ -1,0 +1,154 @@
+#include "io/montecarlo_files.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/json.hpp"
+#include "io/results.hpp"
+#include "io/text_lines.hpp"
+
+namespace msislab::io {
+namespace {
+
+std::string json_optional(const std::optional<double>& value) {
+  return value ? json_number(*value) : "null";
+}
+
+int int_of(const JsonObject& json, const std::string& key, int min) {
+  const double value = json.number(key);
+  if (value != std::floor(value) || value < min || value > std::numeric_limits<int>::max()) {
+    json.fail(key,
+              "expected an integer >= " + std::to_string(min) + ", got " + format_number(value));
+  }
+  return static_cast<int>(value);
+}
+
+}  // namespace
+
+void write_manifest_json(const std::string& path, const MonteCarloManifest& m) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "{\n"
+        << "  \"scenario\": \"scenario.yaml\",\n"
+        << "  \"scenario_source\": " << json_string(m.scenario_source) << ",\n"
+        << "  \"seed\": " << m.first_seed << ",\n"
+        << "  \"runs\": " << m.runs << ",\n"
+        << "  \"methods\": [";
+    for (std::size_t i = 0; i < m.methods.size(); ++i) {
+      out << (i ? ", " : "") << json_string(m.methods[i]);
+    }
+    out << "],\n"
+        << "  \"config\": " << (m.has_config ? "\"config.yaml\"" : "null") << ",\n"
+        << "  \"shard\": \"" << m.shard_index << "/" << m.shard_count << "\"\n"
+        << "}\n";
+  });
+}
+
+MonteCarloManifest read_manifest_json(const std::string& path) {
+  const JsonValue root = read_json_file(path);
+  const JsonObject json(root, path);
+  MonteCarloManifest m;
+  m.scenario_source = json.string("scenario_source");
+  // The seed is read from its token: a double would not hold every 64-bit seed.
+  const std::string& seed = json.get("seed", JsonValue::Type::number).text;
+  const auto [end, ec] = std::from_chars(seed.data(), seed.data() + seed.size(), m.first_seed);
+  if (ec != std::errc() || end != seed.data() + seed.size()) {
+    json.fail("seed", "expected a non-negative integer, got " + seed);
+  }
+  m.runs = int_of(json, "runs", 1);
+  for (const JsonValue& method : json.get("methods", JsonValue::Type::array).items) {
+    if (method.type != JsonValue::Type::string) json.fail("methods", "expected strings");
+    m.methods.push_back(method.text);
+  }
+  m.has_config = json.string_or_null("config").has_value();
+  const std::string shard = json.string("shard");
+  if (!parse_shard(shard, m.shard_index, m.shard_count)) {
+    json.fail("shard", "expected i/N with 0 <= i < N, got '" + shard + "'");
+  }
+  return m;
+}
+
+bool parse_shard(const std::string& text, int& index, int& count) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return false;
+  const char* begin = text.data();
+  const auto [i_end, i_ec] = std::from_chars(begin, begin + slash, index);
+  const auto [n_end, n_ec] = std::from_chars(begin + slash + 1, begin + text.size(), count);
+  return i_ec == std::errc() && i_end == begin + slash && n_ec == std::errc() &&
+         n_end == begin + text.size() && count >= 1 && index >= 0 && index < count;
+}
+
+void write_seeds_csv(const std::string& path, const std::vector<int>& runs,
+                     std::uint64_t first_seed) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "run,seed\n";
+    for (const int r : runs) out << r << ',' << first_seed + static_cast<std::uint64_t>(r) << '\n';
+  });
+}
+
+void write_failure_json(const std::string& path, const RunFailure& f) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "{\n"
+        << "  \"run\": " << f.run << ",\n"
+        << "  \"seed\": " << f.seed << ",\n"
+        << "  \"stage\": " << json_string(f.stage) << ",\n"
+        << "  \"reason\": " << json_string(f.reason) << "\n"
+        << "}\n";
+  });
+}
+
+void write_summary_json(const std::string& path, const std::vector<MethodSummary>& methods) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "{";
+    for (std::size_t i = 0; i < methods.size(); ++i) {
+      const MethodSummary& s = methods[i];
+      out << (i ? ",\n" : "\n") << "  " << json_string(s.method) << ": {\n"
+          << "    \"runs\": " << s.runs << ",\n"
+          << "    \"failed\": " << s.failed << ",\n"
+          << "    \"failed_runs\": [";
+      for (std::size_t k = 0; k < s.failed_runs.size(); ++k) {
+        out << (k ? ", " : "") << s.failed_runs[k];
+      }
+      out << "],\n"
+          << "    \"missing\": " << s.missing << ",\n"
+          << "    \"mean_error_m\": " << json_optional(s.mean_error_m) << ",\n"
+          << "    \"final_error_m\": " << json_optional(s.final_error_m) << ",\n"
+          << "    \"anees\": " << json_optional(s.anees) << ",\n"
+          << "    \"nees_in_bounds_fraction\": " << json_optional(s.nees_in_bounds_fraction)
+          << ",\n"
+          << "    \"nees_scans\": " << s.nees.size() << ",\n"
+          << "    \"segments\": {";
+      for (std::size_t k = 0; k < s.segments.size(); ++k) {
+        out << (k ? ", " : "") << json_string(s.segments[k].first) << ": "
+            << json_optional(s.segments[k].second);
+      }
+      out << "},\n"
+          << "    \"runtime_s\": " << json_number(s.runtime_s) << "\n"
+          << "  }";
+    }
+    out << "\n}\n";
+  });
+}
+
+void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "method,scan,runs,mean_nees,lower,upper\n";
+    for (const MethodSummary& s : methods) {
+      for (std::size_t k = 0; k < s.nees.size(); ++k) {
+        const AveragedNees& step = s.nees[k];
+        text += s.method + ',' + std::to_string(k) + ',' + std::to_string(step.runs) + ',';
+        append_number(text, step.mean);
+        text += ',';
+        append_number(text, step.lower);
+        text += ',';
+        append_number(text, step.upper);
+        text += '\n';
+      }
+    }
+    out << text;
+  });
+}
+
+}  // namespace msislab::io

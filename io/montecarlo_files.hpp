@@ -1,0 +1,48 @@
+// The files of a Monte Carlo directory (docs/formats.md): montecarlo.json (the settings),
+// seeds.csv, summary.json, nees.csv, and a run's failed.json.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "slam/monte_carlo.hpp"
+
+namespace msislab::io {
+
+/// montecarlo.json: how the directory was made.
+struct MonteCarloManifest {
+  std::string scenario_source;   ///< absolute path of the scenario that was copied to scenario.yaml
+  std::uint64_t first_seed = 0;  ///< the scenario's seed: run r used first_seed + r
+  int runs = 0;                  ///< N: runs 0 .. N-1
+  std::vector<std::string> methods;
+  bool has_config = false;  ///< config.yaml holds the SLAM config every run used
+  int shard_index = 0;      ///< this directory holds the runs r with r % shard_count == shard_index
+  int shard_count = 1;
+};
+void write_manifest_json(const std::string& path, const MonteCarloManifest& manifest);
+MonteCarloManifest read_manifest_json(const std::string& path);
+
+/// Parses a shard "i/N" (0 <= i < N); false when malformed.
+bool parse_shard(const std::string& text, int& index, int& count);
+
+/// seeds.csv: "run,seed" for the given runs, atomically.
+void write_seeds_csv(const std::string& path, const std::vector<int>& runs,
+                     std::uint64_t first_seed);
+
+/// failed.json in a run's result directory: why the run of a method did not finish.
+struct RunFailure {
+  int run = 0;
+  std::uint64_t seed = 0;
+  std::string stage;   ///< "simulate" or "run"
+  std::string reason;  ///< exit status or signal, and the last stderr line
+};
+void write_failure_json(const std::string& path, const RunFailure& failure);
+
+/// summary.json: one object per method, in the order given, atomically.
+void write_summary_json(const std::string& path, const std::vector<MethodSummary>& methods);
+
+/// nees.csv of a Monte Carlo directory: "method,scan,runs,mean_nees,lower,upper", atomically.
+void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods);
+
+}  // namespace msislab::io

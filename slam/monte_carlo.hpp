@@ -1,0 +1,63 @@
+// Monte Carlo consistency statistics over repeated seeded runs of one method: the per-scan NEES
+// averaged over the runs with its two-sided chi-square bounds (field-notes, NEES: N times the
+// average of N 3-DOF NEES is chi-square with 3N DOF), and the summary of the runs' metrics.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "slam/evaluation.hpp"
+
+namespace msislab {
+
+/// The NEES of one scan index averaged over the runs that reached it, with the two-sided bounds of
+/// that average for that number of runs.
+struct AveragedNees {
+  int runs = 0;
+  double mean = 0.0;
+  double lower = 0.0;
+  double upper = 0.0;
+  bool inside() const { return mean >= lower && mean <= upper; }
+};
+
+/// nees_by_run[r][k]: the NEES of scan k in run r (runs may have different scan counts). Scan k is
+/// averaged over the runs that have it, and bounded by average_chi2_bounds(runs, dof, alpha).
+std::vector<AveragedNees> average_nees_over_runs(
+    const std::vector<std::vector<double>>& nees_by_run, int dof = 3, double alpha = 0.05);
+
+/// The fraction of the scan indices whose average lies inside its bounds; nullopt when none.
+std::optional<double> fraction_inside(const std::vector<AveragedNees>& steps);
+
+/// What one Monte Carlo run left for one method.
+struct MonteCarloRun {
+  int index = 0;                      ///< r: the run used seed = scenario seed + r
+  std::optional<RunMetrics> metrics;  ///< present when the run finished
+  bool failed = false;
+  std::vector<double> nees;  ///< per scan (SLAM methods with pose truth)
+};
+
+/// The runs of one method summarised.
+struct MethodSummary {
+  std::string method;
+  int runs = 0;    ///< finished
+  int failed = 0;  ///< recorded as failed
+  std::vector<int> failed_runs;
+  int missing = 0;                      ///< neither finished nor failed (an unfinished shard)
+  std::optional<double> mean_error_m;   ///< mean over the runs of each run's mean error
+  std::optional<double> final_error_m;  ///< mean over the runs of each run's final error
+  std::optional<double> anees;          ///< mean over every run and scan of the scan NEES
+  std::optional<double> nees_in_bounds_fraction;  ///< fraction_inside(nees)
+  std::vector<AveragedNees> nees;                 ///< per scan index
+  /// Segment name -> mean over the runs of the segment's mean error (runs where it is null
+  /// skipped).
+  std::vector<std::pair<std::string, std::optional<double>>> segments;
+  double runtime_s = 0.0;  ///< sum of the runs' runtime_s
+};
+
+/// Summarises the runs in the order given (by run index, so the sums do not depend on which run
+/// finished first).
+MethodSummary summarise_runs(const std::string& method, const std::vector<MonteCarloRun>& runs);
+
+}  // namespace msislab

@@ -1,0 +1,360 @@
+// `msislab montecarlo` end to end on small_basin (3 runs of deadreckoning and worldcentric, about
+// 2 s each): the summary and run directories, seeds, resuming, shards merged into the same bytes,
+// failed runs recorded while the others finish, and bad input rejected before anything runs.
+#include "app/montecarlo_command.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "app/montecarlo_directory.hpp"
+#include "app/run_command.hpp"
+#include "app/simulate_command.hpp"
+#include "cli_runner.hpp"
+#include "io/input_error.hpp"
+#include "io/json.hpp"
+#include "io/results.hpp"
+#include "io/text_lines.hpp"
+#include "slam/scan_matching.hpp"
+#include "test_support.hpp"
+
+namespace msislab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_text;
+using testing::TempDir;
+using testing::write_text;
+
+const std::string kScenario = std::string(MSISLAB_SOURCE_DIR) + "/scenarios/small_basin.yaml";
+const std::vector<std::string> kMethods = {"deadreckoning", "worldcentric"};
+
+MonteCarloOptions options_for(const fs::path& out, const std::string& shard = "") {
+  MonteCarloOptions options;
+  options.scenario_path = kScenario;
+  options.runs = 3;
+  options.out_dir = out.string();
+  options.methods = kMethods;
+  options.jobs = 2;
+  options.shard = shard;
+  options.executable = MSISLAB_EXE;
+  return options;
+}
+
+struct Logged {
+  std::ostringstream log;
+  MonteCarloOutcome outcome;
+};
+
+std::unique_ptr<Logged> run_montecarlo(const MonteCarloOptions& options) {
+  auto logged = std::make_unique<Logged>();
+  logged->outcome = montecarlo(options, {logged->log, false});
+  return logged;
+}
+
+// One full 3-run directory, shared by the tests that only read it or copy it.
+struct FullRun {
+  TempDir tmp;
+  fs::path dir = tmp.path() / "mc";
+  std::unique_ptr<Logged> logged = run_montecarlo(options_for(dir));
+};
+const FullRun& full_run() {
+  static const FullRun full;
+  return full;
+}
+
+// The text without the lines that hold a run time.
+std::string without_runtimes(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    if (line.find("runtime_s") == std::string::npos) out += line + "\n";
+  }
+  return out;
+}
+
+std::map<std::string, fs::file_time_type> metrics_mtimes(const fs::path& dir) {
+  std::map<std::string, fs::file_time_type> times;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "runs")) {
+    if (entry.path().filename() == "metrics.json") {
+      times[entry.path().string()] = fs::last_write_time(entry.path());
+    }
+  }
+  return times;
+}
+
+TEST(MonteCarloCommand, SummaryAndRunDirectories) {
+  const FullRun& full = full_run();
+  const MonteCarloOutcome& outcome = full.logged->outcome;
+  EXPECT_EQ(outcome.runs, 3u);
+  EXPECT_EQ(outcome.executed, 3u);
+  EXPECT_EQ(outcome.failed, 0u);
+  EXPECT_NE(full.logged->log.str().find("montecarlo: 3/3 runs done, 0 failed, elapsed "),
+            std::string::npos)
+      << full.logged->log.str();
+
+  const std::string summary_path = (full.dir / "summary.json").string();
+  const io::JsonValue root = io::read_json_file(summary_path);
+  const io::JsonObject summary(root, summary_path);
+  ASSERT_EQ(root.members.size(), 2u);
+  EXPECT_EQ(root.members[0].first, "deadreckoning");
+  EXPECT_EQ(root.members[1].first, "worldcentric");
+  for (const std::string& method : kMethods) {
+    const io::JsonObject m = summary.object(method);
+    EXPECT_EQ(m.number("runs"), 3);
+    EXPECT_EQ(m.number("failed"), 0);
+    EXPECT_GT(m.number("mean_error_m"), 0.1);
+    EXPECT_LT(m.number("mean_error_m"), 5.0);
+    EXPECT_GT(m.number("runtime_s"), 0.0);
+    EXPECT_TRUE(m.has("segments"));
+  }
+  const io::JsonObject dr = summary.object("deadreckoning");
+  EXPECT_FALSE(dr.number_or_null("anees"));
+  EXPECT_FALSE(dr.number_or_null("nees_in_bounds_fraction"));
+  const io::JsonObject wc = summary.object("worldcentric");
+  EXPECT_GT(wc.number("anees"), 0.3);
+  EXPECT_LT(wc.number("anees"), 30.0);
+  EXPECT_GE(wc.number("nees_in_bounds_fraction"), 0.0);
+  EXPECT_LE(wc.number("nees_in_bounds_fraction"), 1.0);
+  EXPECT_LT(wc.number("mean_error_m"), dr.number("mean_error_m"));
+
+  // nees.csv: one row per worldcentric scan index, averaged over the 3 runs.
+  const std::string nees = read_text((full.dir / "nees.csv").string());
+  EXPECT_EQ(nees.rfind("method,scan,runs,mean_nees,lower,upper\nworldcentric,0,3,", 0), 0u) << nees;
+  EXPECT_EQ(nees.find("deadreckoning"), std::string::npos);
+  EXPECT_EQ(static_cast<double>(std::count(nees.begin(), nees.end(), '\n') - 1),
+            wc.number("nees_scans"));
+  const auto [lower, upper] = average_chi2_bounds(3, 3, 0.05);
+  EXPECT_NE(nees.find(io::format_number(lower) + "," + io::format_number(upper) + "\n"),
+            std::string::npos);
+
+  // Run directories, the scenario copy and the seeds; no scratch datasets or maps left.
+  for (const std::string& method : kMethods) {
+    for (int r = 0; r < 3; ++r) {
+      const fs::path rd(run_dir(full.dir.string(), method, r));
+      EXPECT_TRUE(fs::is_regular_file(rd / "metrics.json")) << rd;
+      EXPECT_TRUE(fs::is_regular_file(rd / "trajectory.tum")) << rd;
+      EXPECT_EQ(fs::exists(rd / "nees.csv"), method == "worldcentric") << rd;
+      EXPECT_FALSE(fs::exists(rd / "map.ply")) << rd;
+      EXPECT_FALSE(fs::exists(rd / "failed.json")) << rd;
+    }
+  }
+  EXPECT_FALSE(fs::exists(full.dir / "scratch"));
+  EXPECT_EQ(read_text((full.dir / "scenario.yaml").string()), read_text(kScenario));
+  EXPECT_EQ(read_text((full.dir / "seeds.csv").string()), "run,seed\n0,1\n1,2\n2,3\n");
+}
+
+TEST(MonteCarloCommand, RunRIsTheScenarioSimulatedWithSeedPlusR) {
+  const FullRun& full = full_run();
+  const TempDir tmp;
+  simulate({kScenario, tmp.file("dataset"), 3, 2});  // small_basin's seed is 1: run 2
+  run({tmp.file("dataset"), "worldcentric", tmp.file("wc"), ""});
+  const io::StoredMetrics direct = io::read_metrics_json(tmp.file("wc/metrics.json"));
+  const io::StoredMetrics in_mc = io::read_metrics_json(
+      (fs::path(run_dir(full.dir.string(), "worldcentric", 2)) / "metrics.json").string());
+  EXPECT_EQ(in_mc.metrics.errors.mean_m, direct.metrics.errors.mean_m);
+  EXPECT_EQ(in_mc.metrics.anees, direct.metrics.anees);
+  EXPECT_EQ(
+      read_text(tmp.file("wc/nees.csv")),
+      read_text((fs::path(run_dir(full.dir.string(), "worldcentric", 2)) / "nees.csv").string()));
+}
+
+TEST(MonteCarloCommand, ResumeRedoesOnlyTheUnfinishedRun) {
+  const TempDir tmp;
+  const fs::path dir = tmp.path() / "mc";
+  fs::copy(full_run().dir, dir, fs::copy_options::recursive);
+  const fs::path redo = fs::path(run_dir(dir.string(), "worldcentric", 1)) / "metrics.json";
+  fs::remove(redo);
+  auto before = metrics_mtimes(dir);
+  const auto logged = run_montecarlo(options_for(dir));
+  EXPECT_EQ(logged->outcome.executed, 1u);
+  EXPECT_EQ(logged->log.str().rfind("montecarlo: 3/3 runs done", 0), 0u) << logged->log.str();
+  auto after = metrics_mtimes(dir);
+  ASSERT_TRUE(after.count(redo.string()));
+  after.erase(redo.string());
+  EXPECT_EQ(after, before);  // deadreckoning's run 1 included: only the missing method reran
+  EXPECT_EQ(without_runtimes(read_text((dir / "summary.json").string())),
+            without_runtimes(read_text((full_run().dir / "summary.json").string())));
+  EXPECT_EQ(read_text((dir / "nees.csv").string()),
+            read_text((full_run().dir / "nees.csv").string()));
+
+  // Nothing left to do: nothing runs.
+  EXPECT_EQ(run_montecarlo(options_for(dir))->outcome.executed, 0u);
+}
+
+TEST(MonteCarloCommand, MergedShardsGiveTheSameSummary) {
+  const TempDir tmp;
+  const fs::path shard0 = tmp.path() / "shard_0", shard1 = tmp.path() / "shard_1";
+  EXPECT_EQ(run_montecarlo(options_for(shard0, "0/2"))->outcome.runs, 2u);
+  EXPECT_EQ(run_montecarlo(options_for(shard1, "1/2"))->outcome.runs, 1u);
+  EXPECT_EQ(read_text((shard1 / "seeds.csv").string()), "run,seed\n1,2\n");
+  const fs::path merged = tmp.path() / "merged";
+  const MonteCarloOutcome outcome = merge_montecarlo({merged.string(), {shard0, shard1}});
+  EXPECT_EQ(outcome.runs, 3u);
+  EXPECT_EQ(outcome.failed, 0u);
+  const fs::path full = full_run().dir;
+  const std::string summary = read_text((merged / "summary.json").string());
+  EXPECT_EQ(without_runtimes(summary),
+            without_runtimes(read_text((full / "summary.json").string())));
+  EXPECT_NE(summary.find("\"runtime_s\""), std::string::npos);
+  for (const char* file : {"nees.csv", "seeds.csv", "scenario.yaml"}) {
+    EXPECT_EQ(read_text((merged / file).string()), read_text((full / file).string())) << file;
+  }
+  for (int r = 0; r < 3; ++r) {
+    EXPECT_TRUE(fs::exists(fs::path(run_dir(merged.string(), "worldcentric", r)) / "nees.csv"));
+  }
+
+  // Shards of another scenario do not merge.
+  const fs::path other = tmp.path() / "other";
+  fs::copy(shard1, other, fs::copy_options::recursive);
+  write_text((other / "scenario.yaml").string(), "name: other\n");
+  EXPECT_THROW(merge_montecarlo({(tmp.path() / "m2").string(), {shard0, other}}), io::InputError);
+  EXPECT_THROW(merge_montecarlo({(tmp.path() / "m3").string(), {tmp.path().string()}}),
+               io::InputError);
+}
+
+// A stand-in for msislab that fails worldcentric's run 1 with exit status 3, kills the simulation
+// of run 2 (seed 3) with SIGKILL, and runs the real executable otherwise.
+std::string write_failing_msislab(const TempDir& tmp) {
+  const std::string path = tmp.file("failing_msislab.sh");
+  write_text(path, std::string("#!/bin/sh\n") +
+                       "case \"$*\" in\n"
+                       "  *worldcentric/run_0001*) echo 'msislab: injected failure' >&2; exit 3;;\n"
+                       "  *'--seed 3'*) kill -9 $$;;\n"
+                       "esac\n"
+                       "exec '" +
+                       MSISLAB_EXE + "' \"$@\"\n");
+  fs::permissions(path, fs::perms::owner_all);
+  return path;
+}
+
+TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
+  const TempDir tmp;
+  const fs::path dir = tmp.path() / "mc";
+  MonteCarloOptions options = options_for(dir);
+  options.executable = write_failing_msislab(tmp);
+  const auto logged = run_montecarlo(options);
+  EXPECT_EQ(logged->outcome.failed, 2u);
+  EXPECT_NE(logged->log.str().find("3/3 runs done, 2 failed"), std::string::npos)
+      << logged->log.str();
+
+  const std::string failed_run =
+      read_text((fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json").string());
+  EXPECT_NE(failed_run.find("\"reason\": \"exit status 3: msislab: injected failure\""),
+            std::string::npos)
+      << failed_run;
+  EXPECT_NE(failed_run.find("\"stage\": \"run\""), std::string::npos) << failed_run;
+  for (const std::string& method : kMethods) {
+    const fs::path rd(run_dir(dir.string(), method, 2));
+    const std::string killed = read_text((rd / "failed.json").string());
+    EXPECT_NE(killed.find("\"reason\": \"killed by signal 9"), std::string::npos) << killed;
+    EXPECT_NE(killed.find("\"stage\": \"simulate\""), std::string::npos) << killed;
+    EXPECT_NE(killed.find("\"seed\": 3"), std::string::npos) << killed;
+    EXPECT_FALSE(fs::exists(rd / "metrics.json"));
+    EXPECT_TRUE(fs::exists(fs::path(run_dir(dir.string(), method, 0)) / "metrics.json"));
+  }
+  EXPECT_TRUE(fs::exists(fs::path(run_dir(dir.string(), "deadreckoning", 1)) / "metrics.json"));
+  EXPECT_FALSE(fs::exists(dir / "scratch"));
+
+  const io::JsonValue root = io::read_json_file((dir / "summary.json").string());
+  const io::JsonObject summary(root, "summary.json");
+  EXPECT_EQ(summary.object("deadreckoning").number("runs"), 2);
+  EXPECT_EQ(summary.object("deadreckoning").number("failed"), 1);
+  EXPECT_EQ(summary.object("worldcentric").number("runs"), 1);
+  EXPECT_EQ(summary.object("worldcentric").number("failed"), 2);
+  EXPECT_NE(read_text((dir / "summary.json").string()).find("\"failed_runs\": [1, 2]"),
+            std::string::npos);
+
+  // Resumed with the real executable, the failed runs are redone and the summary is the full one.
+  const auto resumed = run_montecarlo(options_for(dir));
+  EXPECT_EQ(resumed->outcome.executed, 2u);
+  EXPECT_EQ(resumed->outcome.failed, 0u);
+  EXPECT_FALSE(fs::exists(fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json"));
+  EXPECT_EQ(without_runtimes(read_text((dir / "summary.json").string())),
+            without_runtimes(read_text((full_run().dir / "summary.json").string())));
+}
+
+// Expects montecarlo() to throw InputError containing `word` without creating the directory.
+void expect_rejected(const MonteCarloOptions& options, const std::string& word) {
+  std::ostringstream log;
+  try {
+    montecarlo(options, {log, false});
+    ADD_FAILURE() << "no InputError for " << word;
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(options.out_dir)) << word;
+}
+
+TEST(MonteCarloCommand, BadInputIsRejectedBeforeAnythingRuns) {
+  const TempDir tmp;
+  const fs::path out = tmp.path() / "mc";
+  MonteCarloOptions options = options_for(out);
+  options.methods = {"deadreckoning", "nosuchmethod"};
+  expect_rejected(options, "available: deadreckoning");
+  options.methods = {"worldcentric", "worldcentric"};
+  expect_rejected(options, "given twice");
+  for (const char* shard : {"2/2", "x", "1/0"}) {
+    expect_rejected(options_for(out, shard), std::string("--shard '") + shard + "'");
+  }
+  options = options_for(out);
+  options.scenario_path = tmp.file("missing.yaml");
+  expect_rejected(options, tmp.file("missing.yaml"));
+  options = options_for(out);
+  options.runs = 0;
+  expect_rejected(options, "--runs 0");
+  options = options_for(out);
+  options.config_path = write_text(tmp.file("bad.yaml"), "segmentz: {}\n");
+  expect_rejected(options, "segmentz");
+
+  // A directory made from another scenario is not resumed.
+  const fs::path used = tmp.path() / "used";
+  fs::copy(full_run().dir, used, fs::copy_options::recursive);
+  write_text((used / "scenario.yaml").string(), "name: another\n");
+  try {
+    montecarlo(options_for(used), {std::cerr, false});
+    ADD_FAILURE() << "resumed a directory of another scenario";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("another scenario"), std::string::npos) << e.what();
+  }
+}
+
+// Through the executable: the child processes are /proc/self/exe; bad arguments exit 2 with one
+// line.
+TEST(MonteCarloCli, RunsThroughTheExecutableAndRejectsBadArguments) {
+  const TempDir tmp;
+  const std::string out = tmp.file("mc");
+  const std::string args = "montecarlo " + testing::shell_quote(kScenario) +
+                           " --runs 2 --methods deadreckoning --jobs 2 --out " +
+                           testing::shell_quote(out);
+  const testing::CliResult ok = testing::run_msislab(args, tmp);
+  EXPECT_EQ(ok.exit_code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("holds 2 runs (2 run now, 0 already done), 0 with a failed method"),
+            std::string::npos)
+      << ok.out;
+  EXPECT_NE(ok.err.find("montecarlo: 2/2 runs done, 0 failed, elapsed "), std::string::npos)
+      << ok.err;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "runs/deadreckoning/run_0001/metrics.json"));
+
+  const std::string scenario = testing::shell_quote(kScenario);
+  for (const std::string& bad : std::vector<std::string>{
+           "montecarlo " + scenario + " --runs 2 --out o --methods deadreckoning,bogus",
+           "montecarlo " + scenario + " --runs 2 --out o --methods deadreckoning --shard 3/2",
+           "montecarlo " + scenario + " --runs two --out o --methods deadreckoning",
+           "montecarlo " + scenario + " --out o --methods deadreckoning",
+           std::string("montecarlo no_such.yaml --runs 2 --out o --methods deadreckoning"),
+           "montecarlo merge o " + testing::shell_quote(tmp.path().string())}) {
+    const testing::CliResult result = testing::run_msislab(bad, tmp);
+    EXPECT_EQ(result.exit_code, 2) << bad;
+    EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << bad << result.err;
+    EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
+  }
+}
+
+}  // namespace
+}  // namespace msislab::app

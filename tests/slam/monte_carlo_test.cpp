@@ -1,0 +1,113 @@
+// Monte Carlo statistics: per-scan NEES averaged over runs of different lengths with the bounds for
+// that number of runs, the in-bounds fraction (about 95% for consistent chi-square samples), and
+// the summary of finished, failed and missing runs.
+#include "slam/monte_carlo.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "slam/scan_matching.hpp"
+
+namespace msislab {
+namespace {
+
+TEST(MonteCarlo, AveragesEachScanOverTheRunsThatReachedIt) {
+  const std::vector<AveragedNees> steps = average_nees_over_runs({{1.0, 2.0, 9.0}, {3.0, 4.0}});
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[0].runs, 2);
+  EXPECT_DOUBLE_EQ(steps[0].mean, 2.0);
+  EXPECT_DOUBLE_EQ(steps[1].mean, 3.0);
+  EXPECT_EQ(steps[2].runs, 1);
+  EXPECT_DOUBLE_EQ(steps[2].mean, 9.0);
+  const auto [lower2, upper2] = average_chi2_bounds(2, 3, 0.05);
+  EXPECT_EQ(steps[0].lower, lower2);
+  EXPECT_EQ(steps[0].upper, upper2);
+  EXPECT_EQ(steps[2].lower, average_chi2_bounds(1, 3, 0.05).first);
+  // field-notes: N = 50 gives [2.36, 3.72] (the Wilson-Hilferty bounds are close for N >= 25;
+  // at N = 1 they give [0.18, 9.4] for the exact [0.216, 9.35]).
+  const AveragedNees fifty = average_nees_over_runs(std::vector<std::vector<double>>(50, {3.0}))[0];
+  EXPECT_EQ(fifty.runs, 50);
+  EXPECT_NEAR(fifty.lower, 2.36, 0.01);
+  EXPECT_NEAR(fifty.upper, 3.72, 0.01);
+  EXPECT_TRUE(steps[0].inside());
+  EXPECT_TRUE(steps[2].inside());
+  EXPECT_DOUBLE_EQ(*fraction_inside(steps), 1.0);
+  EXPECT_FALSE(fraction_inside({}));
+  EXPECT_TRUE(average_nees_over_runs({}).empty());
+}
+
+TEST(MonteCarlo, ConsistentSamplesAreInsideAboutNinetyFivePercentOfTheTime) {
+  // 50 runs x 400 scans of exact 3-DOF NEES: e ~ N(0, I), NEES = |e|^2.
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal;
+  std::vector<std::vector<double>> runs(50, std::vector<double>(400));
+  for (auto& run : runs) {
+    for (double& v : run) {
+      v = 0.0;
+      for (int d = 0; d < 3; ++d) v += std::pow(normal(rng), 2);
+    }
+  }
+  const double fraction = *fraction_inside(average_nees_over_runs(runs));
+  EXPECT_NEAR(fraction, 0.95, 0.03);
+  // Overconfident by a factor 2: almost never inside.
+  for (auto& run : runs) {
+    for (double& v : run) v *= 2.0;
+  }
+  EXPECT_LT(*fraction_inside(average_nees_over_runs(runs)), 0.05);
+}
+
+MonteCarloRun finished(int index, double mean_m, double runtime_s, std::vector<double> nees,
+                       std::optional<double> segment) {
+  MonteCarloRun run;
+  run.index = index;
+  run.metrics = RunMetrics{};
+  run.metrics->errors.mean_m = mean_m;
+  run.metrics->errors.final_m = 2.0 * mean_m;
+  run.metrics->runtime_s = runtime_s;
+  run.metrics->segments = {{"loop", segment}, {"canal", 1.0}};
+  run.nees = std::move(nees);
+  return run;
+}
+
+TEST(MonteCarlo, SummaryOfFinishedFailedAndMissingRuns) {
+  MonteCarloRun failed;
+  failed.index = 1;
+  failed.failed = true;
+  MonteCarloRun missing;
+  missing.index = 3;
+  const std::vector<MonteCarloRun> runs = {
+      finished(0, 1.0, 0.5, {1.0, 2.0, 3.0}, 4.0), failed,
+      finished(2, 3.0, std::numeric_limits<double>::quiet_NaN(), {5.0}, std::nullopt), missing};
+  const MethodSummary s = summarise_runs("worldcentric", runs);
+  EXPECT_EQ(s.method, "worldcentric");
+  EXPECT_EQ(s.runs, 2);
+  EXPECT_EQ(s.failed, 1);
+  EXPECT_EQ(s.failed_runs, std::vector<int>{1});
+  EXPECT_EQ(s.missing, 1);
+  EXPECT_DOUBLE_EQ(*s.mean_error_m, 2.0);
+  EXPECT_DOUBLE_EQ(*s.final_error_m, 4.0);
+  EXPECT_DOUBLE_EQ(*s.anees, (1.0 + 2.0 + 3.0 + 5.0) / 4.0);  // over every run and scan
+  ASSERT_EQ(s.nees.size(), 3u);
+  EXPECT_EQ(s.nees[0].runs, 2);
+  EXPECT_DOUBLE_EQ(s.nees[0].mean, 3.0);
+  EXPECT_EQ(s.runtime_s, 0.5);  // the NaN runtime is left out
+  ASSERT_EQ(s.segments.size(), 2u);
+  EXPECT_EQ(s.segments[0].first, "loop");
+  EXPECT_DOUBLE_EQ(*s.segments[0].second, 4.0);  // the run without a loop mean is skipped
+  EXPECT_DOUBLE_EQ(*s.segments[1].second, 1.0);
+
+  // Navigation-only methods have no NEES.
+  const MethodSummary dr = summarise_runs("deadreckoning", {finished(0, 1.0, 0.1, {}, 1.0)});
+  EXPECT_FALSE(dr.anees);
+  EXPECT_FALSE(dr.nees_in_bounds_fraction);
+  EXPECT_TRUE(dr.nees.empty());
+  const MethodSummary none = summarise_runs("x", {});
+  EXPECT_EQ(none.runs, 0);
+  EXPECT_FALSE(none.mean_error_m);
+}
+
+}  // namespace
+}  // namespace msislab

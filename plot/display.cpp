@@ -1,0 +1,79 @@
+#include "plot/display.hpp"
+
+#include <X11/Xlib.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/input_error.hpp"
+
+namespace msislab::plot {
+namespace {
+
+constexpr const char* kGuard = "MSISLAB_UNDER_XVFB";
+
+std::optional<std::string> find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  if (path == nullptr) return std::nullopt;
+  const std::string dirs(path);
+  for (std::size_t start = 0; start <= dirs.size();) {
+    const std::size_t colon = std::min(dirs.find(':', start), dirs.size());
+    const std::string dir = dirs.substr(start, colon - start);
+    const std::string candidate = (dir.empty() ? "." : dir) + "/" + program;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+    start = colon + 1;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+bool x_display_available() {
+  const char* name = std::getenv("DISPLAY");
+  if (name == nullptr || *name == '\0') return false;
+  Display* display = XOpenDisplay(nullptr);
+  if (display == nullptr) return false;
+  XCloseDisplay(display);
+  return true;
+}
+
+void rerun_under_xvfb(int argc, char** argv) {
+  const std::string why = std::getenv("DISPLAY") ? "the X display $DISPLAY cannot be opened"
+                                                 : "no X display ($DISPLAY is not set)";
+  if (std::getenv(kGuard) != nullptr) {
+    throw io::InputError(why +
+                         ", even under xvfb-run: check that Xvfb works (xvfb-run -a glxinfo)");
+  }
+  const std::optional<std::string> xvfb_run = find_on_path("xvfb-run");
+  if (!xvfb_run || !find_on_path("xauth")) {
+    throw io::InputError(why +
+                         " and xvfb-run (with xauth) is not installed: VTK needs a display to "
+                         "draw; run under `xvfb-run -a msislab ...` (Debian: apt-get install "
+                         "xvfb xauth)");
+  }
+  std::error_code ec;
+  const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
+  if (ec)
+    throw io::InputError("cannot find this executable to run it under xvfb-run: " + ec.message());
+  std::vector<std::string> args = {*xvfb_run, "-a", "-s", "-screen 0 1920x1200x24", self};
+  for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+  std::vector<char*> c_args;
+  for (std::string& a : args) c_args.push_back(a.data());
+  c_args.push_back(nullptr);
+  ::setenv(kGuard, "1", 1);
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);
+  ::execv(xvfb_run->c_str(), c_args.data());
+  throw io::InputError("cannot run " + *xvfb_run + ": " + std::strerror(errno));
+}
+
+}  // namespace msislab::plot

@@ -46,11 +46,12 @@ bool x_display_available() {
 }
 
 void rerun_under_xvfb(int argc, char** argv) {
-  const std::string why = std::getenv("DISPLAY") ? "the X display $DISPLAY cannot be opened"
-                                                 : "no X display ($DISPLAY is not set)";
+  const char* display = std::getenv("DISPLAY");
+  const std::string why = display && *display
+                              ? "the X display '" + std::string(display) + "' cannot be opened"
+                              : "no X display ($DISPLAY is not set)";
   if (std::getenv(kGuard) != nullptr) {
-    throw io::InputError(why +
-                         ", even under xvfb-run: check that Xvfb works (xvfb-run -a glxinfo)");
+    throw io::InputError(why + ", even under xvfb-run: check that Xvfb starts");
   }
   const std::optional<std::string> xvfb_run = find_on_path("xvfb-run");
   if (!xvfb_run || !find_on_path("xauth")) {

@@ -18,7 +18,7 @@ class FigureWriter {
   FigureWriter(const PlotOptions& options) : options_(options) {}
 
   void chart(const fs::path& dir, const std::string& name, const plot::ChartSpec& spec) {
-    plot::write_chart_png(prepare(dir, name), spec);
+    charts_.write_png(prepare(dir, name), spec);
   }
   /// trajectory.png and (with truth) error.png of one result, into its figures/.
   void result(const ResultData& r) {
@@ -48,6 +48,7 @@ class FigureWriter {
   }
 
   const PlotOptions& options_;
+  plot::ChartWriter charts_;
   std::vector<std::string> written_;
 };
 

@@ -1,6 +1,6 @@
-// One x-y chart described as plain data and rendered to PNG with VTK's charts (vtkChartXY in an
-// offscreen vtkContextView, read back through vtkWindowToImageFilter, encoded by vtkPNGWriter and
-// written atomically). Rendering needs an X display: see plot/display.hpp.
+// One x-y chart described as plain data and rendered to PNG with VTK's charts (vtkChartXY in a
+// vtkContextActor of an offscreen render window, read back through vtkWindowToImageFilter, encoded
+// by vtkPNGWriter and written atomically). Rendering needs an X display: see plot/display.hpp.
 #pragma once
 
 #include <Eigen/Core>
@@ -42,9 +42,24 @@ struct ChartSpec {
   int height_px = 900;
 };
 
-/// Renders the chart and writes it to path as PNG, atomically. Throws io::InputError when there
-/// is nothing to draw or the file cannot be written.
-void write_chart_png(const std::string& path, const ChartSpec& chart);
+/// Draws charts into PNG files. Every chart gets its own offscreen render window, and all of them
+/// share the one X connection this object opens (VTK would open one per window and abort when
+/// that fails).
+class ChartWriter {
+ public:
+  /// Opens the X display; io::InputError when there is none (plot/display.hpp).
+  ChartWriter();
+  ~ChartWriter();
+  ChartWriter(const ChartWriter&) = delete;
+  ChartWriter& operator=(const ChartWriter&) = delete;
+
+  /// Renders the chart and writes it to path as PNG, atomically. Throws io::InputError when there
+  /// is nothing to draw or the file cannot be written.
+  void write_png(const std::string& path, const ChartSpec& chart) const;
+
+ private:
+  void* display_ = nullptr;  ///< Xlib Display*
+};
 
 /// Appends the closed k-sigma ellipse of a 2x2 covariance around mean to series (NaN-separated
 /// from what is already there).

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -11,6 +12,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "io/input_error.hpp"
@@ -36,13 +38,30 @@ std::optional<std::string> find_on_path(const std::string& program) {
 
 }  // namespace
 
-bool x_display_available() {
+void* open_x_display() {
   const char* name = std::getenv("DISPLAY");
-  if (name == nullptr || *name == '\0') return false;
-  Display* display = XOpenDisplay(nullptr);
-  if (display == nullptr) return false;
-  XCloseDisplay(display);
-  return true;
+  if (name == nullptr || *name == '\0') return nullptr;
+  for (int attempt = 0; attempt < 200; ++attempt) {
+    errno = 0;
+    Display* display = XOpenDisplay(nullptr);
+    // A full queue of pending connections (EAGAIN) or one dropped during the handshake
+    // (ECONNRESET) is transient; no server at all (ENOENT, ECONNREFUSED) is not.
+    if (display != nullptr || (errno != EAGAIN && errno != ECONNRESET && errno != EINTR)) {
+      return display;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return nullptr;
+}
+
+void close_x_display(void* display) {
+  if (display != nullptr) XCloseDisplay(static_cast<Display*>(display));
+}
+
+bool x_display_available() {
+  void* display = open_x_display();
+  close_x_display(display);
+  return display != nullptr;
 }
 
 void rerun_under_xvfb(int argc, char** argv) {

@@ -5,6 +5,14 @@
 
 namespace msislab::plot {
 
+/// Opens the X display named by $DISPLAY (an Xlib Display*, opaque here), retrying for up to
+/// 10 s while the connection fails transiently (EAGAIN: the server's queue of pending connections
+/// is full; ECONNRESET: dropped during the handshake), as Xvfb does now and then on a loaded
+/// machine; VTK would abort on such a failure. nullptr when there is no display. Close it with
+/// close_x_display.
+void* open_x_display();
+void close_x_display(void* display);
+
 /// True when $DISPLAY is set and an X connection to it opens.
 bool x_display_available();
 

@@ -1,5 +1,6 @@
 #include "io/acoustic_image.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -24,20 +25,31 @@ std::vector<int> beams_by_step(const std::vector<SonarBeamRecord>& beams, int st
   return by_step;
 }
 
+/// Line thickness in pixels for a drawing scale (1 at the reference size).
+int thickness(double scale, int reference = 1) {
+  return std::max(1, static_cast<int>(std::lround(reference * scale)));
+}
+
+/// Range rings with their labels and the forward arrow; text and lines scale with the image
+/// (1 at 800 px, the default of msislab image).
 void draw_range_rings(cv::Mat& image, double px_per_m, double range_m) {
+  const double scale = image.rows / 800.0;
   const cv::Point centre(image.cols / 2, image.rows / 2);
   const double ring_m = range_m > 30.0 ? 10.0 : 5.0;
+  const auto px = [&](double reference) {
+    return static_cast<int>(std::lround(reference * scale));
+  };
   for (double r = ring_m; r <= range_m + 1e-9; r += ring_m) {
     const int radius = static_cast<int>(std::lround(r * px_per_m));
-    cv::circle(image, centre, radius, cv::Scalar(90, 160, 90), 1, cv::LINE_AA);
+    cv::circle(image, centre, radius, cv::Scalar(90, 160, 90), thickness(scale), cv::LINE_AA);
     cv::putText(image, std::to_string(static_cast<int>(r)) + " m",
-                centre + cv::Point(4, -radius + 14), cv::FONT_HERSHEY_SIMPLEX, 0.45,
-                cv::Scalar(120, 220, 120), 1, cv::LINE_AA);
+                centre + cv::Point(px(4), -radius + px(14)), cv::FONT_HERSHEY_SIMPLEX, 0.45 * scale,
+                cv::Scalar(120, 220, 120), thickness(scale), cv::LINE_AA);
   }
-  cv::arrowedLine(image, centre, centre + cv::Point(0, -40), cv::Scalar(255, 255, 255), 2,
-                  cv::LINE_AA, 0, 0.3);
-  cv::putText(image, "forward", centre + cv::Point(6, -30), cv::FONT_HERSHEY_SIMPLEX, 0.45,
-              cv::Scalar(255, 255, 255), 1, cv::LINE_AA);
+  cv::arrowedLine(image, centre, centre + cv::Point(0, -px(40)), cv::Scalar(255, 255, 255),
+                  thickness(scale, 2), cv::LINE_AA, 0, 0.3);
+  cv::putText(image, "forward", centre + cv::Point(px(6), -px(30)), cv::FONT_HERSHEY_SIMPLEX,
+              0.45 * scale, cv::Scalar(255, 255, 255), thickness(scale), cv::LINE_AA);
 }
 
 /// The fan, size_px x size_px, coloured and with its range rings.
@@ -97,13 +109,17 @@ void draw_colour_bar(cv::Mat& canvas, const cv::Rect& box, double text_scale) {
   for (const int value : {0, 64, 128, 192, 255}) {
     const int y = box.y + box.height - 1 - (box.height - 1) * value / 255;
     cv::line(canvas, {box.x + box.width, y}, {box.x + box.width + 6, y}, black, 1);
-    cv::putText(canvas, std::to_string(value), {box.x + box.width + 10, y + 6},
-                cv::FONT_HERSHEY_SIMPLEX, 0.55 * text_scale, black, 1, cv::LINE_AA);
+    cv::putText(canvas, std::to_string(value),
+                {box.x + box.width + 10, y + static_cast<int>(6 * text_scale)},
+                cv::FONT_HERSHEY_SIMPLEX, 0.55 * text_scale, black, thickness(text_scale),
+                cv::LINE_AA);
   }
-  cv::putText(canvas, "echo", {box.x - 4, box.y - 34}, cv::FONT_HERSHEY_SIMPLEX, 0.6 * text_scale,
-              black, 1, cv::LINE_AA);
-  cv::putText(canvas, "intensity", {box.x - 4, box.y - 12}, cv::FONT_HERSHEY_SIMPLEX,
-              0.6 * text_scale, black, 1, cv::LINE_AA);
+  cv::putText(canvas, "echo", {box.x - 4, box.y - static_cast<int>(34 * text_scale)},
+              cv::FONT_HERSHEY_SIMPLEX, 0.6 * text_scale, black, thickness(text_scale),
+              cv::LINE_AA);
+  cv::putText(canvas, "intensity", {box.x - 4, box.y - static_cast<int>(12 * text_scale)},
+              cv::FONT_HERSHEY_SIMPLEX, 0.6 * text_scale, black, thickness(text_scale),
+              cv::LINE_AA);
 }
 
 }  // namespace
@@ -133,14 +149,14 @@ void write_acoustic_figure(const std::string& path, const std::vector<SonarBeamR
   const cv::Scalar black(0, 0, 0);
   int baseline = 0;
   const cv::Size title_size =
-      cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 1.0 * scale, 2, &baseline);
+      cv::getTextSize(title, cv::FONT_HERSHEY_SIMPLEX, 1.0 * scale, thickness(scale, 2), &baseline);
   cv::putText(canvas, title, {(width_px - title_size.width) / 2, static_cast<int>(45 * scale)},
-              cv::FONT_HERSHEY_SIMPLEX, 1.0 * scale, black, 2, cv::LINE_AA);
+              cv::FONT_HERSHEY_SIMPLEX, 1.0 * scale, black, thickness(scale, 2), cv::LINE_AA);
   const std::string caption = "vehicle frame, forward up and port left; range rings in metres";
   const cv::Size caption_size =
-      cv::getTextSize(caption, cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale, 1, &baseline);
+      cv::getTextSize(caption, cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale, thickness(scale), &baseline);
   cv::putText(canvas, caption, {(width_px - caption_size.width) / 2, static_cast<int>(80 * scale)},
-              cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale, black, 1, cv::LINE_AA);
+              cv::FONT_HERSHEY_SIMPLEX, 0.6 * scale, black, thickness(scale), cv::LINE_AA);
   write_png(path, canvas);
 }
 

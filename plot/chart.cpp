@@ -59,7 +59,8 @@ void set_ticks(vtkAxis* axis, const AxisRange& range, double step) {
   axis->SetCustomTickPositions(positions);
 }
 
-void add_series(vtkChartXY& chart, const Series& s) {
+/// One series as a VTK plot; widths scale with the figure (1 at 900 px high).
+void add_series(vtkChartXY& chart, const Series& s, float scale) {
   vtkNew<vtkTable> table;
   vtkNew<vtkDoubleArray> xs, ys;
   xs->SetName("x");
@@ -83,10 +84,10 @@ void add_series(vtkChartXY& chart, const Series& s) {
   if (s.style == SeriesStyle::kPoints) {
     auto* points = vtkPlotPoints::SafeDownCast(plot);
     points->SetMarkerStyle(vtkPlotPoints::CIRCLE);
-    points->SetMarkerSize(s.width_px);
+    points->SetMarkerSize(s.width_px * scale);
     return;
   }
-  plot->SetWidth(s.width_px);
+  plot->SetWidth(s.width_px * scale);
   if (s.style == SeriesStyle::kDashedLine) plot->GetPen()->SetLineType(vtkPen::DASH_LINE);
   if (s.style == SeriesStyle::kDottedLine) plot->GetPen()->SetLineType(vtkPen::DOT_LINE);
 }
@@ -95,7 +96,7 @@ void style_axis(vtkAxis* axis, const std::string& title, const ChartLayout& layo
   axis->SetTitle(title);
   set_font(axis->GetTitleProperties(), layout.text.axis_title_pt, false);
   set_font(axis->GetLabelProperties(), layout.text.tick_label_pt, false);
-  axis->GetPen()->SetWidth(1.5f);
+  axis->GetPen()->SetWidth(1.5f * static_cast<float>(layout.scale));
   axis->GetGridPen()->SetColor(225, 225, 225, 255);
 }
 
@@ -193,7 +194,7 @@ void ChartWriter::write_png(const std::string& path, const ChartSpec& spec) cons
   chart->SetTitle(spec.title);
   set_font(chart->GetTitleProperties(), layout.text.title_pt, true);
   for (const Series& s : spec.series) {
-    if (!s.x.empty()) add_series(*chart, s);
+    if (!s.x.empty()) add_series(*chart, s, static_cast<float>(layout.scale));
   }
   vtkAxis* x_axis = chart->GetAxis(vtkAxis::BOTTOM);
   vtkAxis* y_axis = chart->GetAxis(vtkAxis::LEFT);

@@ -141,6 +141,7 @@ ChartLayout layout_chart(const ChartSpec& spec, const std::string& path) {
   if (bounds.empty()) io::fail_file(path, "nothing to draw: no finite data point");
   ChartLayout layout;
   const double scale = spec.height_px / 900.0;
+  layout.scale = scale;
   const TextSizes reference;
   layout.text = {scaled(reference.title_pt, scale), scaled(reference.axis_title_pt, scale),
                  scaled(reference.tick_label_pt, scale), scaled(reference.legend_pt, scale),

@@ -21,6 +21,7 @@ struct TextSizes {
 enum class LegendCorner { kTopRight, kTopLeft, kBottomRight, kBottomLeft };
 
 struct ChartLayout {
+  double scale = 1.0;  ///< figure height / 900 px: text, margins and line widths follow it
   TextSizes text;
   // The plot rectangle (the axes' box) inside the figure, in pixels from the bottom left.
   int left_px = 0;

@@ -15,7 +15,7 @@ namespace {
 
 class FigureWriter {
  public:
-  FigureWriter(const PlotOptions& options) : options_(options) {}
+  explicit FigureWriter(const PlotOptions& options) : options_(options) {}
 
   void chart(const fs::path& dir, const std::string& name, const plot::ChartSpec& spec) {
     charts_.write_png(prepare(dir, name), spec);

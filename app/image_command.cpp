@@ -5,28 +5,40 @@
 #include "io/acoustic_image.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
-#include "io/stpere_logs.hpp"
 
 namespace msislab::app {
 
-void draw_image(const ImageOptions& options) {
-  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
+SonarRevolution read_revolution(const std::string& dataset_dir, int revolution) {
+  const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
   if (!files.is_log) {
-    io::fail_file(options.dataset_dir, "no *_IS.log (raw sonar beams) to draw an image from");
+    io::fail_file(dataset_dir, "no *_IS.log (raw sonar beams) to draw an image from");
   }
-  const io::SonarSetup setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
-  const Calibration calibration = io::load_calibration(files);
+  SonarRevolution out;
+  out.dataset_dir = dataset_dir;
+  out.setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
+  out.mount = io::load_calibration(files).sonar;
   const std::vector<io::SonarBeamRecord> beams = io::read_is_log(*files.is_log);
-  const auto steps = static_cast<std::size_t>(std::lround(2.0 * M_PI / setup.step_rad));
-  const std::size_t first = static_cast<std::size_t>(options.revolution) * steps;
-  if (options.revolution < 0 || first >= beams.size()) {
-    throw io::InputError("--revolution " + std::to_string(options.revolution) + ": the log has " +
-                         std::to_string((beams.size() + steps - 1) / steps) + " revolutions");
+  const auto steps = static_cast<std::size_t>(std::lround(2.0 * M_PI / out.setup.step_rad));
+  const std::size_t revolutions = (beams.size() + steps - 1) / steps;
+  out.index = revolution >= 0 ? revolution : static_cast<int>(revolutions / 2);
+  const std::size_t first = static_cast<std::size_t>(out.index) * steps;
+  if (first >= beams.size()) {
+    throw io::InputError("--revolution " + std::to_string(revolution) + ": the log has " +
+                         std::to_string(revolutions) + " revolutions");
   }
-  const std::vector<io::SonarBeamRecord> revolution(
-      beams.begin() + static_cast<long>(first),
-      beams.begin() + static_cast<long>(std::min(beams.size(), first + steps)));
-  io::write_acoustic_image(options.out_path, revolution, setup, calibration.sonar, options.size_px);
+  out.beams.assign(beams.begin() + static_cast<long>(first),
+                   beams.begin() + static_cast<long>(std::min(beams.size(), first + steps)));
+  return out;
+}
+
+void draw_image(const ImageOptions& options) {
+  if (options.revolution < 0) {
+    throw io::InputError("--revolution " + std::to_string(options.revolution) +
+                         ": must be 0 or more");
+  }
+  const SonarRevolution revolution = read_revolution(options.dataset_dir, options.revolution);
+  io::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
+                           options.size_px);
 }
 
 }  // namespace msislab::app

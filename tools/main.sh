@@ -5,7 +5,8 @@
 #     scored against the exact simulation truth;
 #  2. runs them on the real St. Pere dataset (when ../shared/datasets/stpere is there), scored
 #     against GPS;
-#  3. draws an acoustic image of one simulated revolution.
+#  3. draws an acoustic image of one simulated revolution, and the figures of every result
+#     (msislab plot; VTK needs an X display, and without one it reruns itself under xvfb-run).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -49,8 +50,13 @@ else
   echo "   It needs *_DVL.log, *_MTi.log and *_DGPS.log there (or set MSISLAB_STPERE_DIR)."
 fi
 
+echo "== Figures"
+"$msislab" plot out/sim
+if [ ${#real[@]} -gt 0 ]; then "$msislab" plot out/stpere; fi
+
 echo
 echo "Results (mean, final and max position error; the paper's Table I uses the mean):"
 summary "${methods[@]/#/out/sim/}" ${real[@]+"${real[@]}"}
 echo "Trajectories and metrics: out/sim/<method>/ and out/stpere/<method>/;"
-echo "the simulated dataset: out/sim/stpere_replica/; acoustic image: out/sim/acoustic_image.png."
+echo "the simulated dataset: out/sim/stpere_replica/; acoustic image: out/sim/acoustic_image.png;"
+echo "figures: out/sim/figures/ and out/stpere/figures/ (and figures/ in every result folder)."

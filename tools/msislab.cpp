@@ -10,11 +10,13 @@
 #include "app/eval_command.hpp"
 #include "app/image_command.hpp"
 #include "app/montecarlo_command.hpp"
+#include "app/plot_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scans_command.hpp"
 #include "app/segment_command.hpp"
 #include "app/simulate_command.hpp"
 #include "io/input_error.hpp"
+#include "plot/display.hpp"
 
 namespace {
 
@@ -180,6 +182,41 @@ void add_scans_command(CLI::App& app, msislab::app::ScansOptions& options) {
                     "Scan drawn before/after compensation (default: the middle one)");
 }
 
+void add_plot_command(CLI::App& app, msislab::app::PlotOptions& options) {
+  CLI::App* plot = app.add_subcommand(
+      "plot",
+      "Draw the figures of a result, comparison or Monte Carlo directory as PNG into DIR/figures/ "
+      "(VTK: needs an X display, else reruns itself under xvfb-run)");
+  plot->add_option("DIR", options.dir,
+                   "A result directory (trajectory.tum), a folder of result directories, or a "
+                   "Monte Carlo directory (nees.csv)")
+      ->required();
+  plot->add_option("--dataset,-d", options.dataset_dir,
+                   "Dataset directory for the truth and the acoustic image (default: the one "
+                   "recorded in metrics.json)");
+  plot->add_option("--ellipse-every", options.ellipse_every,
+                   "Draw the 2-sigma ellipse of every k-th scan (default: about 25 per figure)")
+      ->check(CLI::PositiveNumber);
+  plot->add_option("--width", options.width_px, "Figure width in pixels")
+      ->check(CLI::Range(400, 4000));
+  plot->add_option("--height", options.height_px, "Figure height in pixels")
+      ->check(CLI::Range(300, 4000));
+  plot->add_option("--revolution,-r", options.revolution,
+                   "Sonar revolution of the acoustic image (default: the middle one)")
+      ->check(CLI::NonNegativeNumber);
+}
+
+/// Reads every input first (bad input fails without a display), then draws; VTK needs an X
+/// display, so without one the command runs again under xvfb-run.
+void run_plot(const msislab::app::PlotOptions& options, int argc, char** argv) {
+  const msislab::app::PlotInputs inputs = msislab::app::load_plot_inputs(options);
+  if (!msislab::plot::x_display_available()) msislab::plot::rerun_under_xvfb(argc, argv);
+  for (const std::string& file : msislab::app::draw_plot(inputs)) {
+    std::cout << "wrote " << file << "\n";
+  }
+  std::cout << std::flush;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -201,6 +238,8 @@ int main(int argc, char** argv) {
   add_scans_command(app, scans_options);
   msislab::app::SegmentOptions segment_options;
   add_segment_command(app, segment_options);
+  msislab::app::PlotOptions plot_options;
+  add_plot_command(app, plot_options);
 
   try {
     app.parse(argc, argv);
@@ -236,6 +275,7 @@ int main(int argc, char** argv) {
       msislab::app::draw_image(image_options);
       std::cout << "wrote " << image_options.out_path << std::endl;
     }
+    if (app.got_subcommand("plot")) run_plot(plot_options, argc, argv);
     if (app.got_subcommand("segment")) {
       std::cout << msislab::app::segment(segment_options).markdown << std::flush;
     }

@@ -25,11 +25,13 @@ inline std::string shell_quote(const std::string& text) {
 }
 
 /// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
-inline CliResult run_msislab(const std::string& args, const TempDir& tmp) {
+/// `launcher` goes before the executable, e.g. "env -u DISPLAY".
+inline CliResult run_msislab(const std::string& args, const TempDir& tmp,
+                             const std::string& launcher = "") {
   const std::string out = tmp.file("stdout.txt");
   const std::string err = tmp.file("stderr.txt");
-  const std::string command = shell_quote(MSISLAB_EXE) + " " + args + " >" + shell_quote(out) +
-                              " 2>" + shell_quote(err) + " </dev/null";
+  const std::string command = launcher + " " + shell_quote(MSISLAB_EXE) + " " + args + " >" +
+                              shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
   const int status = std::system(command.c_str());
   CliResult result;
   if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);

@@ -1,0 +1,92 @@
+#include "app/plot_command.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "app/plot_figures.hpp"
+#include "io/acoustic_image.hpp"
+#include "io/atomic_file.hpp"
+
+namespace msislab::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+class FigureWriter {
+ public:
+  explicit FigureWriter(const PlotOptions& options) : options_(options) {}
+
+  void chart(const fs::path& dir, const std::string& name, const plot::ChartSpec& spec) {
+    charts_.write_png(prepare(dir, name), spec);
+  }
+  /// trajectory.png and (with truth) error.png of one result, into its figures/.
+  void result(const ResultData& r) {
+    const fs::path dir = fs::path(r.dir) / "figures";
+    chart(dir, "trajectory.png",
+          trajectory_chart(r, options_.ellipse_every, options_.width_px, options_.height_px));
+    if (!r.errors.empty()) {
+      chart(dir, "error.png", error_chart({&r}, options_.width_px, options_.height_px));
+    }
+  }
+  void acoustic_image(const fs::path& dir, const SonarRevolution& revolution) {
+    const std::string dataset =
+        fs::path(revolution.dataset_dir).lexically_normal().filename().string();
+    io::write_acoustic_figure(
+        prepare(dir, "acoustic_image.png"), revolution.beams, revolution.setup, revolution.mount,
+        "Sonar revolution " + std::to_string(revolution.index) + " of " + dataset,
+        options_.width_px, options_.height_px);
+  }
+  const std::vector<std::string>& written() const { return written_; }
+
+ private:
+  /// Creates the folder and records the file (written atomically by the drawing call).
+  std::string prepare(const fs::path& dir, const std::string& name) {
+    io::create_output_dir(dir.string());
+    written_.push_back((dir / name).string());
+    return written_.back();
+  }
+
+  const PlotOptions& options_;
+  plot::ChartWriter charts_;
+  std::vector<std::string> written_;
+};
+
+/// A figure per result named after its method (its folder when two share a method).
+std::string comparison_name(const PlotInputs& in, const ResultData& r) {
+  const auto same_method = std::count_if(in.results.begin(), in.results.end(),
+                                         [&](const ResultData& o) { return o.method == r.method; });
+  return (same_method > 1 ? r.name : r.method) + ".png";
+}
+
+}  // namespace
+
+std::vector<std::string> draw_plot(const PlotInputs& in) {
+  const PlotOptions& options = in.options;
+  const fs::path figures = fs::path(options.dir) / "figures";
+  FigureWriter writer(options);
+  if (in.comparison) {
+    std::vector<const ResultData*> with_errors;
+    for (const ResultData& r : in.results) {
+      writer.chart(figures, comparison_name(in, r),
+                   trajectory_chart(r, options.ellipse_every, options.width_px, options.height_px));
+      if (!r.errors.empty()) with_errors.push_back(&r);
+    }
+    if (!with_errors.empty()) {
+      writer.chart(figures, "errors.png",
+                   error_chart(with_errors, options.width_px, options.height_px));
+    }
+  }
+  for (const ResultData& r : in.results) writer.result(r);
+  if (!in.nees.empty()) {
+    writer.chart(figures, "nees.png", nees_chart(in.nees, options.width_px, options.height_px));
+  }
+  if (in.revolution) writer.acoustic_image(figures, *in.revolution);
+  return writer.written();
+}
+
+std::vector<std::string> plot(const PlotOptions& options) {
+  return draw_plot(load_plot_inputs(options));
+}
+
+}  // namespace msislab::app

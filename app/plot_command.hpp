@@ -1,0 +1,20 @@
+// `msislab plot DIR`: (re)draws the figures of a result, comparison or Monte Carlo directory as PNG
+// into DIR/figures/ (docs/cli.md lists them). Reading is separate from drawing: every input is
+// checked before the first figure is written, and only drawing needs an X display (VTK).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/plot_inputs.hpp"
+
+namespace msislab::app {
+
+/// Draws every figure the inputs allow and returns the files written, in order. Needs an X
+/// display (plot/display.hpp).
+std::vector<std::string> draw_plot(const PlotInputs& inputs);
+
+/// load_plot_inputs, then draw_plot.
+std::vector<std::string> plot(const PlotOptions& options);
+
+}  // namespace msislab::app

@@ -1,0 +1,279 @@
+#include "app/plot_figures.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <map>
+#include <optional>
+#include <sstream>
+
+namespace msislab::app {
+
+namespace {
+
+constexpr std::uint32_t kTruthColour = 0x202020;
+constexpr std::uint32_t kMapPointColour = 0xa8a8a8;
+constexpr std::uint32_t kBoundColour = 0x555555;
+constexpr double kEllipseSigmas = 2.0;
+constexpr std::size_t kEllipsesPerFigure = 25;
+
+std::string fixed(double value, int decimals) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(decimals) << value;
+  return out.str();
+}
+
+std::string ordinal(std::size_t k) {
+  const std::size_t last = k % 10, last_two = k % 100;
+  const char* suffix = (last_two >= 11 && last_two <= 13) ? "th"
+                       : last == 1                        ? "st"
+                       : last == 2                        ? "nd"
+                       : last == 3                        ? "rd"
+                                                          : "th";
+  return std::to_string(k) + suffix;
+}
+
+/// The colour scaled towards black: ellipses stand apart from their trajectory.
+std::uint32_t darker(std::uint32_t rgb, double factor) {
+  std::uint32_t out = 0;
+  for (const int shift : {16, 8, 0}) {
+    const auto channel = static_cast<double>(rgb >> shift & 0xff);
+    out |= static_cast<std::uint32_t>(std::lround(channel * factor)) << shift;
+  }
+  return out;
+}
+
+std::string truth_label(const Truth& truth) {
+  return truth.kind == "gps" ? "GPS" : truth.kind + " truth";
+}
+
+double mean_error_m(const std::vector<ErrorSample>& errors) {
+  double sum = 0.0;
+  for (const ErrorSample& e : errors) sum += e.error_m;
+  return errors.empty() ? 0.0 : sum / static_cast<double>(errors.size());
+}
+
+plot::Series ellipses(const ResultData& result, int every) {
+  const std::size_t n = result.scans.size();
+  const std::size_t k =
+      every > 0 ? static_cast<std::size_t>(every)
+                : std::max<std::size_t>(1, (n + kEllipsesPerFigure - 1) / kEllipsesPerFigure);
+  plot::Series series;
+  series.label =
+      "2-sigma position, " + (k == 1 ? std::string("every scan") : "every " + ordinal(k) + " scan");
+  series.rgb = darker(method_colour(result.method), 0.6);
+  series.width_px = 1.5f;
+  for (std::size_t i = 0; i < n; i += k) {
+    const io::ScanRow& s = result.scans[i];
+    plot::append_ellipse(series, {s.x_m, s.y_m}, s.cov.topLeftCorner<2, 2>(), kEllipseSigmas);
+  }
+  return series;
+}
+
+/// Rows of one method, in file order.
+std::vector<std::pair<std::string, std::vector<io::NeesRow>>> by_method(
+    const std::vector<io::NeesRow>& rows) {
+  std::vector<std::pair<std::string, std::vector<io::NeesRow>>> groups;
+  for (const io::NeesRow& row : rows) {
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const auto& g) { return g.first == row.method; });
+    if (it == groups.end()) it = groups.insert(groups.end(), {row.method, {}});
+    it->second.push_back(row);
+  }
+  return groups;
+}
+
+/// The bounds per scan when every method has the same ones (the same number of runs), else none.
+std::optional<std::vector<io::NeesRow>> shared_bounds(
+    const std::vector<std::pair<std::string, std::vector<io::NeesRow>>>& groups) {
+  std::map<long long, io::NeesRow> bounds;
+  for (const auto& [method, rows] : groups) {
+    for (const io::NeesRow& r : rows) {
+      const auto [it, inserted] = bounds.try_emplace(r.scan, r);
+      if (!inserted && (it->second.lower != r.lower || it->second.upper != r.upper)) {
+        return std::nullopt;
+      }
+    }
+  }
+  std::vector<io::NeesRow> rows;
+  for (const auto& [scan, row] : bounds) rows.push_back(row);
+  return rows;
+}
+
+/// The share of scans whose run-averaged NEES lies inside its bounds, as "82%".
+std::string in_bounds_percent(const std::vector<io::NeesRow>& rows) {
+  const auto inside = std::count_if(rows.begin(), rows.end(), [](const io::NeesRow& r) {
+    return r.lower <= r.mean_nees && r.mean_nees <= r.upper;
+  });
+  return fixed(100.0 * static_cast<double>(inside) / static_cast<double>(rows.size()), 0) + "%";
+}
+
+void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
+                const std::string& label, std::uint32_t rgb) {
+  plot::Series lower{label, {}, {}, plot::SeriesStyle::kDashedLine, rgb, 2.0f};
+  plot::Series upper{"", {}, {}, plot::SeriesStyle::kDashedLine, rgb, 2.0f};
+  for (const io::NeesRow& r : rows) {
+    lower.x.push_back(static_cast<double>(r.scan));
+    lower.y.push_back(r.lower);
+    upper.x.push_back(static_cast<double>(r.scan));
+    upper.y.push_back(r.upper);
+  }
+  chart.series.push_back(std::move(lower));
+  chart.series.push_back(std::move(upper));
+}
+
+}  // namespace
+
+std::string method_title(const std::string& method) {
+  static const std::map<std::string, std::string> titles = {{"deadreckoning", "Dead reckoning"},
+                                                            {"integration", "DVL integration"},
+                                                            {"worldcentric", "World-centric SLAM"},
+                                                            {"robocentric", "Robocentric SLAM"}};
+  const auto it = titles.find(method);
+  return it == titles.end() ? method : it->second;
+}
+
+std::uint32_t method_colour(const std::string& method) {
+  static const std::map<std::string, std::uint32_t> colours = {{"deadreckoning", 0xd62728},
+                                                               {"integration", 0xff7f0e},
+                                                               {"worldcentric", 0x1f77b4},
+                                                               {"robocentric", 0x2ca02c}};
+  static const std::uint32_t others[] = {0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22};
+  const auto it = colours.find(method);
+  if (it != colours.end()) return it->second;
+  std::size_t sum = 0;
+  for (const char ch : method) sum += static_cast<unsigned char>(ch);
+  return others[sum % std::size(others)];
+}
+
+plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
+                                 int height_px) {
+  plot::ChartSpec chart;
+  chart.x_label = "x (East) [m]";
+  chart.y_label = "y (North) [m]";
+  chart.equal_aspect = true;
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  chart.title = method_title(result.method);
+  if (result.truth) chart.title += " vs " + truth_label(*result.truth);
+  if (!result.errors.empty()) {
+    chart.title += ": mean error " + fixed(mean_error_m(result.errors), 2) + " m";
+  }
+  if (!result.map_points_m.empty()) {
+    plot::Series points{"map points (" + std::to_string(result.map_points_m.size()) + ")",
+                        {},
+                        {},
+                        plot::SeriesStyle::kPoints,
+                        kMapPointColour,
+                        2.5f};
+    for (const Eigen::Vector2d& p : result.map_points_m) {
+      points.x.push_back(p.x());
+      points.y.push_back(p.y());
+    }
+    chart.series.push_back(std::move(points));
+  }
+  if (result.truth) {
+    plot::Series truth{truth_label(*result.truth), {},           {},
+                       plot::SeriesStyle::kLine,   kTruthColour, 2.5f};
+    for (const PositionFix& f : result.truth->positions) {
+      truth.x.push_back(f.p_world_m.x());
+      truth.y.push_back(f.p_world_m.y());
+    }
+    chart.series.push_back(std::move(truth));
+  }
+  plot::Series estimate{method_title(result.method),  {},  {}, plot::SeriesStyle::kLine,
+                        method_colour(result.method), 2.5f};
+  for (const StampedPose& p : result.trajectory) {
+    estimate.x.push_back(p.pose.mean.x());
+    estimate.y.push_back(p.pose.mean.y());
+  }
+  chart.series.push_back(std::move(estimate));
+  if (!result.scans.empty()) chart.series.push_back(ellipses(result, ellipse_every));
+  return chart;
+}
+
+plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
+                            int height_px) {
+  plot::ChartSpec chart;
+  chart.x_label = "time [s]";
+  chart.y_label = "position error [m]";
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  double t_max_s = 0.0, error_max_m = 0.0;
+  for (const ResultData* r : results) {
+    if (r->errors.empty()) continue;
+    const double t0_s = r->truth->positions.front().t_s;
+    plot::Series line{
+        method_title(r->method) + " (mean " + fixed(mean_error_m(r->errors), 2) + " m)",
+        {},
+        {},
+        plot::SeriesStyle::kLine,
+        method_colour(r->method),
+        2.5f};
+    for (const ErrorSample& e : r->errors) {
+      line.x.push_back(e.t_s - t0_s);
+      line.y.push_back(e.error_m);
+      t_max_s = std::max(t_max_s, e.t_s - t0_s);
+      error_max_m = std::max(error_max_m, e.error_m);
+    }
+    chart.series.push_back(std::move(line));
+    if (chart.title.empty()) chart.title = "Position error against " + truth_label(*r->truth);
+  }
+  if (chart.series.size() == 1) {
+    chart.title = "Position error of " + method_title(results.front()->method) + " against " +
+                  truth_label(*results.front()->truth);
+  }
+  chart.x_range = plot::AxisRange{0.0, std::max(t_max_s, 1.0)};
+  chart.y_range = plot::AxisRange{0.0, std::max(1.1 * error_max_m, 0.1)};
+  return chart;
+}
+
+plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px) {
+  plot::ChartSpec chart;
+  chart.x_label = "scan index";
+  chart.y_label = "NEES";
+  chart.log_y = true;
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  const auto groups = by_method(rows);
+  const std::optional<std::vector<io::NeesRow>> shared = shared_bounds(groups);
+  long long runs_min = rows.front().runs, runs_max = rows.front().runs;
+  double scan_min = static_cast<double>(rows.front().scan), scan_max = scan_min;
+  for (const io::NeesRow& r : rows) {
+    runs_min = std::min(runs_min, r.runs);
+    runs_max = std::max(runs_max, r.runs);
+    scan_min = std::min(scan_min, static_cast<double>(r.scan));
+    scan_max = std::max(scan_max, static_cast<double>(r.scan));
+  }
+  const std::string runs =
+      runs_min == runs_max ? std::to_string(runs_min) + " runs"
+                           : std::to_string(runs_min) + "-" + std::to_string(runs_max) + " runs";
+  chart.title = "Scan pose NEES averaged over " + runs;
+  chart.series.push_back({"expected value (3 DOF)",
+                          {scan_min, scan_max},
+                          {3.0, 3.0},
+                          plot::SeriesStyle::kDottedLine,
+                          0x888888,
+                          2.0f});
+  if (shared) add_bounds(chart, *shared, "95% bounds", kBoundColour);
+  for (const auto& [method, method_rows] : groups) {
+    if (!shared) {
+      add_bounds(chart, method_rows, method_title(method) + " 95% bounds", method_colour(method));
+    }
+    plot::Series mean{method_title(method) + " (" + in_bounds_percent(method_rows) + " in bounds)",
+                      {},
+                      {},
+                      plot::SeriesStyle::kLine,
+                      method_colour(method),
+                      2.5f};
+    for (const io::NeesRow& r : method_rows) {
+      mean.x.push_back(static_cast<double>(r.scan));
+      mean.y.push_back(r.mean_nees);
+    }
+    chart.series.push_back(std::move(mean));
+  }
+  chart.x_range = plot::AxisRange{scan_min, std::max(scan_max, scan_min + 1.0)};
+  return chart;
+}
+
+}  // namespace msislab::app

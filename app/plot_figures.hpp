@@ -1,0 +1,31 @@
+// The charts of `msislab plot`, built as plain plot::ChartSpec from the loaded results: a method
+// against the truth on the map, position error against time, and Monte Carlo NEES per scan.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/plot_inputs.hpp"
+#include "plot/chart.hpp"
+
+namespace msislab::app {
+
+/// Display name of a method ("worldcentric" -> "World-centric SLAM"); unknown names unchanged.
+std::string method_title(const std::string& method);
+
+/// Line colour of a method (0xRRGGBB): the same in every figure.
+std::uint32_t method_colour(const std::string& method);
+
+/// Truth (or GPS) and the estimate in the world frame with equal aspect, the map points as small
+/// dots and the 2-sigma position ellipses of every k-th scan (k = every, or about 25 in all).
+plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
+                                 int height_px);
+
+/// Position error against time since the first truth stamp, one line per result with errors.
+plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
+                            int height_px);
+
+/// Run-averaged NEES against scan index per method, with the 95% bounds; log y axis.
+plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px);
+
+}  // namespace msislab::app

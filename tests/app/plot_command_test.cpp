@@ -1,0 +1,246 @@
+// `msislab plot`: the figures of a result directory, of a folder of results (small_basin simulated
+// and run with dead reckoning and world-centric SLAM) and of a Monte Carlo directory are written,
+// decodable, of the requested size, not blank, and show the methods' colours; bad input exits 2.
+// Drawing needs an X display: CMake runs this test under `xvfb-run -a` when it is installed; with
+// no display at all the drawing tests skip.
+#include "app/plot_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "app/plot_figures.hpp"
+#include "app/run_command.hpp"
+#include "app/simulate_command.hpp"
+#include "cli_runner.hpp"
+#include "io/input_error.hpp"
+#include "plot/display.hpp"
+#include "test_support.hpp"
+
+namespace msislab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::CliResult;
+using testing::run_msislab;
+using testing::shell_quote;
+using testing::TempDir;
+using testing::write_text;
+
+#define REQUIRE_X_DISPLAY()                                                                 \
+  do {                                                                                      \
+    if (!plot::x_display_available())                                                       \
+      GTEST_SKIP() << "no X display: VTK cannot draw (run under `xvfb-run -a`, or install " \
+                      "xvfb and xauth so that CMake does)";                                 \
+  } while (0)
+
+/// small_basin simulated once, with a dead-reckoning and a world-centric result beside it.
+class PlotCommand : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    tmp_ = new TempDir;
+    const std::string scenario = std::string(MSISLAB_SOURCE_DIR) + "/scenarios/small_basin.yaml";
+    simulate({scenario, dir("small_basin"), std::nullopt, 2});
+    run({dir("small_basin"), "deadreckoning", dir("deadreckoning"), ""});
+    run({dir("small_basin"), "worldcentric", dir("worldcentric"), ""});
+  }
+  static void TearDownTestSuite() {
+    delete tmp_;
+    tmp_ = nullptr;
+  }
+  static std::string dir(const std::string& name) { return tmp_->file(name); }
+  static TempDir* tmp_;
+};
+TempDir* PlotCommand::tmp_ = nullptr;
+
+/// Pixels within a small distance of a colour given as 0xRRGGBB.
+int pixels_of(const cv::Mat& image, std::uint32_t rgb) {
+  const cv::Vec3i bgr(rgb & 0xff, rgb >> 8 & 0xff, rgb >> 16 & 0xff);
+  int n = 0;
+  for (auto it = image.begin<cv::Vec3b>(); it != image.end<cv::Vec3b>(); ++it) {
+    const cv::Vec3i d = cv::Vec3i(*it) - bgr;
+    n += std::abs(d[0]) + std::abs(d[1]) + std::abs(d[2]) < 40;
+  }
+  return n;
+}
+
+/// The PNG decodes at the given size, is mostly white (the background) but not blank, and shows
+/// each colour.
+void expect_figure(const std::string& path, int width, int height,
+                   const std::vector<std::uint32_t>& colours) {
+  SCOPED_TRACE(path);
+  ASSERT_TRUE(fs::is_regular_file(path));
+  EXPECT_GT(fs::file_size(path), 1000u);
+  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  ASSERT_FALSE(image.empty()) << "not decodable";
+  EXPECT_EQ(image.cols, width);
+  EXPECT_EQ(image.rows, height);
+  const int total = image.cols * image.rows;
+  const int white = pixels_of(image, 0xffffff);
+  EXPECT_GT(white, total / 3) << "the background is not white";
+  EXPECT_GT(total - white, total / 100) << "blank figure";
+  for (const std::uint32_t rgb : colours) {
+    EXPECT_GT(pixels_of(image, rgb), 200) << "colour " << std::hex << rgb << " is missing";
+  }
+}
+
+TEST_F(PlotCommand, ResultDirectoryGetsTrajectoryErrorAndAcousticImage) {
+  REQUIRE_X_DISPLAY();
+  PlotOptions options;
+  options.dir = dir("worldcentric");
+  const std::vector<std::string> written = plot(options);
+  const fs::path figures = fs::path(dir("worldcentric")) / "figures";
+  const std::vector<std::string> expected = {(figures / "trajectory.png").string(),
+                                             (figures / "error.png").string(),
+                                             (figures / "acoustic_image.png").string()};
+  EXPECT_EQ(written, expected);
+  const std::uint32_t blue = method_colour("worldcentric");
+  expect_figure(expected[0], 1200, 900, {blue, 0x202020});
+  expect_figure(expected[1], 1200, 900, {blue});
+  expect_figure(expected[2], 1200, 900, {});
+  for (const fs::directory_entry& e : fs::directory_iterator(figures)) {
+    EXPECT_EQ(e.path().extension(), ".png") << "a temporary file is left: " << e.path();
+  }
+}
+
+TEST_F(PlotCommand, FolderOfResultsGetsComparisonFigures) {
+  REQUIRE_X_DISPLAY();
+  PlotOptions options;
+  options.dir = tmp_->path().string();
+  options.width_px = 1000;
+  options.height_px = 800;
+  const std::vector<std::string> written = plot(options);
+  EXPECT_EQ(written.size(), 8u);  // 3 comparison, 2 x 2 per result, 1 acoustic image
+  const fs::path figures = tmp_->path() / "figures";
+  const std::uint32_t red = method_colour("deadreckoning"), blue = method_colour("worldcentric");
+  expect_figure((figures / "deadreckoning.png").string(), 1000, 800, {red, 0x202020});
+  expect_figure((figures / "worldcentric.png").string(), 1000, 800, {blue, 0x202020});
+  expect_figure((figures / "errors.png").string(), 1000, 800, {red, blue});
+  EXPECT_TRUE(fs::is_regular_file(figures / "acoustic_image.png"));
+  for (const char* method : {"deadreckoning", "worldcentric"}) {
+    for (const char* figure : {"trajectory.png", "error.png"}) {
+      EXPECT_TRUE(fs::is_regular_file(fs::path(dir(method)) / "figures" / figure))
+          << method << "/" << figure;
+    }
+  }
+}
+
+std::string write_monte_carlo_dir(const TempDir& tmp) {
+  const std::string mc = tmp.file("mc");
+  fs::create_directories(mc);
+  std::string csv = "method,scan,runs,mean_nees,lower,upper\n";
+  for (int scan = 0; scan < 40; ++scan) {
+    csv += "worldcentric," + std::to_string(scan) + ",25," + std::to_string(2.5 + 0.02 * scan) +
+           ",2.12,4.03\n";
+  }
+  for (int scan = 0; scan < 40; ++scan) {
+    csv += "deadreckoning," + std::to_string(scan) + ",25," + std::to_string(1.5 + 0.4 * scan) +
+           ",2.12,4.03\n";
+  }
+  write_text(mc + "/nees.csv", csv);
+  write_text(mc + "/summary.json", "{\"worldcentric\": {\"runs\": 25}}\n");
+  return mc;
+}
+
+TEST(PlotMonteCarlo, NeesFigure) {
+  REQUIRE_X_DISPLAY();
+  const TempDir tmp;
+  const std::string mc = write_monte_carlo_dir(tmp);
+  const std::vector<std::string> written = plot({mc, "", 0, 1200, 900, -1});
+  ASSERT_EQ(written.size(), 1u);
+  EXPECT_EQ(written[0], mc + "/figures/nees.png");
+  expect_figure(written[0], 1200, 900,
+                {method_colour("worldcentric"), method_colour("deadreckoning")});
+}
+
+TEST(PlotMonteCarlo, CliPrintsTheFilesItWrote) {
+  REQUIRE_X_DISPLAY();
+  const TempDir tmp;
+  const std::string mc = write_monte_carlo_dir(tmp);
+  const CliResult result = run_msislab("plot " + shell_quote(mc), tmp);
+  EXPECT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out, "wrote " + mc + "/figures/nees.png\n");
+  EXPECT_EQ(result.err, "");
+}
+
+// Without a display the command runs itself again under xvfb-run.
+TEST(PlotMonteCarlo, CliWithoutDisplayRerunsUnderXvfb) {
+  const TempDir tmp;
+  if (std::system("command -v xvfb-run >/dev/null && command -v xauth >/dev/null") != 0) {
+    GTEST_SKIP() << "xvfb-run or xauth is not installed";
+  }
+  const std::string mc = write_monte_carlo_dir(tmp);
+  const CliResult rerun = run_msislab("plot " + shell_quote(mc), tmp, "env -u DISPLAY");
+  EXPECT_EQ(rerun.exit_code, 0) << rerun.err;
+  EXPECT_EQ(rerun.out, "wrote " + mc + "/figures/nees.png\n");
+  expect_figure(mc + "/figures/nees.png", 1200, 900, {method_colour("worldcentric")});
+}
+
+TEST(PlotMonteCarlo, CliWithoutDisplayOrXvfbIsOneClearError) {
+  const TempDir tmp;
+  const std::string mc = write_monte_carlo_dir(tmp);
+  const CliResult result =
+      run_msislab("plot " + shell_quote(mc), tmp, "env -u DISPLAY PATH=/nonexistent");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.err.rfind("msislab: no X display", 0), 0u) << result.err;
+  EXPECT_NE(result.err.find("xvfb-run -a"), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(mc + "/figures/nees.png"));
+}
+
+// Bad input fails while reading, before any display is needed.
+void expect_bad_input(const std::string& dir, const std::string& message_part) {
+  const TempDir tmp;
+  const CliResult result = run_msislab("plot " + shell_quote(dir), tmp);
+  EXPECT_EQ(result.exit_code, 2) << result.out;
+  EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
+  EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
+  EXPECT_NE(result.err.find(message_part), std::string::npos) << result.err;
+  EXPECT_FALSE(fs::exists(fs::path(dir) / "figures"));
+}
+
+TEST(PlotBadInput, MissingDirectory) {
+  const TempDir tmp;
+  expect_bad_input(tmp.file("nowhere"), "nowhere: no such directory");
+}
+
+TEST(PlotBadInput, NothingToPlot) {
+  const TempDir tmp;
+  fs::create_directories(tmp.file("empty/sub"));
+  expect_bad_input(tmp.file("empty"), "nothing to plot");
+}
+
+TEST(PlotBadInput, MalformedNeesCsv) {
+  const TempDir tmp;
+  fs::create_directories(tmp.file("mc"));
+  write_text(tmp.file("mc/nees.csv"),
+             "method,scan,runs,mean_nees,lower,upper\nworldcentric,0,25,2.9,2.12,4.03\n"
+             "worldcentric,1,25,abc,2.12,4.03\n");
+  expect_bad_input(tmp.file("mc"), "nees.csv:3: field 4 (mean_nees) 'abc' is not a number");
+}
+
+TEST(PlotBadInput, MalformedScansCsvInAResult) {
+  const TempDir tmp;
+  fs::create_directories(tmp.file("r"));
+  write_text(tmp.file("r/trajectory.tum"),
+             "# t x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
+  write_text(tmp.file("r/scans.csv"),
+             "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points\n"
+             "0.5,0,0,0,1,0,0,1,0,0.1\n");
+  expect_bad_input(tmp.file("r"), "scans.csv:2: truncated line");
+}
+
+TEST(PlotBadInput, RecordedDatasetThatMoved) {
+  const TempDir tmp;
+  fs::create_directories(tmp.file("r"));
+  write_text(tmp.file("r/trajectory.tum"),
+             "# t x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
+  write_text(tmp.file("r/metrics.json"), "{\n  \"method\": \"deadreckoning\",\n  \"dataset\": \"" +
+                                             tmp.file("gone") + "\"\n}\n");
+  expect_bad_input(tmp.file("r"), "pass --dataset");
+}
+
+}  // namespace
+}  // namespace msislab::app

@@ -1,0 +1,132 @@
+// Readers of result files for `msislab plot`: what the writers of io/results write reads back,
+// hand-written scans.csv and nees.csv parse, and malformed lines fail naming the file and line.
+#include "io/result_readers.hpp"
+
+#include <gtest/gtest.h>
+
+#include "io/input_error.hpp"
+#include "io/results.hpp"
+#include "test_support.hpp"
+
+namespace msislab::io {
+namespace {
+
+using testing::TempDir;
+using testing::write_text;
+
+/// Expects InputError whose message contains `part`.
+template <typename Read>
+void expect_error(Read read, const std::string& part) {
+  try {
+    read();
+    FAIL() << "expected InputError containing '" << part << "'";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+
+constexpr const char* kScansHeader =
+    "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points\n";
+
+TEST(ResultReaders, ScansCsvRowsAndSymmetricCovariance) {
+  const TempDir tmp;
+  const std::string path = write_text(tmp.file("scans.csv"), std::string(kScansHeader) +
+                                                                 "10.5,1,2,0.3,4,0.5,0.1,9,0.2,"
+                                                                 "0.01,120\r\n11,3,4,0.4,1,0,0,1,"
+                                                                 "0,1,0\n");
+  const std::vector<ScanRow> scans = read_scan_rows(path);
+  ASSERT_EQ(scans.size(), 2u);
+  EXPECT_EQ(scans[0].t_s, 10.5);
+  EXPECT_EQ(scans[0].y_m, 2.0);
+  EXPECT_EQ(scans[0].points, 120);
+  Eigen::Matrix3d expected;
+  expected << 4, 0.5, 0.1, 0.5, 9, 0.2, 0.1, 0.2, 0.01;
+  EXPECT_EQ(scans[0].cov, expected);
+}
+
+TEST(ResultReaders, ScansCsvErrorsNameFileAndLine) {
+  const TempDir tmp;
+  const std::string path = tmp.file("scans.csv");
+  write_text(path, "t,x\n1,2\n");
+  expect_error([&] { read_scan_rows(path); }, "scans.csv:1: wrong header");
+  write_text(path, std::string(kScansHeader) + "1,0,0,0,1,0,0,1,0,1,3\n2,0,0,nan,1,0,0,1,0,1,3\n");
+  expect_error([&] { read_scan_rows(path); }, "scans.csv:3: field 4 (yaw_rad)");
+  write_text(path, std::string(kScansHeader) + "2,0,0,0,1,0,0,1,0,1,3\n1,0,0,0,1,0,0,1,0,1,3\n");
+  expect_error([&] { read_scan_rows(path); }, "scans.csv:3: t_s goes backwards");
+  write_text(path, kScansHeader);
+  expect_error([&] { read_scan_rows(path); }, "no data rows");
+}
+
+TEST(ResultReaders, PointsPlyRoundTrip) {
+  const TempDir tmp;
+  const std::vector<Eigen::Vector2d> points = {{1.5, -2.25}, {0.1, 1e-3}, {-40, 12.125}};
+  write_points_ply(tmp.file("map.ply"), points);
+  EXPECT_EQ(read_points_ply(tmp.file("map.ply")), points);
+}
+
+TEST(ResultReaders, PointsPlyErrors) {
+  const TempDir tmp;
+  const std::string path = tmp.file("map.ply");
+  write_text(path, "ply\nformat binary_little_endian 1.0\nelement vertex 1\nend_header\n");
+  expect_error([&] { read_points_ply(path); }, "only ASCII PLY");
+  write_text(path,
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
+             "end_header\n1 2\n3 4\n");
+  expect_error([&] { read_points_ply(path); }, "header announces 3 vertices, the file has 2");
+  write_text(path,
+             "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+             "property float z\nend_header\n1 2\n");
+  expect_error([&] { read_points_ply(path); }, "map.ply:8: truncated line");
+  write_text(path, "solid\n");
+  expect_error([&] { read_points_ply(path); }, "not a PLY file");
+}
+
+TEST(ResultReaders, MetricsJsonWrittenByRunReadsBack) {
+  const TempDir tmp;
+  RunMetrics metrics;
+  metrics.method = "worldcentric";
+  metrics.truth = "simulation";
+  metrics.segments = {{"loop", 1.5}, {"canal", std::nullopt}};
+  metrics.anees = 3.2;
+  metrics.diagnostics = {{"scan_candidates", 12}};
+  write_metrics_json(tmp.file("metrics.json"), metrics, "/data/sim \"x\"");
+  const MetricsInfo info = read_metrics_info(tmp.file("metrics.json"));
+  EXPECT_EQ(info.method, "worldcentric");
+  EXPECT_EQ(info.truth, "simulation");
+  EXPECT_EQ(info.dataset, "/data/sim \"x\"");
+}
+
+TEST(ResultReaders, MetricsJsonWithoutMethodIsAnError) {
+  const TempDir tmp;
+  write_text(tmp.file("metrics.json"), "{\"truth\": \"gps\"}\n");
+  expect_error([&] { read_metrics_info(tmp.file("metrics.json")); }, "key 'method'");
+  write_text(tmp.file("metrics.json"), "{\"method\": \"a\",\n\"truth\": [\n");
+  expect_error([&] { read_metrics_info(tmp.file("metrics.json")); }, "malformed YAML");
+}
+
+TEST(ResultReaders, NeesCsv) {
+  const TempDir tmp;
+  const std::string path = tmp.file("nees.csv");
+  write_text(path,
+             "method,scan,runs,mean_nees,lower,upper\nworldcentric,0,25,2.9,2.12,4.03\n"
+             "deadreckoning,0,25,3.5,2.12,4.03\nworldcentric,1,25,3.1,2.12,4.03\n");
+  const std::vector<NeesRow> rows = read_montecarlo_nees(path);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].method, "deadreckoning");
+  EXPECT_EQ(rows[2].scan, 1);
+  EXPECT_EQ(rows[2].runs, 25);
+  EXPECT_EQ(rows[2].mean_nees, 3.1);
+  EXPECT_EQ(rows[2].upper, 4.03);
+
+  write_text(path, "method,scan,runs,mean_nees,lower,upper\nworldcentric,0,0,2.9,2.12,4.03\n");
+  expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:2: field 3 (runs) '0' is not a positive");
+  write_text(path,
+             "method,scan,runs,mean_nees,lower,upper\nwc,1,25,2.9,2.12,4.03\n"
+             "wc,1,25,2.9,2.12,4.03\n");
+  expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:3: field 2 (scan) '1' does not increase");
+  write_text(path, "method,scan,nees\n");
+  expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:1: wrong header");
+}
+
+}  // namespace
+}  // namespace msislab::io

@@ -119,11 +119,13 @@ TEST(ResultReaders, NeesCsv) {
   EXPECT_EQ(rows[2].upper, 4.03);
 
   write_text(path, "method,scan,runs,mean_nees,lower,upper\nworldcentric,0,0,2.9,2.12,4.03\n");
-  expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:2: field 3 (runs) '0' is not a positive");
+  expect_error([&] { read_montecarlo_nees(path); },
+               "nees.csv:2: field 3 (runs) '0' is not a positive");
   write_text(path,
              "method,scan,runs,mean_nees,lower,upper\nwc,1,25,2.9,2.12,4.03\n"
              "wc,1,25,2.9,2.12,4.03\n");
-  expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:3: field 2 (scan) '1' does not increase");
+  expect_error([&] { read_montecarlo_nees(path); },
+               "nees.csv:3: field 2 (scan) '1' does not increase");
   write_text(path, "method,scan,nees\n");
   expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:1: wrong header");
 }

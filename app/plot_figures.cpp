@@ -64,8 +64,8 @@ plot::Series ellipses(const ResultData& result, int every) {
   series.rgb = darker(method_colour(result.method), 0.6);
   series.width_px = 1.5f;
   for (std::size_t i = 0; i < n; i += k) {
-    const io::ScanRow& s = result.scans[i];
-    plot::append_ellipse(series, {s.x_m, s.y_m}, s.cov.topLeftCorner<2, 2>(), kEllipseSigmas);
+    const GaussianPose2& s = result.scans[i].pose;
+    plot::append_ellipse(series, s.mean.translation(), s.cov.topLeftCorner<2, 2>(), kEllipseSigmas);
   }
   return series;
 }

@@ -66,7 +66,7 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
   result.method = result.name;
   result.trajectory = read_trajectory((dir / "trajectory.tum").string());
   if (fs::is_regular_file(dir / "scans.csv")) {
-    result.scans = io::read_scan_rows((dir / "scans.csv").string());
+    result.scans = io::read_scans_csv((dir / "scans.csv").string());
   }
   if (fs::is_regular_file(dir / "map.ply")) {
     result.map_points_m = io::read_points_ply((dir / "map.ply").string());
@@ -74,9 +74,9 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
   std::string recorded;
   const fs::path metrics = dir / "metrics.json";
   if (fs::is_regular_file(metrics)) {
-    const io::MetricsInfo info = io::read_metrics_info(metrics.string());
-    result.method = info.method;
-    recorded = info.dataset;
+    const io::StoredMetrics stored = io::read_metrics_json(metrics.string());
+    result.method = stored.metrics.method;
+    recorded = stored.dataset_dir;
   }
   const std::string dataset = dataset_of(metrics, recorded, options);
   if (!dataset.empty()) result.truth = datasets.truth(dataset);

@@ -12,6 +12,7 @@
 #include "app/image_command.hpp"
 #include "app/truth.hpp"
 #include "io/result_readers.hpp"
+#include "io/results.hpp"
 #include "slam/evaluation.hpp"
 
 namespace msislab::app {
@@ -31,7 +32,7 @@ struct ResultData {
   std::string name;    ///< the folder's name
   std::string method;  ///< from metrics.json; the folder's name when there is none
   std::vector<StampedPose> trajectory;
-  std::vector<io::ScanRow> scans;             ///< scans.csv; empty when absent
+  std::vector<StampedPose> scans;             ///< scans.csv; empty when absent
   std::vector<Eigen::Vector2d> map_points_m;  ///< map.ply; empty when absent
   std::shared_ptr<const Truth> truth;         ///< null when the dataset is unknown or has none
   std::vector<ErrorSample> errors;            ///< position errors against the truth

@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <string_view>
 
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
-#include "io/yaml_fields.hpp"
 
 namespace msislab::io {
 namespace {
@@ -32,26 +32,6 @@ class TextLines {
   std::size_t offset_ = 0;
   std::size_t number_ = 0;
 };
-
-/// Calls row(line, line_number) for every non-empty line after the header, which must be exact.
-template <typename Row>
-void read_csv(const std::string& path, std::string_view header, Row row) {
-  TextLines lines(path);
-  std::string_view line;
-  if (!lines.next(line)) fail_file(path, "empty file: no header line");
-  if (line != header) {
-    fail_at(path, 1,
-            "wrong header: expected '" + std::string(header) + "', got '" +
-                std::string(line.substr(0, 120)) + "'");
-  }
-  std::size_t rows = 0;
-  while (lines.next(line)) {
-    if (line.empty()) continue;
-    row(line, lines.number());
-    ++rows;
-  }
-  require_data_rows(path, rows);
-}
 
 std::vector<std::string_view> split_blanks(std::string_view line) {
   std::vector<std::string_view> fields;
@@ -116,35 +96,6 @@ PlyLayout read_ply_header(TextLines& lines) {
 
 }  // namespace
 
-std::vector<ScanRow> read_scan_rows(const std::string& path) {
-  static constexpr std::array<std::string_view, 11> kNames = {
-      "t_s",      "x_m",    "y_m",      "yaw_rad",    "cov_xx", "cov_xy",
-      "cov_xyaw", "cov_yy", "cov_yyaw", "cov_yawyaw", "points"};
-  std::vector<ScanRow> scans;
-  read_csv(path, "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points",
-           [&](std::string_view line, std::size_t number) {
-             const auto f = split_csv<kNames.size()>(line, path, number);
-             std::array<double, 10> v{};
-             for (std::size_t i = 0; i < v.size(); ++i) {
-               v[i] = parse_finite(f[i], {path, number, i + 1, kNames[i]});
-             }
-             ScanRow s;
-             s.t_s = v[0];
-             s.x_m = v[1];
-             s.y_m = v[2];
-             s.yaw_rad = v[3];
-             s.cov << v[4], v[5], v[6], v[5], v[7], v[8], v[6], v[8], v[9];
-             s.points = parse_integer(f[10], {path, number, 11, kNames[10]});
-             if (!scans.empty() && s.t_s < scans.back().t_s) {
-               fail_at(path, number,
-                       "t_s goes backwards (" + format_number(s.t_s) + " after " +
-                           format_number(scans.back().t_s) + ")");
-             }
-             scans.push_back(s);
-           });
-  return scans;
-}
-
 std::vector<Eigen::Vector2d> read_points_ply(const std::string& path) {
   TextLines lines(path);
   const PlyLayout layout = read_ply_header(lines);
@@ -166,43 +117,35 @@ std::vector<Eigen::Vector2d> read_points_ply(const std::string& path) {
   return points;
 }
 
-MetricsInfo read_metrics_info(const std::string& path) {
-  YamlMap map(load_yaml_file(path), path, "");
-  MetricsInfo info;
-  if (!map.text("method", info.method) || info.method.empty()) {
-    map.fail("method", "missing: the method that wrote this result");
-  }
-  map.text("truth", info.truth);
-  map.text("dataset", info.dataset);
-  return info;
-}
-
 std::vector<NeesRow> read_montecarlo_nees(const std::string& path) {
   static constexpr std::array<std::string_view, 6> kNames = {"method",    "scan",  "runs",
                                                              "mean_nees", "lower", "upper"};
   std::vector<NeesRow> rows;
-  read_csv(path, "method,scan,runs,mean_nees,lower,upper",
-           [&](std::string_view line, std::size_t number) {
-             const auto f = split_csv<kNames.size()>(line, path, number);
-             const auto at = [&](std::size_t i) { return FieldAt{path, number, i + 1, kNames[i]}; };
-             NeesRow row;
-             if (f[0].empty()) fail_field(at(0), f[0], "is empty");
-             row.method = std::string(f[0]);
-             row.scan = parse_integer(f[1], at(1));
-             row.runs = parse_integer(f[2], at(2));
-             if (row.runs < 1) fail_field(at(2), f[2], "is not a positive count");
-             row.mean_nees = parse_finite(f[3], at(3));
-             row.lower = parse_finite(f[4], at(4));
-             row.upper = parse_finite(f[5], at(5));
-             for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
-               if (it->method != row.method) continue;
-               if (row.scan <= it->scan) {
-                 fail_field(at(1), f[1], "does not increase for method " + row.method);
-               }
-               break;
-             }
-             rows.push_back(row);
-           });
+  for_each_csv_row(path, "method,scan,runs,mean_nees,lower,upper",
+                   [&](std::string_view line, std::size_t number) {
+                     const auto f = split_csv<kNames.size()>(line, path, number);
+                     const auto at = [&](std::size_t i) {
+                       return FieldAt{path, number, i + 1, kNames[i]};
+                     };
+                     NeesRow row;
+                     if (f[0].empty()) fail_field(at(0), f[0], "is empty");
+                     row.method = std::string(f[0]);
+                     row.scan = parse_integer(f[1], at(1));
+                     row.runs = parse_integer(f[2], at(2));
+                     if (row.runs < 1) fail_field(at(2), f[2], "is not a positive count");
+                     row.mean_nees = parse_finite(f[3], at(3));
+                     row.lower = parse_finite(f[4], at(4));
+                     row.upper = parse_finite(f[5], at(5));
+                     for (auto it = rows.rbegin(); it != rows.rend(); ++it) {
+                       if (it->method != row.method) continue;
+                       if (row.scan <= it->scan) {
+                         fail_field(at(1), f[1], "does not increase for method " + row.method);
+                       }
+                       break;
+                     }
+                     rows.push_back(row);
+                   });
+  require_data_rows(path, rows.size());
   return rows;
 }
 

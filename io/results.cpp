@@ -178,29 +178,6 @@ StoredMetrics read_metrics_json(const std::string& path) {
 
 namespace {
 
-// The data lines of a CSV file after its header line, which must be `header`.
-template <typename RowFn>
-void for_each_csv_row(const std::string& path, const std::string& header, RowFn&& row_fn) {
-  const std::string text = read_whole_file(path);
-  std::size_t begin = 0, line = 0;
-  bool header_seen = false;
-  while (begin < text.size()) {
-    std::size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    const std::string_view row = strip_cr(std::string_view(text).substr(begin, end - begin));
-    begin = end + 1;
-    ++line;
-    if (row.empty()) continue;
-    if (!header_seen) {
-      if (row != header) fail_at(path, line, "expected the header '" + header + "'");
-      header_seen = true;
-      continue;
-    }
-    row_fn(row, line);
-  }
-  if (!header_seen) fail_file(path, "empty file (expected the header '" + header + "')");
-}
-
 // A number that may be nan or inf (a NEES of a singular covariance).
 double parse_any_number(std::string_view token, const FieldAt& at) {
   double value = 0.0;
@@ -226,6 +203,11 @@ std::vector<StampedPose> read_scans_csv(const std::string& path) {
                      for (std::size_t i = 0; i < 10; ++i)
                        v[i] = parse_finite(fields[i], {path, line, i + 1, kColumns[i]});
                      parse_integer(fields[10], {path, line, 11, kColumns[10]});
+                     if (!scans.empty() && v[0] < scans.back().t_s) {
+                       fail_at(path, line,
+                               "t_s goes backwards (" + format_number(v[0]) + " after " +
+                                   format_number(scans.back().t_s) + ")");
+                     }
                      StampedPose scan;
                      scan.t_s = v[0];
                      scan.pose.mean = Pose2(v[1], v[2], v[3]);

@@ -3,6 +3,9 @@
 // shortest round-trip number formatting for the writers.
 #pragma once
 
+#include "io/input_error.hpp"
+
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -103,5 +106,32 @@ void check_finite(double value, const std::string& path, std::size_t row, std::s
 /// check_finite, then append_number.
 void append_finite(std::string& out, double value, const std::string& path, std::size_t row,
                    std::string_view column);
+
+/// Calls row(line, line_number) for every non-empty line of a CSV file after its first line, which
+/// must be exactly `header` (InputError "path:1: wrong header: expected '...', got '...'" else);
+/// returns the number of rows.
+template <typename Row>
+std::size_t for_each_csv_row(const std::string& path, std::string_view header, Row&& row) {
+  const std::string text = read_whole_file(path);
+  std::size_t begin = 0, line_number = 0, rows = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string_view line = strip_cr(std::string_view(text).substr(begin, end - begin));
+    begin = end + 1;
+    if (++line_number == 1) {
+      if (line != header) {
+        fail_at(path, 1,
+                "wrong header: expected '" + std::string(header) + "', got '" +
+                    std::string(line.substr(0, 120)) + "'");
+      }
+      continue;
+    }
+    if (line.empty()) continue;
+    row(line, line_number);
+    ++rows;
+  }
+  if (line_number == 0) fail_file(path, "empty file: no header line");
+  return rows;
+}
 
 }  // namespace msislab::io

@@ -16,6 +16,7 @@
 #include "app/simulate_command.hpp"
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
+#include "io/results.hpp"
 #include "plot/display.hpp"
 #include "test_support.hpp"
 
@@ -237,8 +238,10 @@ TEST(PlotBadInput, RecordedDatasetThatMoved) {
   fs::create_directories(tmp.file("r"));
   write_text(tmp.file("r/trajectory.tum"),
              "# t x y z qx qy qz qw\n0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
-  write_text(tmp.file("r/metrics.json"), "{\n  \"method\": \"deadreckoning\",\n  \"dataset\": \"" +
-                                             tmp.file("gone") + "\"\n}\n");
+  RunMetrics metrics;
+  metrics.method = "deadreckoning";
+  metrics.truth = "simulation";
+  io::write_metrics_json(tmp.file("r/metrics.json"), metrics, tmp.file("gone"));
   expect_bad_input(tmp.file("r"), "pass --dataset");
 }
 

@@ -1,5 +1,6 @@
-// Readers of result files for `msislab plot`: what the writers of io/results write reads back,
-// hand-written scans.csv and nees.csv parse, and malformed lines fail naming the file and line.
+// Reading result files back (io/results and io/result_readers, as `msislab plot` does): what the
+// writers write reads back, hand-written scans.csv and nees.csv parse, and malformed lines fail
+// naming the file and line.
 #include "io/result_readers.hpp"
 
 #include <gtest/gtest.h>
@@ -34,27 +35,32 @@ TEST(ResultReaders, ScansCsvRowsAndSymmetricCovariance) {
                                                                  "10.5,1,2,0.3,4,0.5,0.1,9,0.2,"
                                                                  "0.01,120\r\n11,3,4,0.4,1,0,0,1,"
                                                                  "0,1,0\n");
-  const std::vector<ScanRow> scans = read_scan_rows(path);
+  const std::vector<StampedPose> scans = read_scans_csv(path);
   ASSERT_EQ(scans.size(), 2u);
   EXPECT_EQ(scans[0].t_s, 10.5);
-  EXPECT_EQ(scans[0].y_m, 2.0);
-  EXPECT_EQ(scans[0].points, 120);
+  EXPECT_EQ(scans[0].pose.mean.y(), 2.0);
+  EXPECT_EQ(scans[1].pose.mean.x(), 3.0);
   Eigen::Matrix3d expected;
   expected << 4, 0.5, 0.1, 0.5, 9, 0.2, 0.1, 0.2, 0.01;
-  EXPECT_EQ(scans[0].cov, expected);
+  EXPECT_EQ(scans[0].pose.cov, expected);
 }
 
 TEST(ResultReaders, ScansCsvErrorsNameFileAndLine) {
   const TempDir tmp;
   const std::string path = tmp.file("scans.csv");
   write_text(path, "t,x\n1,2\n");
-  expect_error([&] { read_scan_rows(path); }, "scans.csv:1: wrong header");
+  expect_error([&] { read_scans_csv(path); }, "scans.csv:1: wrong header");
   write_text(path, std::string(kScansHeader) + "1,0,0,0,1,0,0,1,0,1,3\n2,0,0,nan,1,0,0,1,0,1,3\n");
-  expect_error([&] { read_scan_rows(path); }, "scans.csv:3: field 4 (yaw_rad)");
+  expect_error([&] { read_scans_csv(path); }, "scans.csv:3: field 4 (yaw_rad)");
+  write_text(path, std::string(kScansHeader) + "1,0,0,0,1,0,0,1,0,1,3.5\n");
+  expect_error([&] { read_scans_csv(path); }, "scans.csv:2: field 11 (points)");
   write_text(path, std::string(kScansHeader) + "2,0,0,0,1,0,0,1,0,1,3\n1,0,0,0,1,0,0,1,0,1,3\n");
-  expect_error([&] { read_scan_rows(path); }, "scans.csv:3: t_s goes backwards");
+  expect_error([&] { read_scans_csv(path); }, "scans.csv:3: t_s goes backwards");
+  write_text(path, "");
+  expect_error([&] { read_scans_csv(path); }, "scans.csv: empty file");
+  // A run that built no scan writes the header alone: zero scans, not an error.
   write_text(path, kScansHeader);
-  expect_error([&] { read_scan_rows(path); }, "no data rows");
+  EXPECT_TRUE(read_scans_csv(path).empty());
 }
 
 TEST(ResultReaders, PointsPlyRoundTrip) {
@@ -90,18 +96,18 @@ TEST(ResultReaders, MetricsJsonWrittenByRunReadsBack) {
   metrics.anees = 3.2;
   metrics.diagnostics = {{"scan_candidates", 12}};
   write_metrics_json(tmp.file("metrics.json"), metrics, "/data/sim \"x\"");
-  const MetricsInfo info = read_metrics_info(tmp.file("metrics.json"));
-  EXPECT_EQ(info.method, "worldcentric");
-  EXPECT_EQ(info.truth, "simulation");
-  EXPECT_EQ(info.dataset, "/data/sim \"x\"");
+  const StoredMetrics stored = read_metrics_json(tmp.file("metrics.json"));
+  EXPECT_EQ(stored.metrics.method, "worldcentric");
+  EXPECT_EQ(stored.metrics.truth, "simulation");
+  EXPECT_EQ(stored.dataset_dir, "/data/sim \"x\"");
 }
 
 TEST(ResultReaders, MetricsJsonWithoutMethodIsAnError) {
   const TempDir tmp;
   write_text(tmp.file("metrics.json"), "{\"truth\": \"gps\"}\n");
-  expect_error([&] { read_metrics_info(tmp.file("metrics.json")); }, "key 'method'");
+  expect_error([&] { read_metrics_json(tmp.file("metrics.json")); }, "key 'method'");
   write_text(tmp.file("metrics.json"), "{\"method\": \"a\",\n\"truth\": [\n");
-  expect_error([&] { read_metrics_info(tmp.file("metrics.json")); }, "malformed YAML");
+  expect_error([&] { read_metrics_json(tmp.file("metrics.json")); }, "metrics.json:3: ");
 }
 
 TEST(ResultReaders, NeesCsv) {

@@ -67,6 +67,8 @@ RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& con
   in.calibration = io::load_calibration(in.files);
   in.navigation = io::load_navigation(in.files, in.calibration);
   in.truth = load_truth(in.files, in.calibration);
+  // The config's segments win; without them a simulated dataset's own (its scenario's) apply.
+  if (in.config.segments.empty()) in.config.segments = io::load_truth_segments(in.files);
   in.start = initial_pose(in.truth, in.navigation, dataset_dir,
                           in.config.dead_reckoning.heading_sigma_rad);
   return in;

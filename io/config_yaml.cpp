@@ -1,5 +1,7 @@
 #include "io/config_yaml.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -147,6 +149,10 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
 std::vector<TimeSegment> read_segments(YamlMap map) {
   std::vector<TimeSegment> segments;
   for (const std::string& name : map.keys()) {
+    const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+    });
+    if (!plain) map.fail(name, "a segment name is letters, digits, '_' or '-'");
     std::vector<double> window;
     map.numbers(name, window);
     if (window.size() != 2 || !(window[0] < window[1])) {

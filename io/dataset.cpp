@@ -6,6 +6,7 @@
 #include "io/geodesy.hpp"
 #include "io/input_error.hpp"
 #include "io/stpere_logs.hpp"
+#include "io/text_lines.hpp"
 
 namespace msislab::io {
 
@@ -60,7 +61,28 @@ DatasetFiles find_dataset_files(const std::string& dir) {
   files.calibration = existing(fs::path(dir) / "calibration.yaml");
   files.truth_trajectory = existing(fs::path(dir) / "truth" / "trajectory.tum");
   files.truth_beams = existing(fs::path(dir) / "truth" / "beams.csv");
+  files.truth_segments = existing(fs::path(dir) / "truth" / "segments.csv");
   return files;
+}
+
+std::vector<TimeSegment> load_truth_segments(const DatasetFiles& files) {
+  std::vector<TimeSegment> segments;
+  if (!files.truth_segments) return segments;
+  const std::string& path = *files.truth_segments;
+  for_each_csv_row(path, "name,begin_s,end_s", [&](std::string_view row, std::size_t line) {
+    const auto fields = split_csv<3>(row, path, line);
+    TimeSegment segment{std::string(fields[0]), parse_finite(fields[1], {path, line, 2, "begin_s"}),
+                        parse_finite(fields[2], {path, line, 3, "end_s"})};
+    if (segment.name.empty()) fail_at(path, line, "empty segment name");
+    for (const TimeSegment& earlier : segments) {
+      if (earlier.name == segment.name) fail_at(path, line, "segment '" + segment.name + "' twice");
+    }
+    if (!(segment.end_s > segment.begin_s)) {
+      fail_at(path, line, "segment '" + segment.name + "' ends before it begins");
+    }
+    segments.push_back(segment);
+  });
+  return segments;
 }
 
 Calibration load_calibration(const DatasetFiles& files) {

@@ -24,11 +24,17 @@ struct DatasetFiles {
   std::optional<std::string> calibration;       ///< calibration.yaml
   std::optional<std::string> truth_trajectory;  ///< truth/trajectory.tum
   std::optional<std::string> truth_beams;       ///< truth/beams.csv
+  std::optional<std::string> truth_segments;    ///< truth/segments.csv
 };
 
 /// Finds the files of a dataset directory. Throws InputError if the directory does not exist or a
 /// suffix matches more than one file.
 DatasetFiles find_dataset_files(const std::string& dir);
+
+/// The named time windows of a simulated dataset (truth/segments.csv, `name,begin_s,end_s`: the
+/// scenario's `segments`, in seconds from the first truth stamp); empty when the file is absent.
+/// Throws InputError on a malformed row, an empty or repeated name, or end_s <= begin_s.
+std::vector<TimeSegment> load_truth_segments(const DatasetFiles& files);
 
 /// calibration.yaml when present, else the St. Pere calibration.
 Calibration load_calibration(const DatasetFiles& files);

@@ -97,6 +97,21 @@ std::string optional_number(const std::optional<double>& value) {
   return value ? format_number(*value) : std::string();
 }
 
+/// The scenario's named time windows (truth/segments.csv), so `msislab run` scores them.
+void write_segments(const std::string& path, const std::vector<TimeSegment>& segments) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "name,begin_s,end_s\n";
+    for (const TimeSegment& s : segments) {
+      text += s.name + ",";
+      append_number(text, s.begin_s);
+      text += ",";
+      append_number(text, s.end_s);
+      text += "\n";
+    }
+    out << text;
+  });
+}
+
 void write_files(const fs::path& dir, const sim::Scenario& scenario,
                  const sim::SimulationResult& result, const std::string& scenario_text) {
   const std::string base = (dir / prefix_of(scenario.name)).string();
@@ -116,6 +131,7 @@ void write_files(const fs::path& dir, const sim::Scenario& scenario,
   write_tum((dir / "truth" / "trajectory.tum").string(),
             truth_poses(result.truth, scenario.vehicle.depth_m));
   write_beam_truth((dir / "truth" / "beams.csv").string(), result.beams);
+  write_segments((dir / "truth" / "segments.csv").string(), scenario.segments);
 }
 
 }  // namespace

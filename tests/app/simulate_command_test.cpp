@@ -60,11 +60,13 @@ constexpr const char* kScenario =
     "vehicle:\n"
     "  depth_m: 1.5\n"
     "  speed_mps: 0.5\n"
-    "  path: [[-5, -4], [5, -4], [5, 4], [-5, 4], [-5, -3]]\n";
+    "  path: [[-5, -4], [5, -4], [5, 4], [-5, 4], [-5, -3]]\n"
+    "segments: {first_half: [0, 30], second_half: [30, 65]}\n";
 
-const char* const kDatasetFiles[] = {"box_IS.log",    "box_SETUP.log",        "box_DVL.log",
-                                     "box_MTi.log",   "box_DGPS.log",         "calibration.yaml",
-                                     "scenario.yaml", "truth/trajectory.tum", "truth/beams.csv"};
+const char* const kDatasetFiles[] = {
+    "box_IS.log",      "box_SETUP.log",     "box_DVL.log",   "box_MTi.log",
+    "box_DGPS.log",    "calibration.yaml",  "scenario.yaml", "truth/trajectory.tum",
+    "truth/beams.csv", "truth/segments.csv"};
 
 // The box: 4 walls (2 triangles each, group `walls`) and the bottom (2 triangles, group `bottom`),
 // counter-clockwise seen from inside so every normal faces the water.
@@ -412,6 +414,13 @@ TEST(SimulateCommand, DeadReckoningRunsOnTheSimulatedDataset) {
   EXPECT_NEAR(outcome.trajectory.front().t_s, kStartTime_s, 1.0);
   EXPECT_TRUE(fs::is_regular_file(tmp.path() / "result" / "trajectory.tum"));
   EXPECT_TRUE(fs::is_regular_file(tmp.path() / "result" / "metrics.json"));
+  // The scenario's segments travel with the dataset (truth/segments.csv) and are scored.
+  EXPECT_EQ(read_text((box.dir / "truth" / "segments.csv").string()),
+            "name,begin_s,end_s\nfirst_half,0,30\nsecond_half,30,65\n");
+  ASSERT_EQ(outcome.metrics->segments.size(), 2u);
+  EXPECT_EQ(outcome.metrics->segments[0].first, "first_half");
+  EXPECT_EQ(outcome.metrics->segments[1].first, "second_half");
+  EXPECT_TRUE(outcome.metrics->segments[0].second && outcome.metrics->segments[1].second);
 }
 
 // The message of the InputError that simulate(options) throws ("" and a failure when none).
@@ -453,7 +462,7 @@ TEST(SimulateCommand, BadScenarioLeavesAnExistingDatasetUntouched) {
   write_text((out / "marker.txt").string(), "an earlier dataset\n");
   const std::string scenario = write_box_scenario(tmp.path(), "sonar: {bems: 3}\n");
   const std::string message = simulate_error(options_for(scenario, out));
-  EXPECT_NE(message.find(scenario + ":12:"), std::string::npos) << message;
+  EXPECT_NE(message.find(scenario + ":13:"), std::string::npos) << message;
   EXPECT_NE(message.find("key 'sonar.bems'"), std::string::npos) << message;
   EXPECT_EQ(read_text((out / "marker.txt").string()), "an earlier dataset\n");
   EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 1);
@@ -524,7 +533,7 @@ TEST(SimulateCli, BadScenarioExitsTwoWithOneLine) {
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << result.err;
   EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
-  EXPECT_NE(result.err.find(scenario + ":12:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find(scenario + ":13:"), std::string::npos) << result.err;
   EXPECT_NE(result.err.find("vehicle_speed"), std::string::npos) << result.err;
   EXPECT_FALSE(fs::exists(out));
 }

@@ -277,6 +277,9 @@ TEST(SlamConfigYaml, BadSegments) {
   expect_bad_slam_config("segments:\n  mixed: [0, end]\n", 2, "segments.mixed");
   expect_bad_slam_config("segments:\n  nan: [0, .nan]\n", 2, "segments.nan");
   expect_bad_slam_config("segments: [0, 10]\n", 1, "segments");
+  // Names go into CSV and JSON files: letters, digits, '_' and '-' only.
+  expect_bad_slam_config("segments:\n  \"a,b\": [0, 10]\n", 2, "segments.a,b");
+  expect_bad_slam_config("segments:\n  \"\": [0, 10]\n", 2, "segments.");
 }
 
 // BUG (io/config_yaml.cpp, read_segments, with YamlMap::numbers): a repeated segment name gives

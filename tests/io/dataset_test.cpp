@@ -135,6 +135,35 @@ TEST(DatasetFiles, MissingDirectoryIsAnError) {
   expect_input_error([&] { find_dataset_files(file); }, {file});
 }
 
+TEST(LoadTruthSegments, ReadsTheWindowsInFileOrderAndRejectsBadRows) {
+  const TempDir dir;
+  fs::create_directories(dir.path() / "truth");
+  EXPECT_TRUE(load_truth_segments(find_dataset_files(dir.path().string())).empty());
+  const std::string path = dir.file("truth/segments.csv");
+  write_text(path, "name,begin_s,end_s\nloop,0,1890\ncanal,1890,3400.5\n");
+  const std::vector<TimeSegment> segments =
+      load_truth_segments(find_dataset_files(dir.path().string()));
+  ASSERT_EQ(segments.size(), 2u);
+  EXPECT_EQ(segments[0].name, "loop");
+  EXPECT_EQ(segments[0].end_s, 1890.0);
+  EXPECT_EQ(segments[1].name, "canal");
+  EXPECT_EQ(segments[1].begin_s, 1890.0);
+  EXPECT_EQ(segments[1].end_s, 3400.5);
+  const auto bad = [&](const std::string& rows, const std::vector<std::string>& words) {
+    write_text(path, "name,begin_s,end_s\n" + rows);
+    const DatasetFiles files = find_dataset_files(dir.path().string());
+    expect_input_error([&] { load_truth_segments(files); }, words);
+  };
+  bad("loop,0,10\nloop,10,20\n", {path + ":3", "twice"});
+  bad("loop,10,5\n", {path + ":2", "ends before it begins"});
+  bad("loop,0,nan\n", {path + ":2", "end_s"});
+  bad("loop,0\n", {path + ":2"});
+  bad(",0,10\n", {path + ":2", "empty segment name"});
+  write_text(path, "name,start,end\n");
+  expect_input_error([&] { load_truth_segments(find_dataset_files(dir.path().string())); },
+                     {path + ":1", "wrong header"});
+}
+
 TEST(LoadCalibration, DefaultsWithoutFileElseTheFile) {
   const TempDir dir;
   DatasetFiles files = find_dataset_files(dir.path().string());

@@ -62,16 +62,21 @@ struct SlamRun {
   SlamTotals totals;
 };
 
+/// The dataset's revolutions as motion-compensated scans placed by dead reckoning.
+std::vector<PlacedScan> dead_reckoning_scans(const SonarInput& sonar, const RunInputs& in) {
+  ScanConfig builder;
+  builder.beams_per_scan = sonar.beams_per_revolution;
+  builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
+  return build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
+                     {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
+}
+
 /// Trajectory SLAM (robocentric or world-centric) over the dataset's scans, and the corrected
 /// trajectory.
 SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, const RunInputs& in,
                             const std::vector<StampedPose>& dead_reckoning) {
-  ScanConfig builder;
-  builder.beams_per_scan = sonar.beams_per_revolution;
-  builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
   SlamRun run;
-  run.scans = build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
-                          {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
+  run.scans = dead_reckoning_scans(sonar, in);
   std::unique_ptr<TrajectorySlam> slam;
   if (method == "robocentric") {
     slam = std::make_unique<RoboCentricSlam>(in.config.trajectory_slam, in.start.pose);
@@ -127,6 +132,15 @@ RunOutcome run(const RunOptions& options) {
   const std::vector<StampedPose>& trajectory = slam ? slam->trajectory : dr.trajectory;
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
+  // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
+  std::vector<PlacedScan> dr_scans;
+  if (options.method == "deadreckoning" && (in.files.is_log || in.files.detections)) {
+    dr_scans =
+        dead_reckoning_scans(load_sonar_readings(in.files, calibration, config.segmentation), in);
+  }
+  const std::vector<PlacedScan>* scans = slam ? &slam->scans : &dr_scans;
+  const bool has_scans = slam || !dr_scans.empty();
   if (trajectory.size() < 2) {
     io::fail_file(options.dataset_dir, "no navigation data after the start time");
   }
@@ -138,11 +152,13 @@ RunOutcome run(const RunOptions& options) {
     outcome.metrics = score_trajectory(truth, trajectory, config.segments, options.dataset_dir);
     outcome.metrics->method = options.method;
     outcome.metrics->runtime_s = runtime_s;
-    if (slam) {
-      outcome.metrics->scans = static_cast<int>(slam->scans.size());
-      outcome.metrics->matches_accepted = slam->totals.accepted;
-      nees = scan_nees(scan_poses(slam->scans), truth);
+    if (has_scans) {
+      outcome.metrics->scans = static_cast<int>(scans->size());
+      nees = scan_nees(scan_poses(*scans), truth);
       outcome.metrics->anees = average_nees(nees);
+    }
+    if (slam) {
+      outcome.metrics->matches_accepted = slam->totals.accepted;
       outcome.metrics->diagnostics = {{"scan_candidates", slam->totals.candidates},
                                       {"scan_matches_valid", slam->totals.matched},
                                       {"scans_skipped", slam->totals.skipped},
@@ -162,9 +178,9 @@ RunOutcome run(const RunOptions& options) {
   prepare_out_dir(options.out_dir, outcome.metrics.has_value());
   const fs::path out(options.out_dir);
   io::write_trajectory_tum((out / "trajectory.tum").string(), trajectory, truth.depth_m);
-  if (slam) {
-    io::write_scans_csv((out / "scans.csv").string(), slam->scans);
-    io::write_points_ply((out / "map.ply").string(), world_points(slam->scans));
+  if (has_scans) {
+    io::write_scans_csv((out / "scans.csv").string(), *scans);
+    io::write_points_ply((out / "map.ply").string(), world_points(*scans));
   }
   if (outcome.metrics) {
     write_scores(options.out_dir, *outcome.metrics, nees,

@@ -132,6 +132,40 @@ void write_summary_json(const std::string& path, const std::vector<MethodSummary
   });
 }
 
+std::vector<MethodSummary> read_summary_json(const std::string& path) {
+  const JsonValue root = read_json_file(path);
+  const JsonObject json(root, path);
+  std::vector<MethodSummary> methods;
+  for (const auto& [name, value] : root.members) {
+    const JsonObject m = json.object(name);
+    MethodSummary s;
+    s.method = name;
+    s.runs = int_of(m, "runs", 0);
+    s.failed = int_of(m, "failed", 0);
+    for (const JsonValue& run : m.get("failed_runs", JsonValue::Type::array).items) {
+      if (run.type != JsonValue::Type::number || run.number != std::floor(run.number) ||
+          run.number < 0) {
+        m.fail("failed_runs", "expected run indices");
+      }
+      s.failed_runs.push_back(static_cast<int>(run.number));
+    }
+    s.missing = int_of(m, "missing", 0);
+    s.mean_error_m = m.number_or_null("mean_error_m");
+    s.final_error_m = m.number_or_null("final_error_m");
+    s.anees = m.number_or_null("anees");
+    s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
+    s.nees.resize(static_cast<std::size_t>(int_of(m, "nees_scans", 0)));
+    const JsonObject segments = m.object("segments");
+    for (const auto& [segment, window] : segments.value().members) {
+      s.segments.emplace_back(segment, segments.number_or_null(segment));
+    }
+    s.runtime_s = m.number("runtime_s");
+    methods.push_back(std::move(s));
+  }
+  if (methods.empty()) fail_file(path, "no method in it");
+  return methods;
+}
+
 void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods) {
   write_file_atomically(path, [&](std::ostream& out) {
     std::string text = "method,scan,runs,mean_nees,lower,upper\n";

@@ -42,6 +42,10 @@ void write_failure_json(const std::string& path, const RunFailure& failure);
 /// summary.json: one object per method, in the order given, atomically.
 void write_summary_json(const std::string& path, const std::vector<MethodSummary>& methods);
 
+/// summary.json read back, methods in file order. The per-scan NEES (`nees`) is not in the file
+/// (it is in nees.csv); each summary gets `nees_scans` default steps so nees.size() round-trips.
+std::vector<MethodSummary> read_summary_json(const std::string& path);
+
 /// nees.csv of a Monte Carlo directory: "method,scan,runs,mean_nees,lower,upper", atomically.
 void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods);
 

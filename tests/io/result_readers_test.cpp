@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "io/input_error.hpp"
+#include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
 #include "test_support.hpp"
 
@@ -134,6 +135,50 @@ TEST(ResultReaders, NeesCsv) {
                "nees.csv:3: field 2 (scan) '1' does not increase");
   write_text(path, "method,scan,nees\n");
   expect_error([&] { read_montecarlo_nees(path); }, "nees.csv:1: wrong header");
+}
+
+TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
+  const TempDir tmp;
+  MethodSummary rc;
+  rc.method = "robocentric";
+  rc.runs = 48;
+  rc.failed = 2;
+  rc.failed_runs = {7, 31};
+  rc.mean_error_m = 2.574;
+  rc.final_error_m = 3.5;
+  rc.anees = 18.68;
+  rc.nees_in_bounds_fraction = 0.072;
+  rc.nees.resize(240);
+  rc.segments = {{"loop", 1.2}, {"canal", std::nullopt}};
+  rc.runtime_s = 212.5;
+  MethodSummary dr;
+  dr.method = "deadreckoning";
+  dr.runs = 50;
+  const std::string path = tmp.file("summary.json");
+  write_summary_json(path, {rc, dr});
+  const std::vector<MethodSummary> back = read_summary_json(path);
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(back[0].method, "robocentric");
+  EXPECT_EQ(back[0].runs, 48);
+  EXPECT_EQ(back[0].failed, 2);
+  EXPECT_EQ(back[0].failed_runs, (std::vector<int>{7, 31}));
+  EXPECT_EQ(back[0].mean_error_m, 2.574);
+  EXPECT_EQ(back[0].final_error_m, 3.5);
+  EXPECT_EQ(back[0].anees, 18.68);
+  EXPECT_EQ(back[0].nees_in_bounds_fraction, 0.072);
+  EXPECT_EQ(back[0].nees.size(), 240u);
+  ASSERT_EQ(back[0].segments.size(), 2u);
+  EXPECT_EQ(back[0].segments[0], (std::pair<std::string, std::optional<double>>{"loop", 1.2}));
+  EXPECT_FALSE(back[0].segments[1].second);
+  EXPECT_EQ(back[0].runtime_s, 212.5);
+  EXPECT_EQ(back[1].method, "deadreckoning");
+  EXPECT_FALSE(back[1].anees);
+  EXPECT_FALSE(back[1].mean_error_m);
+
+  write_text(path, "{}\n");
+  expect_error([&] { read_summary_json(path); }, "summary.json: no method");
+  write_text(path, "{\"rc\": {\"runs\": 1.5}}\n");
+  expect_error([&] { read_summary_json(path); }, "key 'rc.runs'");
 }
 
 }  // namespace

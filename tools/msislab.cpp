@@ -11,6 +11,7 @@
 #include "app/image_command.hpp"
 #include "app/montecarlo_command.hpp"
 #include "app/plot_command.hpp"
+#include "app/report_command.hpp"
 #include "app/run_command.hpp"
 #include "app/scans_command.hpp"
 #include "app/segment_command.hpp"
@@ -58,6 +59,22 @@ void add_eval_command(CLI::App& app, msislab::app::EvalOptions& options) {
                    "TUM truth file (default: the truth of the dataset recorded in metrics.json)");
   eval->add_option("--config,-c", options.config_path,
                    "SLAM config YAML whose segments replace the recorded segment windows");
+}
+
+void add_report_command(CLI::App& app, msislab::app::ReportOptions& options) {
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "Write the results page (Table I on simulated and real data, the Monte Carlo consistency "
+      "table, the figures) from folders that run, plot and montecarlo filled");
+  report
+      ->add_option("OUT_MD", options.out_path,
+                   "The Markdown page; its figures are copied into <stem>/ beside it")
+      ->required();
+  report->add_option("--sim", options.sim_dir,
+                     "Folder of result directories on a simulated dataset, plotted");
+  report->add_option("--real", options.real_dir,
+                     "Folder of result directories on the real dataset, plotted");
+  report->add_option("--montecarlo", options.montecarlo_dir, "Monte Carlo directory, plotted");
 }
 
 void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,
@@ -240,6 +257,8 @@ int main(int argc, char** argv) {
   add_segment_command(app, segment_options);
   msislab::app::PlotOptions plot_options;
   add_plot_command(app, plot_options);
+  msislab::app::ReportOptions report_options;
+  add_report_command(app, report_options);
 
   try {
     app.parse(argc, argv);
@@ -289,6 +308,11 @@ int main(int argc, char** argv) {
                   << ", metrics.json";
       }
       std::cout << std::endl;
+    }
+    if (app.got_subcommand("report")) {
+      const msislab::app::ReportOutcome outcome = msislab::app::write_report(report_options);
+      std::cout << "wrote " << report_options.out_path << " and " << outcome.figures.size()
+                << " figures beside it" << std::endl;
     }
     if (app.got_subcommand("eval")) {
       const msislab::app::EvalOutcome outcome = msislab::app::evaluate(eval_options);

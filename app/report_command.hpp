@@ -1,0 +1,66 @@
+// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR]`: the results page
+// (docs/results.md, written by tools/results.sh) from result folders that `msislab run` and
+// `msislab plot` filled and a Monte Carlo directory: the paper's Table I on simulated and real
+// data, the Monte Carlo consistency table and the figures, copied beside the page (docs/cli.md).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/montecarlo_files.hpp"
+#include "io/results.hpp"
+#include "slam/evaluation.hpp"
+#include "slam/monte_carlo.hpp"
+
+namespace msislab::app {
+
+struct ReportOptions {
+  std::string out_path;        ///< the Markdown page; its figures go to <stem>/ beside it
+  std::string sim_dir;         ///< a folder of results on a simulated dataset (may be empty)
+  std::string real_dir;        ///< a folder of results on the real dataset (may be empty)
+  std::string montecarlo_dir;  ///< a Monte Carlo directory (may be empty)
+};
+
+/// One folder of results: each method's metrics and the figures `msislab plot` drew.
+struct ResultFolder {
+  std::string label;                 ///< "sim" or "real": prefix of its copied figures
+  std::string dir;                   ///< as given
+  std::string dataset;               ///< the dataset the results were run on (metrics.json)
+  std::vector<RunMetrics> results;   ///< in the order robocentric, worldcentric, deadreckoning,
+                                     ///< integration, then any other by name
+  std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted
+};
+
+struct MonteCarloFolder {
+  std::string dir;
+  io::MonteCarloManifest manifest;
+  std::vector<MethodSummary> methods;
+  std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted
+};
+
+struct ResultsReport {
+  std::optional<ResultFolder> sim;
+  std::optional<ResultFolder> real;
+  std::optional<MonteCarloFolder> montecarlo;
+  std::string figures_dir_name;  ///< where the page links its figures, relative to it
+};
+
+/// Reads a result folder: every subdirectory with a metrics.json, and DIR/figures/*.png (which
+/// must exist: `msislab plot DIR` draws them). Throws io::InputError.
+ResultFolder read_result_folder(const std::string& dir, const std::string& label);
+/// Reads summary.json, montecarlo.json and DIR/figures/*.png. Throws io::InputError.
+MonteCarloFolder read_montecarlo_folder(const std::string& dir);
+
+/// The page, Markdown (figures linked as <figures_dir_name>/<label>_<file>).
+std::string results_markdown(const ResultsReport& report);
+
+struct ReportOutcome {
+  std::vector<std::string> figures;  ///< paths of the copied figures
+};
+
+/// Reads every input first, then copies the figures into <stem>/ beside the page (replacing the
+/// folder whole) and writes the page atomically. Throws io::InputError (nothing written then).
+ReportOutcome write_report(const ReportOptions& options);
+
+}  // namespace msislab::app

@@ -1,0 +1,222 @@
+// `msislab report`: the results page from result folders and a Monte Carlo directory written by
+// the io writers. The tables list the methods in a fixed order with the segment columns the results
+// name, ANEES only where there is pose truth, the Monte Carlo bounds for its number of runs and the
+// robocentric/world-centric verdict; the figures are copied beside the page under their labels and
+// replace the earlier ones whole; bad input names the folder and leaves the page as it was.
+#include "app/report_command.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli_runner.hpp"
+#include "io/input_error.hpp"
+#include "io/montecarlo_files.hpp"
+#include "io/results.hpp"
+#include "test_support.hpp"
+
+namespace msislab::app {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::read_text;
+using testing::TempDir;
+using testing::write_text;
+
+RunMetrics metrics(const std::string& method, double mean_m, std::optional<double> anees,
+                   std::optional<double> canal_m) {
+  RunMetrics m;
+  m.method = method;
+  m.truth = anees ? "simulation" : "gps";
+  m.errors.mean_m = mean_m;
+  m.errors.final_m = 2.0 * mean_m;
+  m.errors.max_m = 3.0 * mean_m;
+  m.segments = {{"loop", 0.5 * mean_m}, {"canal", canal_m}};
+  m.anees = anees;
+  m.runtime_s = 1.25;
+  if (method != "deadreckoning") {
+    m.scans = 236;
+    m.matches_accepted = 697;
+  }
+  return m;
+}
+
+/// A folder of results: one subdirectory per method with metrics.json, and figures/.
+fs::path result_folder(const fs::path& dir, const std::vector<RunMetrics>& results,
+                       const std::vector<std::string>& figures) {
+  for (const RunMetrics& m : results) {
+    fs::create_directories(dir / m.method);
+    io::write_metrics_json((dir / m.method / "metrics.json").string(), m, "/data/stpere_replica");
+  }
+  fs::create_directories(dir / "figures");
+  for (const std::string& f : figures) write_text((dir / "figures" / f).string(), "png " + f);
+  return dir;
+}
+
+fs::path montecarlo_folder(const fs::path& dir, double rc_anees, double wc_anees,
+                           double rc_fraction = 0.5) {
+  fs::create_directories(dir / "figures");
+  io::MonteCarloManifest manifest;
+  manifest.scenario_source = "/src/scenarios/stpere_replica.yaml";
+  manifest.first_seed = 42;
+  manifest.runs = 50;
+  manifest.methods = {"robocentric", "worldcentric"};
+  io::write_manifest_json((dir / "montecarlo.json").string(), manifest);
+  std::vector<MethodSummary> methods(2);
+  for (int i = 0; i < 2; ++i) {
+    MethodSummary& s = methods[i];
+    s.method = i == 0 ? "robocentric" : "worldcentric";
+    s.runs = 50;
+    s.mean_error_m = 2.574;
+    s.anees = i == 0 ? rc_anees : wc_anees;
+    s.nees_in_bounds_fraction = i == 0 ? rc_fraction : 0.072;
+    s.nees.resize(236);
+    s.segments = {{"loop", 1.2}, {"canal", 4.47}};
+    s.runtime_s = 250.0;
+  }
+  io::write_summary_json((dir / "summary.json").string(), methods);
+  write_text((dir / "figures" / "nees.png").string(), "png nees");
+  return dir;
+}
+
+struct Inputs {
+  TempDir tmp;
+  fs::path sim, real, mc;
+  Inputs() {
+    sim = result_folder(
+        tmp.path() / "sim",
+        {metrics("deadreckoning", 6.28, 2.9, 9.22), metrics("worldcentric", 2.163, 13.98, 3.844),
+         metrics("robocentric", 2.163, 13.98, 3.844)},
+        {"robocentric.png", "errors.png", "deadreckoning.png", "extra.png"});
+    real = result_folder(tmp.path() / "real",
+                         {metrics("robocentric", 3.99, std::nullopt, std::nullopt),
+                          metrics("deadreckoning", 3.56, std::nullopt, 4.13)},
+                         {"errors.png"});
+    mc = montecarlo_folder(tmp.path() / "mc", 5.0, 18.68);
+  }
+  ReportOptions options() const {
+    return {tmp.file("docs/results.md"), sim.string(), real.string(), mc.string()};
+  }
+};
+
+std::size_t position(const std::string& text, const std::string& part) {
+  const std::size_t at = text.find(part);
+  EXPECT_NE(at, std::string::npos) << "no '" << part << "' in\n" << text;
+  return at;
+}
+
+TEST(ReportCommand, TablesFiguresAndVerdict) {
+  const Inputs in;
+  fs::create_directories(in.tmp.path() / "docs");
+  const ReportOutcome outcome = write_report(in.options());
+  const std::string page = read_text(in.tmp.file("docs/results.md"));
+  // Table I on simulated data: robocentric, world-centric, dead reckoning; the segments as
+  // columns, with ANEES.
+  EXPECT_NE(page.find("| method | mean error [m] | loop [m] | canal [m] | final [m] | max [m] | "
+                      "scans | matches accepted | ANEES | run time [s] |"),
+            std::string::npos)
+      << page;
+  const std::size_t rc = position(page,
+                                  "| robocentric SLAM | **2.16** | 1.08 | 3.84 | 4.33 | 6.49 | "
+                                  "236 | 697 | 13.98 | 1.25 |");
+  const std::size_t wc = position(page, "| world-centric SLAM | **2.16** |");
+  const std::size_t dr = position(page,
+                                  "| dead reckoning (EKF) | **6.28** | 3.14 | 9.22 | 12.56 | "
+                                  "18.84 |  |  | 2.90 | 1.25 |");
+  EXPECT_LT(rc, wc);
+  EXPECT_LT(wc, dr);
+  position(page, "2.16 against 2.16 m mean error (the same within 1 cm)");
+  position(page, "2.16 against 6.28 m mean error (-66 %); loop 1.08 against 3.14 m");
+  // Real data: no ANEES column, a null segment shown as n/a, the paper's figures.
+  position(page, "scans | matches accepted | run time [s] |\n");
+  position(page, "| robocentric SLAM | **3.99** | 2.00 | n/a |");
+  position(page, "robocentric 1.15 m, world-centric 2.05 m");
+  // Monte Carlo: 50 runs, seeds, bounds for 50 runs of 3 DOF, run time per run, the verdict.
+  position(page, "50 seeded runs of the scenario `stpere_replica.yaml` (seeds 42 to 91)");
+  position(page,
+           "| robocentric SLAM | 50 | 0 | 2.57 | 1.20 | 4.47 | 5.00 | 50.0 % of 236 | "
+           "[2.36, 3.72] | 5.00 |");
+  position(page, "the robocentric filter is the more consistent one here");
+  // Figures: the known ones in the (a)-(d) order, then the others; copied under their labels.
+  const std::size_t a = position(page, "(a) Dead reckoning against the simulation truth");
+  const std::size_t c = position(page, "(c) Robocentric SLAM");
+  const std::size_t d = position(page, "(d) Position error");
+  const std::size_t extra = position(page, "](results/sim_extra.png)");
+  EXPECT_TRUE(a < c && c < d && d < extra);
+  position(page, "](results/real_errors.png)");
+  position(page, "](results/montecarlo_nees.png)");
+  EXPECT_EQ(outcome.figures.size(), 6u);
+  EXPECT_EQ(read_text(in.tmp.file("docs/results/sim_robocentric.png")), "png robocentric.png");
+  EXPECT_EQ(read_text(in.tmp.file("docs/results/montecarlo_nees.png")), "png nees");
+}
+
+TEST(ReportCommand, VerdictFollowsTheFigures) {
+  const Inputs in;
+  montecarlo_folder(in.mc, 18.68, 18.68, 0.072);
+  write_report(in.options());
+  EXPECT_NE(read_text(in.tmp.file("docs/results.md")).find("is equally consistent here"),
+            std::string::npos);
+  montecarlo_folder(in.mc, 40.0, 18.68);
+  write_report(in.options());
+  EXPECT_NE(read_text(in.tmp.file("docs/results.md")).find("is neither clearly more nor less"),
+            std::string::npos);
+}
+
+TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
+  const Inputs in;
+  fs::create_directories(in.tmp.path() / "docs" / "results");
+  write_text(in.tmp.file("docs/results/sim_stale.png"), "old");
+  ReportOptions only_real = in.options();
+  only_real.sim_dir.clear();
+  only_real.montecarlo_dir.clear();
+  write_report(only_real);
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results" / "sim_stale.png"));
+  EXPECT_TRUE(fs::exists(in.tmp.path() / "docs" / "results" / "real_errors.png"));
+  const std::string page = read_text(in.tmp.file("docs/results.md"));
+  position(page, "## Table I on the simulated St. Pere replica\n\nNot run");
+  position(page, "## Monte Carlo consistency\n\nNot run.");
+}
+
+TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
+  const Inputs in;
+  fs::create_directories(in.tmp.path() / "docs");
+  const std::string page = write_text(in.tmp.file("docs/results.md"), "the earlier page\n");
+  const auto expect_error = [&](const ReportOptions& options, const std::string& part) {
+    try {
+      write_report(options);
+      ADD_FAILURE() << "no InputError, expected " << part;
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(read_text(page), "the earlier page\n");
+    EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results"));
+  };
+  ReportOptions options = in.options();
+  fs::remove_all(in.real / "figures");
+  expect_error(options, (in.real / "figures").string() + ": no figures (draw them first");
+  options.real_dir = in.tmp.file("nowhere");
+  expect_error(options, in.tmp.file("nowhere") + ": not a directory");
+  options = in.options();
+  options.real_dir.clear();
+  fs::remove(in.mc / "summary.json");
+  expect_error(options, "summary.json: missing");
+  write_text((in.sim / "robocentric" / "metrics.json").string(), "{\"method\": 3}\n");
+  options.montecarlo_dir.clear();
+  expect_error(options, "metrics.json");
+  expect_error(ReportOptions{page, "", "", ""}, "nothing to report");
+}
+
+TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {
+  const TempDir tmp;
+  const testing::CliResult result =
+      testing::run_msislab("report " + testing::shell_quote(tmp.file("r.md")) + " --sim " +
+                               testing::shell_quote(tmp.file("missing")),
+                           tmp);
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_EQ(result.err, "msislab: " + tmp.file("missing") + ": not a directory\n");
+  EXPECT_FALSE(fs::exists(tmp.file("r.md")));
+}
+
+}  // namespace
+}  // namespace msislab::app

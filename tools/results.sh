@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Regenerates docs/results.md and its figures (docs/results/) in one command:
+#  1. tools/main.sh: builds, simulates the St. Pere replica, runs every method on it and on the
+#     real St. Pere dataset (when present), scores and plots them;
+#  2. the Monte Carlo consistency test: N seeded runs (default 50) of scenarios/stpere_replica.yaml
+#     with robocentric and world-centric SLAM and dead reckoning (resumable: an interrupted sweep
+#     keeps its finished runs when this is run again), and its NEES figure;
+#  3. msislab report: writes the page from those folders and copies the figures beside it.
+# Usage: tools/results.sh [--runs N] [--jobs J]     (about 10 minutes on 2 cores with 50 runs)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+runs=50
+jobs=$(nproc)
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs="$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "tools/results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+tools/main.sh
+msislab=build/release/tools/msislab
+
+mc="out/montecarlo/stpere_replica_${runs}runs"
+echo "== Monte Carlo: $runs runs of scenarios/stpere_replica.yaml into $mc"
+"$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
+  --methods robocentric,worldcentric,deadreckoning --out "$mc"
+"$msislab" plot "$mc"
+
+report=(--sim out/sim --montecarlo "$mc")
+stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
+if [ -f "$stpere/_040825_1735_DVL.log" ]; then report+=(--real out/stpere); fi
+"$msislab" report docs/results.md "${report[@]}"
+echo "docs/results.md and docs/results/ are up to date; review and commit them."

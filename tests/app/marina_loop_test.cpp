@@ -59,7 +59,7 @@ void expect_consistent(const MethodSummary& robocentric) {
   EXPECT_LT(robocentric.anees.value_or(INFINITY), 4.5);
 }
 
-// One test, so that ctest runs the Monte Carlo once (about 7 s on 2 cores).
+// One test, so that ctest runs the Monte Carlo once (7-10 s alone on 2 cores, 14 s in the suite).
 TEST(MarinaLoop, SlamBeatsDeadReckoningAndRobocentricNeesStaysInBounds) {
   const testing::TempDir tmp;
   MonteCarloOptions options;

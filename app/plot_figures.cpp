@@ -122,6 +122,12 @@ void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
   chart.series.push_back(std::move(upper));
 }
 
+/// The line of a method in the charts that compare methods: world-centric dashed, so that where it
+/// coincides with the robocentric line (the same estimate, docs/trajectory_slam.md) both show.
+plot::SeriesStyle comparison_style(const std::string& method) {
+  return method == "worldcentric" ? plot::SeriesStyle::kDashedLine : plot::SeriesStyle::kLine;
+}
+
 }  // namespace
 
 std::string method_title(const std::string& method) {
@@ -207,7 +213,7 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
         method_title(r->method) + " (mean " + fixed(mean_error_m(r->errors), 2) + " m)",
         {},
         {},
-        plot::SeriesStyle::kLine,
+        comparison_style(r->method),
         method_colour(r->method),
         2.5f};
     for (const ErrorSample& e : r->errors) {
@@ -263,7 +269,7 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
     plot::Series mean{method_title(method) + " (" + in_bounds_percent(method_rows) + " in bounds)",
                       {},
                       {},
-                      plot::SeriesStyle::kLine,
+                      comparison_style(method),
                       method_colour(method),
                       2.5f};
     for (const io::NeesRow& r : method_rows) {

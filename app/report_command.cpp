@@ -193,14 +193,15 @@ void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
      << m.first_seed + static_cast<std::uint64_t>(m.runs) - 1
      << "), each simulated and run by every method; `" << mc.dir << "`.\n\n";
   const std::vector<std::string> segments = segment_names(
-      mc.methods, [](const MethodSummary& s) -> const auto& { return s.segments; });
+      mc.methods, [](const io::StoredSummary& s) -> const auto& { return s.summary.segments; });
   md << "| method | runs | failed | mean error [m] |";
   for (const std::string& s : segments) md << " " << s << " [m] |";
   md << " ANEES | scan steps with NEES in the 95% bounds | bounds | run time per run [s] |\n"
      << "| --- | ---: | ---: | ---: |";
   for (std::size_t i = 0; i < segments.size(); ++i) md << " ---: |";
   md << " ---: | ---: | --- | ---: |\n";
-  for (const MethodSummary& s : mc.methods) {
+  for (const io::StoredSummary& stored : mc.methods) {
+    const MethodSummary& s = stored.summary;
     md << "| " << display_name(s.method) << " | " << s.runs << " | " << s.failed << " | "
        << fixed(s.mean_error_m, 2) << " |";
     for (const std::string& name : segments) {
@@ -212,7 +213,7 @@ void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
       bounds = "[" + fixed(lower, 2) + ", " + fixed(upper, 2) + "]";
     }
     md << " " << fixed(s.anees, 2) << " | " << percent(s.nees_in_bounds_fraction) << " of "
-       << s.nees.size() << " | " << bounds << " | "
+       << stored.nees_scans << " | " << bounds << " | "
        << fixed(s.runs > 0 ? s.runtime_s / s.runs : NAN, 2) << " |\n";
   }
   md << "\nThe NEES of the 3-DOF scan pose is averaged over the runs at each scan step; N runs "
@@ -221,7 +222,8 @@ void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
         "it over the steps too.\n";
   const MethodSummary* rc = nullptr;
   const MethodSummary* wc = nullptr;
-  for (const MethodSummary& s : mc.methods) {
+  for (const io::StoredSummary& stored : mc.methods) {
+    const MethodSummary& s = stored.summary;
     if (s.method == "robocentric") rc = &s;
     if (s.method == "worldcentric") wc = &s;
   }

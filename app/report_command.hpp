@@ -35,7 +35,7 @@ struct ResultFolder {
 struct MonteCarloFolder {
   std::string dir;
   io::MonteCarloManifest manifest;
-  std::vector<MethodSummary> methods;
+  std::vector<io::StoredSummary> methods;
   std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted
 };
 

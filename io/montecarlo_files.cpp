@@ -132,13 +132,14 @@ void write_summary_json(const std::string& path, const std::vector<MethodSummary
   });
 }
 
-std::vector<MethodSummary> read_summary_json(const std::string& path) {
+std::vector<StoredSummary> read_summary_json(const std::string& path) {
   const JsonValue root = read_json_file(path);
   const JsonObject json(root, path);
-  std::vector<MethodSummary> methods;
+  std::vector<StoredSummary> methods;
   for (const auto& [name, value] : root.members) {
     const JsonObject m = json.object(name);
-    MethodSummary s;
+    StoredSummary stored;
+    MethodSummary& s = stored.summary;
     s.method = name;
     s.runs = int_of(m, "runs", 0);
     s.failed = int_of(m, "failed", 0);
@@ -154,13 +155,13 @@ std::vector<MethodSummary> read_summary_json(const std::string& path) {
     s.final_error_m = m.number_or_null("final_error_m");
     s.anees = m.number_or_null("anees");
     s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
-    s.nees.resize(static_cast<std::size_t>(int_of(m, "nees_scans", 0)));
+    stored.nees_scans = static_cast<std::size_t>(int_of(m, "nees_scans", 0));
     const JsonObject segments = m.object("segments");
     for (const auto& [segment, window] : segments.value().members) {
       s.segments.emplace_back(segment, segments.number_or_null(segment));
     }
     s.runtime_s = m.number("runtime_s");
-    methods.push_back(std::move(s));
+    methods.push_back(std::move(stored));
   }
   if (methods.empty()) fail_file(path, "no method in it");
   return methods;

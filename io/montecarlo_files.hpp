@@ -42,9 +42,13 @@ void write_failure_json(const std::string& path, const RunFailure& failure);
 /// summary.json: one object per method, in the order given, atomically.
 void write_summary_json(const std::string& path, const std::vector<MethodSummary>& methods);
 
-/// summary.json read back, methods in file order. The per-scan NEES (`nees`) is not in the file
-/// (it is in nees.csv); each summary gets `nees_scans` default steps so nees.size() round-trips.
-std::vector<MethodSummary> read_summary_json(const std::string& path);
+/// summary.json read back, methods in file order. The per-scan NEES is not in the file (it is in
+/// nees.csv), so `summary.nees` stays empty and `nees_scans` gives its length.
+struct StoredSummary {
+  MethodSummary summary;
+  std::size_t nees_scans = 0;
+};
+std::vector<StoredSummary> read_summary_json(const std::string& path);
 
 /// nees.csv of a Monte Carlo directory: "method,scan,runs,mean_nees,lower,upper", atomically.
 void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods);

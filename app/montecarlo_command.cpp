@@ -208,4 +208,14 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
   return outcome;
 }
 
+std::string draw_montecarlo_figures(const std::string& dir, const std::string& executable) {
+  const std::string exe = executable.empty() ? self_executable() : executable;
+  const std::string stderr_path = (fs::path(dir) / ".plot_stderr.txt").string();
+  const ProcessResult result = run_process({exe, "plot", dir}, stderr_path);
+  const std::string failure = result.ok() ? "" : describe_failure(result, stderr_path);
+  std::error_code ec;
+  fs::remove(stderr_path, ec);
+  return failure;
+}
+
 }  // namespace msislab::app

@@ -47,6 +47,12 @@ struct MergeOptions {
   std::vector<std::string> shard_dirs;
 };
 
+/// Draws the figures of a finished Monte Carlo directory (DIR/figures/nees.png) by running
+/// `msislab plot DIR` as a child process of `executable` (empty: this process's), which finds or
+/// starts an X display itself. Returns an empty string, or why no figure was drawn (the last line
+/// the plot command wrote to stderr). A missing figure does not undo the statistics.
+std::string draw_montecarlo_figures(const std::string& dir, const std::string& executable = "");
+
 /// Copies the finished and failed runs of the shard directories (made by montecarlo with the same
 /// scenario, config, runs and methods) into out_dir and writes its summary over every run.
 MonteCarloOutcome merge_montecarlo(const MergeOptions& options);

@@ -78,11 +78,11 @@ void add_report_command(CLI::App& app, msislab::app::ReportOptions& options) {
 }
 
 void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,
-                            msislab::app::MergeOptions& merge) {
+                            msislab::app::MergeOptions& merge, bool& no_plot) {
   CLI::App* mc = app.add_subcommand(
       "montecarlo",
       "N seeded simulate + run repetitions per method, as child processes; resumable and "
-      "shardable; writes per-run results, summary.json and nees.csv");
+      "shardable; writes per-run results, summary.json, nees.csv and figures/nees.png");
   mc->add_option("SCENARIO", options.scenario_path, "Scenario YAML (required unless merge)");
   mc->add_option("--runs,-n", options.runs, "Number of runs N (required); run r uses seed + r");
   mc->add_option("--out,-o", options.out_dir,
@@ -97,11 +97,26 @@ void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& opti
   mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
   mc->add_option("--shard", options.shard,
                  "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");
+  mc->add_flag("--no-plot", no_plot,
+               "Do not draw figures/nees.png at the end (shards never draw; see msislab plot)");
   mc->require_subcommand(0, 1);
   CLI::App* m = mc->add_subcommand(
       "merge", "Merge shard directories into OUT_DIR and write its summary over every run");
   m->add_option("OUT_DIR", merge.out_dir, "Monte Carlo directory to write")->required();
   m->add_option("SHARD_DIR", merge.shard_dirs, "Shard directories made with --shard")->required();
+  m->add_flag("--no-plot", no_plot, "Do not draw figures/nees.png at the end");
+}
+
+/// The Monte Carlo figures, drawn by `msislab plot DIR` in a child process; a failure to draw is
+/// reported on stderr and leaves the statistics (and the exit status) alone.
+void draw_montecarlo_figures(const std::string& dir) {
+  const std::string failure = msislab::app::draw_montecarlo_figures(dir);
+  if (failure.empty()) {
+    std::cout << "montecarlo: wrote " << dir << "/figures/nees.png" << std::endl;
+  } else {
+    std::cerr << "montecarlo: figures not drawn (" << failure << "); draw them with `msislab plot "
+              << dir << "`" << std::endl;
+  }
 }
 
 void check_montecarlo_options(const msislab::app::MonteCarloOptions& options,
@@ -248,7 +263,8 @@ int main(int argc, char** argv) {
   add_simulate_command(app, simulate_options);
   msislab::app::MonteCarloOptions montecarlo_options;
   msislab::app::MergeOptions merge_options;
-  add_montecarlo_command(app, montecarlo_options, merge_options);
+  bool montecarlo_no_plot = false;
+  add_montecarlo_command(app, montecarlo_options, merge_options, montecarlo_no_plot);
   msislab::app::ImageOptions image_options;
   add_image_command(app, image_options);
   msislab::app::ScansOptions scans_options;
@@ -330,11 +346,15 @@ int main(int argc, char** argv) {
       if (montecarlo->got_subcommand("merge")) {
         print_montecarlo(msislab::app::merge_montecarlo(merge_options), merge_options.out_dir,
                          true);
+        if (!montecarlo_no_plot) draw_montecarlo_figures(merge_options.out_dir);
       } else {
         check_montecarlo_options(montecarlo_options, *montecarlo);
         print_montecarlo(
             msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1}),
             montecarlo_options.out_dir, false);
+        if (!montecarlo_no_plot && montecarlo_options.shard.empty()) {
+          draw_montecarlo_figures(montecarlo_options.out_dir);
+        }
       }
     }
   } catch (const msislab::io::InputError& e) {

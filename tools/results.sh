@@ -27,8 +27,7 @@ msislab=build/release/tools/msislab
 mc="out/montecarlo/stpere_replica_${runs}runs"
 echo "== Monte Carlo: $runs runs of scenarios/stpere_replica.yaml into $mc"
 "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
-  --methods robocentric,worldcentric,deadreckoning --out "$mc"
-"$msislab" plot "$mc"
+  --methods robocentric,worldcentric,deadreckoning --out "$mc"   # it draws its nees.png
 
 report=(--sim out/sim --montecarlo "$mc")
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"

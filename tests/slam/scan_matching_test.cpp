@@ -119,6 +119,8 @@ CovariancePair corridor_or_room_covariances(bool corridor_scene, std::mt19937& r
   guess.mean = q_true;
   guess.cov = Eigen::Vector3d(0.3 * 0.3, 0.3 * 0.3, 0.03 * 0.03).asDiagonal();
   ScanMatchConfig config;
+  config.point_to_line_covariance = false;
+  config.point_to_line_estimate = false;
   CovariancePair out;
   const ScanMatchResult p2p = match_scans(reference, current, guess, config);
   config.point_to_line_covariance = true;

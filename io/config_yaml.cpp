@@ -125,6 +125,13 @@ void read_matching(YamlMap map, ScanMatchConfig& c) {
   read_count(map, "min_inliers", c.min_inliers, 3, 100000);
   map.boolean("scale_covariance_by_residual", c.scale_covariance_by_residual);
   map.boolean("shared_point_errors", c.shared_point_errors);
+  map.boolean("point_to_line_covariance", c.point_to_line_covariance);
+  map.boolean("point_to_line_estimate", c.point_to_line_estimate);
+  map.number("line_radius_m", c.line.radius_m);
+  require_positive(map, "line_radius_m", c.line.radius_m);
+  read_count(map, "line_min_points", c.line.min_points, 3, 100000);
+  map.number("line_max_eigen_ratio", c.line.max_eigen_ratio);
+  require_positive(map, "line_max_eigen_ratio", c.line.max_eigen_ratio);
   map.finish();
 }
 

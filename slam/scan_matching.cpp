@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "slam/line_normals.hpp"
+
 namespace msislab {
 
 namespace {
@@ -43,38 +45,66 @@ struct NormalEquations {
   Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   double chi2 = 0.0;
+  int residuals = 0;  ///< scalar residuals: 2 per point-to-point pair, 1 per point-to-line pair
 };
 
-/// M-step system at q: e_j = q (+) p_j - a_i, W_j = A_i + J_p C_j J_p^T, H = sum J^T W^-1 J,
-/// b = sum J^T W^-1 e.
+/// The reference side of the residuals: each point's sampling covariance and, where its
+/// neighbours form a line, its unit normal (zero otherwise).
+struct ReferenceGeometry {
+  std::vector<Eigen::Matrix2d> sampling;
+  std::vector<Eigen::Vector2d> normals;
+};
+
+/// One pair's residual e = q (+) p_j - a_i with its Jacobians and its weight Omega: W^-1 for a
+/// point-to-point residual, n n^T / (n^T W n) for a point-to-line one (the scalar residual
+/// n^T e of variance n^T W n), W = A_i + S_i + J_p C_j J_p^T.
+struct PairResidual {
+  Eigen::Vector2d e;
+  Matrix23d J_q;
+  Eigen::Matrix2d J_p;
+  Eigen::Matrix2d Omega;
+  bool line = false;
+};
+
+PairResidual pair_residual(const ScanPoint& reference, const ScanPoint& current,
+                           const Eigen::Matrix2d& sampling, const Eigen::Vector2d& normal,
+                           const Pose2& q) {
+  PairResidual r;
+  r.e = q.transform(current.p_m, &r.J_q, &r.J_p) - reference.p_m;
+  const Eigen::Matrix2d W = reference.cov + sampling + r.J_p * current.cov * r.J_p.transpose();
+  r.line = normal.squaredNorm() > 0.0;
+  r.Omega = r.line ? Eigen::Matrix2d(normal * normal.transpose() / normal.dot(W * normal))
+                   : Eigen::Matrix2d(W.inverse());
+  return r;
+}
+
+/// M-step system at q: H = sum J_q^T Omega J_q, b = sum J_q^T Omega e.
 NormalEquations normal_equations(const std::vector<ScanPoint>& reference,
-                                 const std::vector<Eigen::Matrix2d>& sampling,
+                                 const ReferenceGeometry& geometry,
                                  const std::vector<ScanPoint>& current, const Pose2& q,
                                  const std::vector<Association>& pairs) {
   NormalEquations eq;
   for (const Association& a : pairs) {
-    Matrix23d J_q;
-    Eigen::Matrix2d J_p;
-    const Eigen::Vector2d e =
-        q.transform(current[a.current].p_m, &J_q, &J_p) - reference[a.reference].p_m;
-    const Eigen::Matrix2d W_inv = (reference[a.reference].cov + sampling[a.reference] +
-                                   J_p * current[a.current].cov * J_p.transpose())
-                                      .inverse();
-    eq.H += J_q.transpose() * W_inv * J_q;
-    eq.b += J_q.transpose() * W_inv * e;
-    eq.chi2 += e.dot(W_inv * e);
+    const PairResidual r =
+        pair_residual(reference[a.reference], current[a.current], geometry.sampling[a.reference],
+                      geometry.normals[a.reference], q);
+    eq.H += r.J_q.transpose() * r.Omega * r.J_q;
+    eq.b += r.J_q.transpose() * r.Omega * r.e;
+    eq.chi2 += r.e.dot(r.Omega * r.e);
+    eq.residuals += r.line ? 1 : 2;
   }
   return eq;
 }
 
 /// The covariance of the estimate as a function of every point's error (first order, at the
-/// solution): dq = -H^-1 sum_j G_j de_j with G_j = J_q^T W_j^-1, de_j = J_p dp_j - da_i + ds_j, so
-/// cov(q) = H^-1 A H^-1 with A summing, over the joint covariance of all de_j,
+/// solution): dq = -H^-1 sum_j G_j de_j with G_j = J_q^T Omega_j, de_j = J_p dp_j - da_i + ds_j,
+/// so cov(q) = H^-1 A H^-1 with A summing, over the joint covariance of all de_j,
 ///   the current points' reading noise (own to each), the sampling error (own to each pair),
 ///   each reference point's reading noise times (sum of the G_j associated with it) on both sides,
 ///   and each half-scan's shared motion error (distortion * xi_side) summed over its points.
+/// A point-to-line pair's Omega = n n^T / w keeps only the error along the normal.
 Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
-                                        const std::vector<Eigen::Matrix2d>& sampling,
+                                        const ReferenceGeometry& geometry,
                                         const std::vector<ScanPoint>& current, const Pose2& q,
                                         const std::vector<Association>& pairs,
                                         const Eigen::Matrix3d& H_inverse) {
@@ -85,15 +115,12 @@ Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
   for (const Association& a : pairs) {
     const ScanPoint& p = current[a.current];
     const ScanPoint& r = reference[a.reference];
-    Matrix23d J_q;
-    Eigen::Matrix2d J_p;
-    q.transform(p.p_m, &J_q, &J_p);
-    const Eigen::Matrix2d W_inv =
-        (r.cov + sampling[a.reference] + J_p * p.cov * J_p.transpose()).inverse();
-    const Eigen::Matrix<double, 3, 2> G = J_q.transpose() * W_inv;
-    A += G * (J_p * p.cov_reading * J_p.transpose() + sampling[a.reference]) * G.transpose();
+    const Eigen::Matrix2d& S = geometry.sampling[a.reference];
+    const PairResidual pr = pair_residual(r, p, S, geometry.normals[a.reference], q);
+    const Eigen::Matrix<double, 3, 2> G = pr.J_q.transpose() * pr.Omega;
+    A += G * (pr.J_p * p.cov_reading * pr.J_p.transpose() + S) * G.transpose();
     U[a.reference] += G;
-    B_current[p.side == 1] += G * J_p * p.distortion;
+    B_current[p.side == 1] += G * pr.J_p * p.distortion;
     B_reference[r.side == 1] -= G * r.distortion;
   }
   for (std::size_t i = 0; i < reference.size(); ++i) {
@@ -130,14 +157,23 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
                             const std::vector<ScanPoint>& current, const GaussianPose2& guess,
                             const ScanMatchConfig& config) {
   ScanMatchResult result;
-  const std::vector<Eigen::Matrix2d> sampling = sampling_covariances(reference);
+  // Point-to-point everywhere, and with the normals where the config asks for point-to-line.
+  const ReferenceGeometry points{
+      sampling_covariances(reference),
+      std::vector<Eigen::Vector2d>(reference.size(), Eigen::Vector2d::Zero())};
+  ReferenceGeometry lines = points;
+  if (config.point_to_line_estimate || config.point_to_line_covariance) {
+    lines.normals = line_normals(reference, config.line);
+  }
+  const ReferenceGeometry& for_estimate = config.point_to_line_estimate ? lines : points;
+  const ReferenceGeometry& for_covariance = config.point_to_line_covariance ? lines : points;
   GaussianPose2 q = guess;
   std::vector<Association> pairs;
   NormalEquations eq;
   for (result.iterations = 1; result.iterations <= config.max_iterations; ++result.iterations) {
     pairs = associate(reference, current, q, config.association_gate_chi2);
     if (static_cast<int>(pairs.size()) < config.min_inliers) return result;
-    eq = normal_equations(reference, sampling, current, q.mean, pairs);
+    eq = normal_equations(reference, for_estimate, current, q.mean, pairs);
     const Eigen::Vector3d step = -eq.H.ldlt().solve(eq.b);
     if (!step.allFinite()) return result;
     q.mean = Pose2(q.mean.vector() + step);
@@ -150,17 +186,17 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
   pairs = associate(reference, current, q, config.association_gate_chi2);
   result.inliers = static_cast<int>(pairs.size());
   if (result.inliers < config.min_inliers) return result;
-  eq = normal_equations(reference, sampling, current, q.mean, pairs);
+  eq = normal_equations(reference, for_covariance, current, q.mean, pairs);
   result.information = eq.H;
   result.chi2 = eq.chi2;
   if (std::abs(eq.H.determinant()) < 1e-12) return result;
   result.estimate.mean = q.mean;
   result.estimate.cov = eq.H.inverse();
   if (config.shared_point_errors) {
-    result.estimate.cov =
-        shared_error_covariance(reference, sampling, current, q.mean, pairs, result.estimate.cov);
+    result.estimate.cov = shared_error_covariance(reference, for_covariance, current, q.mean, pairs,
+                                                  result.estimate.cov);
   }
-  const double dof = 2.0 * result.inliers - 3.0;
+  const double dof = eq.residuals - 3.0;
   if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
     result.estimate.cov *= eq.chi2 / dof;
   }

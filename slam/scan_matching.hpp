@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
+#include "slam/line_normals.hpp"
 #include "slam/scan_builder.hpp"
 
 namespace msislab {
@@ -30,6 +31,16 @@ struct ScanMatchConfig {
   /// points; cov = H^-1 A H^-1 (a sandwich, as Censi's) instead of H^-1, which takes every
   /// residual as independent and is overconfident (docs/scan_matching.md).
   bool shared_point_errors = true;
+  /// The covariance takes the residual of a pair whose reference point lies on a line (its
+  /// neighbours' scatter is thin) along the line's normal only, n^T (q (+) p_j - a_i) (Censi's
+  /// point-to-line), so it is large along the directions the geometry leaves unconstrained (the
+  /// axis of a straight canal); point-to-point residuals report information along a wall that
+  /// the scans do not hold (docs/scan_matching.md).
+  bool point_to_line_covariance = false;
+  /// The estimate minimises the same point-to-line residuals (its H may then be near-singular in
+  /// a corridor; Gauss-Newton steps along the unconstrained direction are not damped).
+  bool point_to_line_estimate = false;
+  LineNormalConfig line;  ///< how a line is told from clutter around each reference point
 };
 
 struct ScanMatchResult {

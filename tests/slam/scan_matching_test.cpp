@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
+#include <cmath>
 #include <random>
 
 namespace msislab {
@@ -82,6 +83,72 @@ TEST(ScanMatching, TooFewAssociationsIsNotValid) {
   guess.cov = 0.01 * Eigen::Matrix3d::Identity();
   EXPECT_FALSE(match_scans(reference, current, guess, ScanMatchConfig{}).valid);
   EXPECT_FALSE(match_scans(reference, {}, guess, ScanMatchConfig{}).valid);
+}
+
+/// A straight corridor: walls at y = +-8 m, sampled every 0.5 m over 40 m around the sensor at
+/// x0 (the sampling moves with the sensor), and two bollards that alone fix the position along it.
+std::vector<Eigen::Vector2d> corridor(double x0_m) {
+  std::vector<Eigen::Vector2d> points;
+  for (double s = -20.0; s <= 20.0; s += 0.5) {
+    points.emplace_back(x0_m + s, 8.0);
+    points.emplace_back(x0_m + s, -8.0);
+  }
+  points.emplace_back(4.0, 3.0);
+  points.emplace_back(-6.0, -2.0);
+  return points;
+}
+
+struct CovariancePair {
+  Eigen::Matrix3d point_to_point, point_to_line;
+};
+
+CovariancePair corridor_or_room_covariances(bool corridor_scene, std::mt19937& rng) {
+  const Pose2 q_true(1.5, 0.1, 0.02);
+  std::vector<Eigen::Vector2d> world_ref, seen_from_current;
+  if (corridor_scene) {
+    world_ref = corridor(0.0);
+    for (const auto& p : corridor(q_true.x()))
+      seen_from_current.push_back(q_true.inverse().transform(p));
+  } else {
+    world_ref = corner_walls();
+    for (const auto& p : world_ref) seen_from_current.push_back(q_true.inverse().transform(p));
+  }
+  const auto reference = noisy(world_ref, 0.05, rng);
+  const auto current = noisy(seen_from_current, 0.05, rng);
+  GaussianPose2 guess;
+  guess.mean = q_true;
+  guess.cov = Eigen::Vector3d(0.3 * 0.3, 0.3 * 0.3, 0.03 * 0.03).asDiagonal();
+  ScanMatchConfig config;
+  config.point_to_line_covariance = false;
+  config.point_to_line_estimate = false;
+  CovariancePair out;
+  const ScanMatchResult p2p = match_scans(reference, current, guess, config);
+  config.point_to_line_covariance = true;
+  const ScanMatchResult p2l = match_scans(reference, current, guess, config);
+  EXPECT_TRUE(p2p.valid && p2l.valid);
+  out.point_to_point = p2p.estimate.cov;
+  out.point_to_line = p2l.estimate.cov;
+  return out;
+}
+
+TEST(ScanMatching, PointToLineCovarianceIsLargeAlongACorridor) {
+  std::mt19937 rng(11);
+  const CovariancePair c = corridor_or_room_covariances(true, rng);
+  // Along the corridor (x) only the two bollards hold the match; point-to-point also counts the
+  // walls' samples, which move with the sensor and say nothing about x.
+  EXPECT_GT(c.point_to_line(0, 0), 10.0 * c.point_to_point(0, 0));
+  EXPECT_GT(c.point_to_line(0, 0), 10.0 * c.point_to_line(1, 1));
+  EXPECT_LT(c.point_to_line(1, 1), 2.0 * c.point_to_point(1, 1));
+}
+
+TEST(ScanMatching, PointToLineCovarianceStaysSmallInARoom) {
+  std::mt19937 rng(12);
+  const CovariancePair c = corridor_or_room_covariances(false, rng);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(c.point_to_line(i, i), 3.0 * c.point_to_point(i, i)) << i;
+  }
+  EXPECT_LT(std::sqrt(c.point_to_line(0, 0)), 0.05);
+  EXPECT_LT(std::sqrt(c.point_to_line(1, 1)), 0.05);
 }
 
 }  // namespace

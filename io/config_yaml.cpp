@@ -127,6 +127,7 @@ void read_matching(YamlMap map, ScanMatchConfig& c) {
   map.boolean("shared_point_errors", c.shared_point_errors);
   map.boolean("point_to_line_covariance", c.point_to_line_covariance);
   map.boolean("point_to_line_estimate", c.point_to_line_estimate);
+  map.boolean("reciprocal_association", c.reciprocal_association);
   map.number("line_radius_m", c.line.radius_m);
   require_positive(map, "line_radius_m", c.line.radius_m);
   read_count(map, "line_min_points", c.line.min_points, 3, 100000);

@@ -17,11 +17,14 @@ struct Association {
 };
 
 /// E-step: each current point moved by the guess (covariance including the guess's) to its
-/// nearest reference point in Mahalanobis distance, when within the gate.
+/// nearest reference point in Mahalanobis distance, when within the gate; when `reciprocal`, only
+/// the pairs whose current point is also the one nearest to their reference point.
 std::vector<Association> associate(const std::vector<ScanPoint>& reference,
                                    const std::vector<ScanPoint>& current, const GaussianPose2& q,
-                                   double gate_chi2) {
+                                   double gate_chi2, bool reciprocal) {
   std::vector<Association> pairs;
+  std::vector<double> nearest_d2(reference.size(), std::numeric_limits<double>::infinity());
+  std::vector<std::size_t> nearest_current(reference.size(), current.size());
   for (std::size_t j = 0; j < current.size(); ++j) {
     Matrix23d J_q;
     Eigen::Matrix2d J_p;
@@ -35,10 +38,16 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
       const Eigen::Matrix2d S = C + reference[i].cov;
       const double d2 = d.dot(S.inverse() * d);
       if (d2 < best) best = d2, best_i = i;
+      if (d2 < nearest_d2[i]) nearest_d2[i] = d2, nearest_current[i] = j;
     }
     if (best_i < reference.size()) pairs.push_back({j, best_i});
   }
-  return pairs;
+  if (!reciprocal) return pairs;
+  std::vector<Association> mutual;
+  for (const Association& a : pairs) {
+    if (nearest_current[a.reference] == a.current) mutual.push_back(a);
+  }
+  return mutual;
 }
 
 struct NormalEquations {
@@ -171,7 +180,8 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
   std::vector<Association> pairs;
   NormalEquations eq;
   for (result.iterations = 1; result.iterations <= config.max_iterations; ++result.iterations) {
-    pairs = associate(reference, current, q, config.association_gate_chi2);
+    pairs = associate(reference, current, q, config.association_gate_chi2,
+                      config.reciprocal_association);
     if (static_cast<int>(pairs.size()) < config.min_inliers) return result;
     eq = normal_equations(reference, for_estimate, current, q.mean, pairs);
     const Eigen::Vector3d step = -eq.H.ldlt().solve(eq.b);
@@ -183,7 +193,8 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
     }
   }
   // The final system at the final estimate and associations.
-  pairs = associate(reference, current, q, config.association_gate_chi2);
+  pairs =
+      associate(reference, current, q, config.association_gate_chi2, config.reciprocal_association);
   result.inliers = static_cast<int>(pairs.size());
   if (result.inliers < config.min_inliers) return result;
   eq = normal_equations(reference, for_covariance, current, q.mean, pairs);

@@ -3,7 +3,8 @@
 // pose q of the current scan's frame in the reference scan's frame:
 //   E-step: each current point p_j, moved by the guess, q (+) p_j, with covariance
 //           J_q P_q J_q^T + J_p C_j J_p^T, is associated with the reference point a_i of least
-//           Mahalanobis distance, gated by a chi-square value (2 DOF);
+//           Mahalanobis distance, gated by a chi-square value (2 DOF), and optionally only when
+//           p_j is also the current point nearest to a_i (reciprocal);
 //   M-step: q minimises sum_j e_j^T W_j^-1 e_j, e_j = q (+) p_j - a_i, W_j = A_i + J_p C_j J_p^T,
 //           by Gauss-Newton; repeat until the step is negligible.
 #pragma once
@@ -41,6 +42,11 @@ struct ScanMatchConfig {
   /// a corridor; Gauss-Newton steps along the unconstrained direction are not damped).
   bool point_to_line_estimate = false;
   LineNormalConfig line;  ///< how a line is told from clutter around each reference point
+  /// Keep a pair (p_j, a_i) only when p_j is also the current point nearest to a_i (mutual
+  /// nearest neighbours). The current scan sees past the end of each wall stretch the reference
+  /// saw; those points have no counterpart there and, all paired with the reference's last points,
+  /// pull the estimate back towards a shorter motion (docs/scan_matching.md).
+  bool reciprocal_association = false;
 };
 
 struct ScanMatchResult {

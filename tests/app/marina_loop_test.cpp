@@ -3,7 +3,9 @@
 // robocentric, world-centric and dead reckoning. It asserts the SLAM error, its gain over dead
 // reckoning, and that the robocentric scan-pose NEES averaged over the runs stays inside its 95%
 // chi-square bounds for most scans. Measured figures beside each tolerance: this directory's 5
-// runs, then the range over the 8 blocks of 5 runs of seeds 1-40 (docs/trajectory_slam.md).
+// runs, then the range over the 8 blocks of 5 runs of seeds 1-40 (docs/trajectory_slam.md), both
+// measured with one-way spIC association; with the reciprocal default these 5 runs give 0.720 m,
+// ANEES 3.32 and 94.9% of the scans in bounds.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -68,8 +68,9 @@ io::MonteCarloManifest prepare(const MonteCarloOptions& options, const std::stri
   const std::string scenario_text = io::read_whole_file(options.scenario_path);
   const std::string config_text =
       options.config_path.empty() ? "" : io::read_whole_file(options.config_path);
+  manifest.executable_digest = executable_digest(executable);
   check_resumable(options.out_dir, scenario_text, !options.config_path.empty(), config_text,
-                  options.scenario_path);
+                  options.scenario_path, manifest.executable_digest);
 
   manifest.scenario_source = absolute(options.scenario_path);
   manifest.first_seed = scenario.seed;

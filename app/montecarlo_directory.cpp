@@ -36,8 +36,21 @@ void write_text(const std::string& path, const std::string& text) {
 }
 }  // namespace
 
+std::string executable_digest(const std::string& executable_path) {
+  const std::string bytes = io::read_whole_file(executable_path);
+  std::uint64_t hash = 0xcbf29ce484222325ULL;  // FNV-1a offset basis
+  for (const unsigned char byte : bytes) {
+    hash ^= byte;
+    hash *= 0x100000001b3ULL;  // FNV prime
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
+}
+
 void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
-                     const std::string& config_text, const std::string& scenario_path) {
+                     const std::string& config_text, const std::string& scenario_path,
+                     const std::string& digest) {
   const fs::path d(dir);
   if (!fs::exists(d / "montecarlo.json")) return;
   const auto differs = [&](const char* name, bool present, const std::string& text) {
@@ -52,6 +65,14 @@ void check_resumable(const std::string& dir, const std::string& scenario_text, b
   if (differs("config.yaml", has_config, config_text)) {
     io::fail_file(dir,
                   "holds runs made with another SLAM config (config.yaml); choose another --out");
+  }
+  const std::string made_by =
+      io::read_manifest_json((d / "montecarlo.json").string()).executable_digest;
+  if (made_by != digest) {
+    io::fail_file(dir, "holds runs made by another msislab build (executable digest " +
+                           (made_by.empty() ? std::string("not recorded") : made_by) +
+                           ", this one " + digest +
+                           "): its defaults or code may differ; choose another --out");
   }
 }
 

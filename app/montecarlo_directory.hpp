@@ -20,9 +20,15 @@ std::string run_dir(const std::string& dir, const std::string& method, int run);
 /// The run indices of the manifest's shard, in increasing order.
 std::vector<int> runs_of(const io::MonteCarloManifest& manifest);
 
-/// InputError unless dir is new or holds runs made from the same scenario and config bytes.
+/// A digest of the msislab executable's bytes (FNV-1a, 64 bits, hex): another build, with other
+/// defaults or code, has another digest. InputError when the file cannot be read.
+std::string executable_digest(const std::string& executable_path);
+
+/// InputError unless dir is new or holds runs made from the same scenario and config bytes by
+/// the executable with this digest.
 void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
-                     const std::string& config_text, const std::string& scenario_path);
+                     const std::string& config_text, const std::string& scenario_path,
+                     const std::string& digest);
 
 /// Creates dir and writes scenario.yaml, config.yaml (when has_config) and montecarlo.json.
 void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,

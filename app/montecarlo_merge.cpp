@@ -43,6 +43,9 @@ void check_same_settings(const ShardHeader& a, const ShardHeader& b, const std::
   }
   if (a.manifest.runs != b.manifest.runs) differ("--runs");
   if (a.manifest.methods != b.manifest.methods) differ("--methods");
+  if (a.manifest.executable_digest != b.manifest.executable_digest) {
+    differ("msislab build (executable_digest)");
+  }
 }
 
 /// Replaces dst by a copy of src, copied aside first so dst is never half-copied.
@@ -71,7 +74,8 @@ MonteCarloOutcome merge_montecarlo(const MergeOptions& options) {
   manifest.shard_count = 1;
   const ShardHeader& first = shards.front();
   check_resumable(options.out_dir, first.scenario_text, manifest.has_config, first.config_text,
-                  (fs::path(options.shard_dirs.front()) / "scenario.yaml").string());
+                  (fs::path(options.shard_dirs.front()) / "scenario.yaml").string(),
+                  manifest.executable_digest);
   write_directory_header(options.out_dir, manifest, first.scenario_text, first.config_text);
 
   // A run is taken from the first shard that finished it, else from one that recorded a failure.

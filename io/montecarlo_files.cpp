@@ -41,7 +41,8 @@ void write_manifest_json(const std::string& path, const MonteCarloManifest& m) {
     }
     out << "],\n"
         << "  \"config\": " << (m.has_config ? "\"config.yaml\"" : "null") << ",\n"
-        << "  \"shard\": \"" << m.shard_index << "/" << m.shard_count << "\"\n"
+        << "  \"shard\": \"" << m.shard_index << "/" << m.shard_count << "\",\n"
+        << "  \"executable_digest\": " << json_string(m.executable_digest) << "\n"
         << "}\n";
   });
 }
@@ -67,6 +68,7 @@ MonteCarloManifest read_manifest_json(const std::string& path) {
   if (!parse_shard(shard, m.shard_index, m.shard_count)) {
     json.fail("shard", "expected i/N with 0 <= i < N, got '" + shard + "'");
   }
+  if (json.has("executable_digest")) m.executable_digest = json.string("executable_digest");
   return m;
 }
 

@@ -19,6 +19,9 @@ struct MonteCarloManifest {
   bool has_config = false;  ///< config.yaml holds the SLAM config every run used
   int shard_index = 0;      ///< this directory holds the runs r with r % shard_count == shard_index
   int shard_count = 1;
+  /// Which msislab executable made the runs (app::executable_digest); empty in directories made
+  /// before it was recorded. Runs of two builds are never mixed.
+  std::string executable_digest;
 };
 void write_manifest_json(const std::string& path, const MonteCarloManifest& manifest);
 MonteCarloManifest read_manifest_json(const std::string& path);

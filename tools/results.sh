@@ -26,8 +26,21 @@ msislab=build/release/tools/msislab
 
 mc="out/montecarlo/stpere_replica_${runs}runs"
 echo "== Monte Carlo: $runs runs of scenarios/stpere_replica.yaml into $mc"
-"$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
-  --methods robocentric,worldcentric,deadreckoning --out "$mc"   # it draws its nees.png
+montecarlo() {
+  "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
+    --methods robocentric,worldcentric,deadreckoning --out "$mc"   # it draws its nees.png
+}
+# An interrupted sweep resumes; one made by an earlier build is stale for this page: start again.
+if ! montecarlo 2> >(tee "$mc.stderr" >&2); then
+  if grep -q "made by another msislab build" "$mc.stderr"; then
+    echo "== $mc was made by another build: running it again from scratch"
+    rm -rf "$mc"
+    montecarlo
+  else
+    exit 2
+  fi
+fi
+rm -f "$mc.stderr"
 
 report=(--sim out/sim --montecarlo "$mc")
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"

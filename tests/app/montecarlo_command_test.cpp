@@ -222,17 +222,56 @@ TEST(MonteCarloCommand, MergedShardsGiveTheSameSummary) {
                io::InputError);
 }
 
-// A stand-in for msislab that fails worldcentric's run 1 with exit status 3, kills the simulation
-// of run 2 (seed 3) with SIGKILL, and runs the real executable otherwise.
+// The runs of one directory come from one build: a directory (or a shard) recorded with another
+// executable digest is neither resumed nor merged, so results of other defaults never mix.
+TEST(MonteCarloCommand, AnotherBuildIsNotResumedOrMerged) {
+  const TempDir tmp;
+  const std::string digest = executable_digest(MSISLAB_EXE);
+  EXPECT_EQ(digest.size(), 16u);
+  const std::string manifest = read_text((full_run().dir / "montecarlo.json").string());
+  ASSERT_NE(manifest.find("\"executable_digest\": \"" + digest + "\""), std::string::npos)
+      << manifest;
+
+  const fs::path dir = tmp.path() / "mc";
+  fs::copy(full_run().dir, dir, fs::copy_options::recursive);
+  std::string other = manifest;
+  other.replace(other.find(digest), digest.size(), "0123456789abcdef");
+  write_text((dir / "montecarlo.json").string(), other);
+  try {
+    run_montecarlo(options_for(dir));
+    ADD_FAILURE() << "resumed runs of another build";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("holds runs made by another msislab build (executable "
+                                         "digest 0123456789abcdef, this one " +
+                                         digest),
+              std::string::npos)
+        << e.what();
+  }
+  try {
+    merge_montecarlo({(tmp.path() / "merged").string(), {full_run().dir, dir}});
+    ADD_FAILURE() << "merged runs of two builds";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("msislab build (executable_digest)"), std::string::npos)
+        << e.what();
+  }
+}
+
+// A stand-in for msislab that, while the file `fail` exists beside it, fails worldcentric's run 1
+// with exit status 3 and kills the simulation of run 2 (seed 3) with SIGKILL, and otherwise runs
+// the real executable. (One stand-in for both passes: a directory is resumed only by the
+// executable that made it.)
 std::string write_failing_msislab(const TempDir& tmp) {
   const std::string path = tmp.file("failing_msislab.sh");
-  write_text(path, std::string("#!/bin/sh\n") +
-                       "case \"$*\" in\n"
-                       "  *worldcentric/run_0001*) echo 'msislab: injected failure' >&2; exit 3;;\n"
-                       "  *'--seed 3'*) kill -9 $$;;\n"
-                       "esac\n"
-                       "exec '" +
-                       MSISLAB_EXE + "' \"$@\"\n");
+  write_text(tmp.file("fail"), "");
+  write_text(path,
+             std::string("#!/bin/sh\n") + "if [ -f '" + tmp.file("fail") + "' ]; then\n" +
+                 "  case \"$*\" in\n"
+                 "    *worldcentric/run_0001*) echo 'msislab: injected failure' >&2; exit 3;;\n"
+                 "    *'--seed 3'*) kill -9 $$;;\n"
+                 "  esac\n"
+                 "fi\n"
+                 "exec '" +
+                 MSISLAB_EXE + "' \"$@\"\n");
   fs::permissions(path, fs::perms::owner_all);
   return path;
 }
@@ -274,8 +313,9 @@ TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
   EXPECT_NE(read_text((dir / "summary.json").string()).find("\"failed_runs\": [1, 2]"),
             std::string::npos);
 
-  // Resumed with the real executable, the failed runs are redone and the summary is the full one.
-  const auto resumed = run_montecarlo(options_for(dir));
+  // Resumed once the failures stop, the failed runs are redone and the summary is the full one.
+  fs::remove(tmp.file("fail"));
+  const auto resumed = run_montecarlo(options);
   EXPECT_EQ(resumed->outcome.executed, 2u);
   EXPECT_EQ(resumed->outcome.failed, 0u);
   EXPECT_FALSE(fs::exists(fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json"));

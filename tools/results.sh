@@ -31,7 +31,9 @@ montecarlo() {
     --methods robocentric,worldcentric,deadreckoning --out "$mc"   # it draws its nees.png
 }
 # An interrupted sweep resumes; one made by an earlier build is stale for this page: start again.
+mkdir -p "$(dirname "$mc")"
 if ! montecarlo 2> >(tee "$mc.stderr" >&2); then
+  wait $! || true  # the tee: its file is complete before it is read
   if grep -q "made by another msislab build" "$mc.stderr"; then
     echo "== $mc was made by another build: running it again from scratch"
     rm -rf "$mc"

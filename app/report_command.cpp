@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <map>
 #include <sstream>
 
+#include "app/plot_figures.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "slam/scan_matching.hpp"
@@ -19,29 +19,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// Methods in the order the tables list them, with the names the tables give them.
-const std::vector<std::pair<std::string, std::string>>& method_names() {
-  static const std::vector<std::pair<std::string, std::string>> names = {
-      {"robocentric", "robocentric SLAM"},
-      {"worldcentric", "world-centric SLAM"},
-      {"deadreckoning", "dead reckoning (EKF)"},
-      {"integration", "DVL integration"}};
-  return names;
-}
-
+/// Where a method's row goes: the paper's two filters, then the baselines, then any other.
 std::size_t method_rank(const std::string& method) {
-  const auto& names = method_names();
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (names[i].first == method) return i;
-  }
-  return names.size();
-}
-
-std::string display_name(const std::string& method) {
-  for (const auto& [key, name] : method_names()) {
-    if (key == method) return name;
-  }
-  return method;
+  static const std::vector<std::string> order = {"robocentric", "worldcentric", "deadreckoning",
+                                                 "integration"};
+  return static_cast<std::size_t>(std::find(order.begin(), order.end(), method) - order.begin());
 }
 
 std::string fixed(double value, int decimals) {
@@ -115,7 +97,7 @@ void table_one(std::ostringstream& md, const ResultFolder& folder, const std::st
   for (std::size_t i = 0; i < segments.size(); ++i) md << " ---: |";
   md << " ---: | ---: | ---: | ---: |" << (with_nees ? " ---: |" : "") << " ---: |\n";
   for (const RunMetrics& m : folder.results) {
-    md << "| " << display_name(m.method) << " | **" << fixed(m.errors.mean_m, 2) << "** |";
+    md << "| " << method_title(m.method) << " | **" << fixed(m.errors.mean_m, 2) << "** |";
     for (const std::string& s : segments) md << " " << fixed(segment_of(m.segments, s), 2) << " |";
     md << " " << fixed(m.errors.final_m, 2) << " | " << fixed(m.errors.max_m, 2) << " | "
        << (m.scans > 0 ? std::to_string(m.scans) : "") << " | "
@@ -202,7 +184,7 @@ void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
   md << " ---: | ---: | --- | ---: |\n";
   for (const io::StoredSummary& stored : mc.methods) {
     const MethodSummary& s = stored.summary;
-    md << "| " << display_name(s.method) << " | " << s.runs << " | " << s.failed << " | "
+    md << "| " << method_title(s.method) << " | " << s.runs << " | " << s.failed << " | "
        << fixed(s.mean_error_m, 2) << " |";
     for (const std::string& name : segments) {
       md << " " << fixed(segment_of(s.segments, name), 2) << " |";

@@ -118,11 +118,11 @@ TEST(ReportCommand, TablesFiguresAndVerdict) {
             std::string::npos)
       << page;
   const std::size_t rc = position(page,
-                                  "| robocentric SLAM | **2.16** | 1.08 | 3.84 | 4.33 | 6.49 | "
+                                  "| Robocentric SLAM | **2.16** | 1.08 | 3.84 | 4.33 | 6.49 | "
                                   "236 | 697 | 13.98 | 1.25 |");
-  const std::size_t wc = position(page, "| world-centric SLAM | **2.16** |");
+  const std::size_t wc = position(page, "| World-centric SLAM | **2.16** |");
   const std::size_t dr = position(page,
-                                  "| dead reckoning (EKF) | **6.28** | 3.14 | 9.22 | 12.56 | "
+                                  "| Dead reckoning | **6.28** | 3.14 | 9.22 | 12.56 | "
                                   "18.84 |  |  | 2.90 | 1.25 |");
   EXPECT_LT(rc, wc);
   EXPECT_LT(wc, dr);
@@ -130,12 +130,12 @@ TEST(ReportCommand, TablesFiguresAndVerdict) {
   position(page, "2.16 against 6.28 m mean error (-66 %); loop 1.08 against 3.14 m");
   // Real data: no ANEES column, a null segment shown as n/a, the paper's figures.
   position(page, "scans | matches accepted | run time [s] |\n");
-  position(page, "| robocentric SLAM | **3.99** | 2.00 | n/a |");
+  position(page, "| Robocentric SLAM | **3.99** | 2.00 | n/a |");
   position(page, "robocentric 1.15 m, world-centric 2.05 m");
   // Monte Carlo: 50 runs, seeds, bounds for 50 runs of 3 DOF, run time per run, the verdict.
   position(page, "50 seeded runs of the scenario `stpere_replica.yaml` (seeds 42 to 91)");
   position(page,
-           "| robocentric SLAM | 50 | 0 | 2.57 | 1.20 | 4.47 | 5.00 | 50.0 % of 236 | "
+           "| Robocentric SLAM | 50 | 0 | 2.57 | 1.20 | 4.47 | 5.00 | 50.0 % of 236 | "
            "[2.36, 3.72] | 5.00 |");
   position(page, "the robocentric filter is the more consistent one here");
   // Figures: the known ones in the (a)-(d) order, then the others; copied under their labels.

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <map>
 #include <optional>
-#include <sstream>
+
+#include "io/text_lines.hpp"
 
 namespace msislab::app {
 
@@ -16,12 +16,6 @@ constexpr std::uint32_t kMapPointColour = 0xa8a8a8;
 constexpr std::uint32_t kBoundColour = 0x555555;
 constexpr double kEllipseSigmas = 2.0;
 constexpr std::size_t kEllipsesPerFigure = 25;
-
-std::string fixed(double value, int decimals) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(decimals) << value;
-  return out.str();
-}
 
 std::string ordinal(std::size_t k) {
   const std::size_t last = k % 10, last_two = k % 100;
@@ -105,7 +99,9 @@ std::string in_bounds_percent(const std::vector<io::NeesRow>& rows) {
   const auto inside = std::count_if(rows.begin(), rows.end(), [](const io::NeesRow& r) {
     return r.lower <= r.mean_nees && r.mean_nees <= r.upper;
   });
-  return fixed(100.0 * static_cast<double>(inside) / static_cast<double>(rows.size()), 0) + "%";
+  return io::format_fixed(100.0 * static_cast<double>(inside) / static_cast<double>(rows.size()),
+                          0) +
+         "%";
 }
 
 void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
@@ -163,7 +159,7 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
   chart.title = method_title(result.method);
   if (result.truth) chart.title += " vs " + truth_label(*result.truth);
   if (!result.errors.empty()) {
-    chart.title += ": mean error " + fixed(mean_error_m(result.errors), 2) + " m";
+    chart.title += ": mean error " + io::format_fixed(mean_error_m(result.errors), 2) + " m";
   }
   if (!result.map_points_m.empty()) {
     plot::Series points{"map points (" + std::to_string(result.map_points_m.size()) + ")",
@@ -210,7 +206,7 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
     if (r->errors.empty()) continue;
     const double t0_s = r->truth->positions.front().t_s;
     plot::Series line{
-        method_title(r->method) + " (mean " + fixed(mean_error_m(r->errors), 2) + " m)",
+        method_title(r->method) + " (mean " + io::format_fixed(mean_error_m(r->errors), 2) + " m)",
         {},
         {},
         comparison_style(r->method),

@@ -4,13 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <sstream>
 
 #include "app/plot_figures.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/text_lines.hpp"
 #include "slam/scan_matching.hpp"
 
 namespace msislab::app {
@@ -26,11 +26,9 @@ std::size_t method_rank(const std::string& method) {
   return static_cast<std::size_t>(std::find(order.begin(), order.end(), method) - order.begin());
 }
 
+/// A table cell: the value with `decimals` decimals, "n/a" when it is not finite or missing.
 std::string fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return "n/a";
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
+  return std::isfinite(value) ? io::format_fixed(value, decimals) : "n/a";
 }
 
 std::string fixed(const std::optional<double>& value, int decimals) {

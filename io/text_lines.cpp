@@ -146,6 +146,12 @@ std::string format_number(double value) {
   return text;
 }
 
+std::string format_fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
 void check_finite(double value, const std::string& path, std::size_t row, std::string_view column) {
   if (std::isfinite(value)) return;
   fail_file(path, "row " + std::to_string(row) + ": " + std::string(column) + " is not finite (" +

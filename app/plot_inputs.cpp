@@ -84,19 +84,6 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
   return result;
 }
 
-/// Subdirectories holding a trajectory.tum, by name (hidden folders and figures/ skipped).
-std::vector<fs::path> result_subdirs(const fs::path& dir) {
-  std::vector<fs::path> subdirs;
-  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    if (entry.is_directory() && name[0] != '.' && name != "figures" && is_result_dir(entry)) {
-      subdirs.push_back(entry.path());
-    }
-  }
-  std::sort(subdirs.begin(), subdirs.end());
-  return subdirs;
-}
-
 /// The revolution of the first dataset (--dataset first) that has a raw sonar log.
 std::optional<SonarRevolution> find_revolution(const Datasets& datasets, int revolution) {
   for (const std::string& dir : datasets.in_order()) {
@@ -110,6 +97,18 @@ std::optional<SonarRevolution> find_revolution(const Datasets& datasets, int rev
 }
 
 }  // namespace
+
+std::vector<fs::path> result_subdirs(const fs::path& dir) {
+  std::vector<fs::path> subdirs;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    if (entry.is_directory() && name[0] != '.' && name != "figures" && is_result_dir(entry)) {
+      subdirs.push_back(entry.path());
+    }
+  }
+  std::sort(subdirs.begin(), subdirs.end());
+  return subdirs;
+}
 
 PlotInputs load_plot_inputs(const PlotOptions& options) {
   const fs::path dir(options.dir);

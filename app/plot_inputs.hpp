@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -50,5 +51,9 @@ struct PlotInputs {
 /// Reads everything `plot` needs. Throws io::InputError for a missing DIR, a malformed file, a
 /// recorded dataset that no longer exists, or a DIR with nothing to plot.
 PlotInputs load_plot_inputs(const PlotOptions& options);
+
+/// The result directories in a folder: its subdirectories holding a trajectory.tum, by name
+/// (hidden folders and figures/ skipped).
+std::vector<std::filesystem::path> result_subdirs(const std::filesystem::path& dir);
 
 }  // namespace msislab::app

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "app/plot_figures.hpp"
+#include "app/plot_inputs.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
@@ -244,14 +245,8 @@ ResultFolder read_result_folder(const std::string& dir, const std::string& label
   ResultFolder folder;
   folder.label = label;
   folder.dir = dir;
-  std::vector<fs::path> subdirs;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    if (entry.is_directory() && fs::is_regular_file(entry.path() / "metrics.json")) {
-      subdirs.push_back(entry.path());
-    }
-  }
-  std::sort(subdirs.begin(), subdirs.end());
-  for (const fs::path& sub : subdirs) {
+  for (const fs::path& sub : result_subdirs(dir)) {
+    if (!fs::is_regular_file(sub / "metrics.json")) continue;  // run without truth: no scores
     const io::StoredMetrics stored = io::read_metrics_json((sub / "metrics.json").string());
     if (folder.dataset.empty()) folder.dataset = stored.dataset_dir;
     folder.results.push_back(stored.metrics);

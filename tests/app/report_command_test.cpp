@@ -42,11 +42,13 @@ RunMetrics metrics(const std::string& method, double mean_m, std::optional<doubl
   return m;
 }
 
-/// A folder of results: one subdirectory per method with metrics.json, and figures/.
+/// A folder of results: one subdirectory per method with trajectory.tum and metrics.json, and
+/// figures/.
 fs::path result_folder(const fs::path& dir, const std::vector<RunMetrics>& results,
                        const std::vector<std::string>& figures) {
   for (const RunMetrics& m : results) {
     fs::create_directories(dir / m.method);
+    write_text((dir / m.method / "trajectory.tum").string(), "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
     io::write_metrics_json((dir / m.method / "metrics.json").string(), m, "/data/stpere_replica");
   }
   fs::create_directories(dir / "figures");
@@ -109,6 +111,9 @@ std::size_t position(const std::string& text, const std::string& part) {
 TEST(ReportCommand, TablesFiguresAndVerdict) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs");
+  // A result without truth has no metrics.json and no row.
+  fs::create_directories(in.sim / "no_truth");
+  write_text((in.sim / "no_truth" / "trajectory.tum").string(), "0 0 0 0 0 0 0 1\n");
   const ReportOutcome outcome = write_report(in.options());
   const std::string page = read_text(in.tmp.file("docs/results.md"));
   // Table I on simulated data: robocentric, world-centric, dead reckoning; the segments as
@@ -126,6 +131,7 @@ TEST(ReportCommand, TablesFiguresAndVerdict) {
                                   "18.84 |  |  | 2.90 | 1.25 |");
   EXPECT_LT(rc, wc);
   EXPECT_LT(wc, dr);
+  EXPECT_EQ(page.find("no_truth"), std::string::npos);
   position(page, "2.16 against 2.16 m mean error (the same within 1 cm)");
   position(page, "2.16 against 6.28 m mean error (-66 %); loop 1.08 against 3.14 m");
   // Real data: no ANEES column, a null segment shown as n/a, the paper's figures.

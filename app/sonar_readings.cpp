@@ -67,10 +67,18 @@ SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration&
                                const SegmentationConfig& segmentation) {
   const io::SonarSetup setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
   SonarInput input;
-  if (files.is_log) {
+  const bool raw = files.is_log && segmentation.source != SonarSource::kDetections;
+  const bool detections = files.detections && segmentation.source != SonarSource::kRaw;
+  if (raw) {
     input = from_is_log(*files.is_log, setup, calibration.sonar, segmentation);
-  } else if (files.detections) {
+  } else if (detections) {
     input = from_detections(files, setup, calibration.sonar, segmentation);
+  } else if (segmentation.source == SonarSource::kRaw) {
+    io::fail_file(files.dir, "no raw sonar data (*_IS.log), and segmentation.source is raw");
+  } else if (segmentation.source == SonarSource::kDetections) {
+    io::fail_file(files.dir,
+                  "no sonar detections (*_detections.csv[.gz]), and segmentation.source is "
+                  "detections");
   } else {
     io::fail_file(files.dir, "no sonar data (*_IS.log or *_detections.csv[.gz])");
   }

@@ -85,6 +85,18 @@ void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
 }
 
 void read_segmentation(YamlMap map, SegmentationConfig& c) {
+  std::string source;
+  if (map.text("source", source)) {
+    if (source == "auto") {
+      c.source = SonarSource::kAuto;
+    } else if (source == "raw") {
+      c.source = SonarSource::kRaw;
+    } else if (source == "detections") {
+      c.source = SonarSource::kDetections;
+    } else {
+      map.fail("source", "unknown source '" + source + "' (auto, raw, detections)");
+    }
+  }
   std::string method;
   if (map.text("method", method) && !parse_segmentation_method(method, c.method)) {
     map.fail("method",

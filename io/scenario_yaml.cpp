@@ -111,7 +111,32 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
     map.fail("display_max_db", "must be above display_min_db");
   }
   map.boolean("speckle", s.speckle);
+  read_count(map, "speckle_looks", s.speckle_looks, 1, 64);
   map.number("min_range_m", s.min_range_m);
+  std::string pattern = s.beam_pattern == sim::BeamPattern::kSinc ? "sinc" : "gaussian";
+  map.text("beam_pattern", pattern);
+  if (pattern != "gaussian" && pattern != "sinc") {
+    map.fail("beam_pattern", "must be gaussian or sinc, not '" + pattern + "'");
+  }
+  s.beam_pattern = pattern == "sinc" ? sim::BeamPattern::kSinc : sim::BeamPattern::kGaussian;
+  for (auto [key, value] : {std::pair<const char*, double*>{"horizontal_span_beamwidths",
+                                                            &s.horizontal_span_beamwidths},
+                            {"vertical_span_beamwidths", &s.vertical_span_beamwidths},
+                            {"roughness_length_m", &s.roughness_length_m}}) {
+    map.number(key, *value);
+    require_positive(map, key, *value);
+  }
+  map.boolean("footprint", s.footprint);
+  for (auto [key, value] : {std::pair<const char*, double*>{"pulse_length_us", &s.pulse_length_us},
+                            {"receiver_time_constant_us", &s.receiver_time_constant_us},
+                            {"roughness_db", &s.roughness_db}}) {
+    map.number(key, *value);
+    if (*value < 0.0) map.fail(key, "must be >= 0");
+  }
+  if (s.pulse_length_us > 10000.0 || s.receiver_time_constant_us > 10000.0) {
+    map.fail(s.pulse_length_us > 10000.0 ? "pulse_length_us" : "receiver_time_constant_us",
+             "must be at most 10000 (10 ms, 7.5 m of range)");
+  }
   YamlMap mount = map.map("mount");
   read_sonar_mount(mount, s.mount);
   mount.finish();
@@ -166,6 +191,16 @@ void read_gps(YamlMap map, sim::GpsConfig& g) {
   map.finish();
 }
 
+void read_detections(YamlMap map, DetectionModelConfig& d) {
+  read_count(map, "smoothing_bins", d.smoothing_bins, 1, 999);
+  if (d.smoothing_bins % 2 == 0) map.fail("smoothing_bins", "must be odd (a centred window)");
+  map.number("ramp_max", d.ramp_max);
+  map.number("threshold", d.threshold);
+  map.number("min_range_m", d.min_range_m);
+  if (d.min_range_m < 0.0) map.fail("min_range_m", "must be >= 0");
+  map.finish();
+}
+
 }  // namespace
 
 sim::Scenario read_scenario(const std::string& path) {
@@ -186,6 +221,7 @@ sim::Scenario read_scenario(const std::string& path) {
   read_dvl(root.map("dvl"), s.dvl);
   read_mru(root.map("mru"), s.mru);
   read_gps(root.map("gps"), s.gps);
+  read_detections(root.map("detections"), s.detections);
   root.finish();
   return s;
 }

@@ -9,6 +9,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
+#include "io/detections.hpp"
 #include "io/geodesy.hpp"
 #include "io/input_error.hpp"
 #include "io/stpere_logs.hpp"
@@ -81,6 +82,44 @@ std::vector<SonarBeamRecord> beam_records(const std::vector<sim::RenderedBeam>& 
   return rows;
 }
 
+std::vector<BeamTimeRecord> beam_time_records(const std::vector<SonarBeamRecord>& beams) {
+  std::vector<BeamTimeRecord> rows;
+  rows.reserve(beams.size());
+  for (const SonarBeamRecord& b : beams) rows.push_back({b.t_log_s, b.sensor_time_ms});
+  return rows;
+}
+
+/// The detections file as the real one is laid out: the detector of the scenario run on every
+/// profile; keyframe k (from 1) is the k-th complete revolution, a sweep of the transducer angle
+/// index from steps - 1 down to 0; beam_row is the beam's row in *_IS_timestamps.log. Beams
+/// outside a complete revolution have no rows, as in the real file.
+std::vector<DetectionRecord> detection_records(const std::vector<SonarBeamRecord>& beams,
+                                               const sim::Scenario& scenario) {
+  const int steps = scenario.sonar.steps_per_revolution;
+  const double step_rad = 2.0 * M_PI / steps;
+  const auto angle_index = [&](std::size_t i) {
+    const long k = std::lround(beams[i].transducer_angle_rad / step_rad);
+    return static_cast<int>(((k % steps) + steps) % steps);
+  };
+  std::vector<DetectionRecord> rows;
+  std::int32_t keyframe = 0;
+  for (std::size_t start = 0; start + static_cast<std::size_t>(steps) <= beams.size(); ++start) {
+    if (angle_index(start) != steps - 1) continue;
+    ++keyframe;
+    for (std::size_t i = start; i < start + static_cast<std::size_t>(steps); ++i) {
+      const SonarBeamRecord& b = beams[i];
+      const int idx = angle_index(i);
+      for (const int j : detect_bins(b.intensity, scenario.sonar.bin_m, scenario.detections)) {
+        rows.push_back({keyframe, static_cast<std::int64_t>(i), b.t_log_s,
+                        static_cast<std::int64_t>(b.sensor_time_ms), idx, idx * step_rad,
+                        (j + 1) * scenario.sonar.bin_m});
+      }
+    }
+    start += static_cast<std::size_t>(steps) - 1;
+  }
+  return rows;
+}
+
 std::vector<TumPose> truth_poses(const sim::VehicleTrajectory& truth, double depth_m) {
   // 10 Hz: every sample whose time is a new tenth of a second from the start.
   std::vector<TumPose> poses;
@@ -115,7 +154,10 @@ void write_segments(const std::string& path, const std::vector<TimeSegment>& seg
 void write_files(const fs::path& dir, const sim::Scenario& scenario,
                  const sim::SimulationResult& result, const std::string& scenario_text) {
   const std::string base = (dir / prefix_of(scenario.name)).string();
-  write_is_log(base + "_IS.log", beam_records(result.beams));
+  const std::vector<SonarBeamRecord> beams = beam_records(result.beams);
+  write_is_log(base + "_IS.log", beams);
+  write_beam_times_log(base + "_IS_timestamps.log", beam_time_records(beams));
+  write_detections(base + "_detections.csv.gz", detection_records(beams, scenario));
   write_setup_log(base + "_SETUP.log",
                   {scenario.sonar.bins * scenario.sonar.bin_m, scenario.sonar.bin_m,
                    2.0 * M_PI / scenario.sonar.steps_per_revolution});

@@ -11,19 +11,124 @@ namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 const double kLn2 = std::log(2.0);
 
-/// One-way beam pattern: Gaussian with -3 dB two-way at +-width/2, so one-way
-/// b(a) = exp(-2 ln2 (2a/width)^2) and b^2 is the two-way pattern.
-double one_way_pattern(double azimuth_rad, double elevation_rad, double h_width_rad,
-                       double v_width_rad) {
-  const double h = 2.0 * azimuth_rad / h_width_rad;
-  const double v = 2.0 * elevation_rad / v_width_rad;
-  return std::exp(-2.0 * kLn2 * (h * h + v * v));
+/// sinc(x)^4 = 1/2 at x = this: where the two-way sinc^2 x sinc^2 pattern is down 3 dB.
+constexpr double kSincHalfPower = 1.0019063576966067;
+
+/// One-way power pattern in one plane, 1 on the axis and 1/sqrt(2) (so -3 dB two-way) at
+/// +-width/2: Gaussian exp(-2 ln2 u^2), or sinc^2(x) of a uniformly driven line aperture,
+/// u = 2a / width.
+double pattern_1d(double angle_rad, double width_rad, BeamPattern shape) {
+  const double u = 2.0 * angle_rad / width_rad;
+  if (shape == BeamPattern::kGaussian) return std::exp(-2.0 * kLn2 * u * u);
+  const double x = kSincHalfPower * u;
+  if (std::abs(x) < 1e-6) return 1.0;
+  const double sinc = std::sin(x) / x;
+  return sinc * sinc;
+}
+
+/// The two-way -3 dB widths at +-width/2 in each plane; the pattern is their product.
+double one_way_pattern(double azimuth_rad, double elevation_rad, const SonarConfig& sonar) {
+  return pattern_1d(azimuth_rad, sonar.horizontal_beamwidth_deg * kDegToRad, sonar.beam_pattern) *
+         pattern_1d(elevation_rad, sonar.vertical_beamwidth_deg * kDegToRad, sonar.beam_pattern);
 }
 
 Eigen::Vector3f direction(double azimuth_rad, double elevation_rad) {
   return Eigen::Vector3f(static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)),
                          static_cast<float>(std::cos(elevation_rad) * std::sin(azimuth_rad)),
                          static_cast<float>(std::sin(elevation_rad)));
+}
+
+/// d direction / d azimuth and d direction / d elevation.
+Eigen::Vector3f direction_d_azimuth(double azimuth_rad, double elevation_rad) {
+  return Eigen::Vector3f(static_cast<float>(-std::cos(elevation_rad) * std::sin(azimuth_rad)),
+                         static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)), 0.0f);
+}
+Eigen::Vector3f direction_d_elevation(double azimuth_rad, double elevation_rad) {
+  return Eigen::Vector3f(static_cast<float>(-std::sin(elevation_rad) * std::cos(azimuth_rad)),
+                         static_cast<float>(-std::sin(elevation_rad) * std::sin(azimuth_rad)),
+                         static_cast<float>(std::cos(elevation_rad)));
+}
+
+/// Rotation about z by the beam axis azimuth (cos, sin).
+Eigen::Vector3f rotate_z(const Eigen::Vector3f& v, float c, float s) {
+  return Eigen::Vector3f(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
+}
+
+Eigen::Vector3f mirror(const Eigen::Vector3f& v, const Eigen::Vector3f& normal) {
+  return v - 2.0f * v.dot(normal) * normal;
+}
+
+/// The echo's range extent from the pulse and the receiver, as weights over bin offsets 0, 1, ...
+/// (normalised to sum 1): a rectangular pulse of c tau / 2 in range convolved with the one-pole
+/// receiver's exponential response exp(-2 x / (c tau_rx)), integrated over each bin.
+std::vector<double> pulse_kernel(const SonarConfig& sonar) {
+  const double pulse_m = sonar.sound_speed_mps * sonar.pulse_length_us * 1e-6 / 2.0;
+  const double tail_m = sonar.sound_speed_mps * sonar.receiver_time_constant_us * 1e-6 / 2.0;
+  if (pulse_m <= 0.0 && tail_m <= 0.0) return {1.0};
+  constexpr int kSubsteps = 20;  // samples per bin
+  const double dx_m = sonar.bin_m / kSubsteps;
+  const int pulse_n = std::max(1, static_cast<int>(std::lround(pulse_m / dx_m)));
+  // The receiver's tail to 1e-4 of its start, then the pulse box run through it.
+  const int tail_n = tail_m > 0.0 ? static_cast<int>(std::ceil(tail_m * std::log(1e4) / dx_m)) : 0;
+  std::vector<double> fine(static_cast<std::size_t>(pulse_n + tail_n + 1), 0.0);
+  for (int i = 0; i < pulse_n; ++i) {
+    if (tail_n == 0) {
+      fine[i] += 1.0;
+      continue;
+    }
+    for (int k = 0; k <= tail_n; ++k) fine[i + k] += std::exp(-k * dx_m / tail_m);
+  }
+  std::vector<double> kernel;
+  double total = 0.0;
+  for (std::size_t i = 0; i < fine.size(); ++i) {
+    const auto m = static_cast<std::size_t>((static_cast<double>(i) + 0.5) / kSubsteps);
+    if (m >= kernel.size()) kernel.resize(m + 1, 0.0);
+    kernel[m] += fine[i];
+    total += fine[i];
+  }
+  for (double& k : kernel) k /= total;
+  return kernel;
+}
+
+/// out[j] = sum_m kernel[m] in[j - m]: each echo spreads to later bins.
+void spread_in_range(const std::vector<double>& kernel, std::vector<double>& power) {
+  if (kernel.size() <= 1) return;
+  std::vector<double> out(power.size(), 0.0);
+  for (std::size_t j = 0; j < power.size(); ++j) {
+    if (power[j] == 0.0) continue;
+    const std::size_t end = std::min(power.size(), j + kernel.size());
+    for (std::size_t k = j; k < end; ++k) out[k] += kernel[k - j] * power[j];
+  }
+  power.swap(out);
+}
+
+/// A smooth, zero-mean Gaussian field of unit variance with correlation length `length_m`: value
+/// noise (independent normal values at the corners of a cubic lattice, hashed from the corner's
+/// indices, trilinearly interpolated). The same for every ping: it belongs to the surfaces.
+double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
+  const auto corner_value = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
+                      static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full ^
+                      static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull;
+    const std::uint64_t a = splitmix64(h), b = splitmix64(a);
+    const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;
+    const double u2 = static_cast<double>(b >> 11) * 0x1.0p-53;
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
+  };
+  const Eigen::Vector3d q = p_m.cast<double>() / length_m;
+  const Eigen::Vector3d f = q.array().floor();
+  const Eigen::Vector3d t = q - f;
+  double value = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
+    const double w =
+        (dx ? t.x() : 1.0 - t.x()) * (dy ? t.y() : 1.0 - t.y()) * (dz ? t.z() : 1.0 - t.z());
+    value += w * corner_value(static_cast<std::int64_t>(f.x()) + dx,
+                              static_cast<std::int64_t>(f.y()) + dy,
+                              static_cast<std::int64_t>(f.z()) + dz);
+  }
+  // Trilinear weights of independent unit values have a mean square of (2/3)^3 over the cell.
+  return value / std::sqrt(8.0 / 27.0);
 }
 }  // namespace
 
@@ -66,28 +171,56 @@ struct MsisModel::Ping {
 
 struct MsisModel::Echoes {
   explicit Echoes(int bins)
-      : direct(bins, 0.0), multipath(bins, 0.0), largest(bins, 0.0), largest_material(bins, 0) {}
-  std::vector<double> direct;                   ///< power per bin by direct backscatter
-  std::vector<double> multipath;                ///< power per bin by a specular route
+      : direct(bins, 0.0),
+        multipath(bins, 0.0),
+        direct_steps(bins + 1, 0.0),
+        multipath_steps(bins + 1, 0.0),
+        largest(bins, 0.0),
+        largest_material(bins, 0) {}
+  std::vector<double> direct;     ///< power per bin by direct backscatter
+  std::vector<double> multipath;  ///< power per bin by a specular route
+  /// Echoes spread over many bins add a constant power per bin to a run of bins: the change of
+  /// that constant at each bin, summed into the profiles once all rays are in (O(1) per ray).
+  std::vector<double> direct_steps;
+  std::vector<double> multipath_steps;
   std::vector<double> largest;                  ///< the largest single contribution to each bin
   std::vector<std::uint32_t> largest_material;  ///< the surface that returned it
+
+  /// Adds the spread echoes (the steps' running sums) into the profiles.
+  void settle() {
+    for (auto [steps, profile] :
+         {std::pair{&direct_steps, &direct}, {&multipath_steps, &multipath}}) {
+      double level = 0.0;
+      for (std::size_t j = 0; j < profile->size(); ++j) {
+        level += (*steps)[j];
+        (*profile)[j] += level;
+      }
+    }
+  }
 };
 
 MsisModel::MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicle_depth_m)
     : scene_(scene), sonar_(sonar), depth_m_(vehicle_depth_m) {
   const double h_width = sonar.horizontal_beamwidth_deg * kDegToRad;
   const double v_width = sonar.vertical_beamwidth_deg * kDegToRad;
-  // Rays at the centres of equal cells spanning +-one beamwidth (the two-way pattern is 1/16
-  // there), each weighted by the one-way pattern and its cell's share of the aperture.
+  // Rays at the centres of equal cells spanning +-span beamwidths around the axis, each weighted
+  // by the one-way pattern and its cell's share of the aperture.
+  const double h_half = h_width * sonar.horizontal_span_beamwidths;
+  const double v_half = v_width * sonar.vertical_span_beamwidths;
+  const double h_cell = 2.0 * h_half / sonar.rays_horizontal;
+  const double v_cell = 2.0 * v_half / sonar.rays_vertical;
   double total = 0.0;
   for (int i = 0; i < sonar.rays_horizontal; ++i) {
     for (int j = 0; j < sonar.rays_vertical; ++j) {
       RayTemplate ray;
-      ray.azimuth_rad = h_width * (-1.0 + (2.0 * i + 1.0) / sonar.rays_horizontal);
-      ray.elevation_rad = v_width * (-1.0 + (2.0 * j + 1.0) / sonar.rays_vertical);
-      ray.weight = one_way_pattern(ray.azimuth_rad, ray.elevation_rad, h_width, v_width);
-      ray.direction_beam =
-          direction(ray.azimuth_rad, ray.elevation_rad - sonar.tilt_deg * kDegToRad);
+      ray.azimuth_rad = -h_half + (i + 0.5) * h_cell;
+      ray.elevation_rad = -v_half + (j + 0.5) * v_cell;
+      ray.weight = one_way_pattern(ray.azimuth_rad, ray.elevation_rad, sonar);
+      const double e_rad = ray.elevation_rad - sonar.tilt_deg * kDegToRad;
+      ray.direction_beam = direction(ray.azimuth_rad, e_rad);
+      ray.cell_azimuth_beam = direction_d_azimuth(ray.azimuth_rad, e_rad) * h_cell;
+      ray.cell_elevation_beam = direction_d_elevation(ray.azimuth_rad, e_rad) * v_cell;
+      ray.cell_sr = h_cell * v_cell * std::cos(e_rad);
       total += ray.weight * ray.weight;
       rays_.push_back(ray);
     }
@@ -103,6 +236,7 @@ MsisModel::MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicl
         sonar.gain_db + sonar.tvg_db_per_decade * std::log10(std::max(range_m, 1.0));
     tvg_linear_.push_back(std::pow(10.0, tvg_db / 10.0));
   }
+  pulse_kernel_ = pulse_kernel(sonar);
   const double span_db = sonar.display_max_db - sonar.display_min_db;
   level_thresholds_.push_back(0.0);  // intensity 0 for any power
   for (int k = 1; k <= 255; ++k) {
@@ -164,7 +298,10 @@ RenderedBeam MsisModel::render(const BeamSlot& slot, const VehicleTrajectory& tr
   for (std::size_t i = 0; i < rays.size(); ++i) {
     if (hits[i].hit) beam.rays_cast += trace_from(rays_[i], rays[i], hits[i], ping, echoes);
   }
+  echoes.settle();
   beam.truth = truth_of(ping, echoes, trajectory.at(slot.t_s).pose);
+  spread_in_range(pulse_kernel_, echoes.direct);
+  spread_in_range(pulse_kernel_, echoes.multipath);
   beam.intensity = to_intensity(echoes, rng);
   return beam;
 }
@@ -173,22 +310,32 @@ std::uint32_t MsisModel::trace_from(const RayTemplate& ray, Ray r, RayHit hit, c
                                     Echoes& echoes) const {
   const double max_range_m = sonar_.bins * sonar_.bin_m;
   const Eigen::Vector3f first_hit_m = r.origin_m + hit.distance_m * r.direction;
+  // The ray's cell of the aperture as two edge vectors of its direction; a planar mirror keeps
+  // the cell's shape, so they are mirrored with the ray.
+  const float c = static_cast<float>(ping.tx.axis.x()), s = static_cast<float>(ping.tx.axis.y());
+  Eigen::Vector3f cell_azimuth = rotate_z(ray.cell_azimuth_beam, c, s);
+  Eigen::Vector3f cell_elevation = rotate_z(ray.cell_elevation_beam, c, s);
   double path_m = hit.distance_m;
   double route_gain = ray.weight;  // transmit pattern x specular factors of both ways
   std::uint32_t rays_cast = 0;
   for (int bounce = 0;; ++bounce) {
     const Material& material = scene_.materials()[hit.material_id];
     const double cos_incidence = std::abs(r.direction.dot(hit.normal));
-    // Lambert-like backscatter: strength x cos^2(incidence) toward the source.
+    const Eigen::Vector3f hit_point = r.origin_m + hit.distance_m * r.direction;
+    // Lambert-like backscatter: strength x cos^2(incidence) toward the source, varied along the
+    // surface by its roughness; over the ray's footprint, of area path^2 x cell / cos(incidence).
+    const double backscatter = material.backscatter * roughness_gain(hit_point) * cos_incidence *
+                               cos_incidence * footprint_area(path_m, ray.cell_sr, cos_incidence);
     add_echo(ping, first_hit_m, path_m,
-             route_gain * material.backscatter * cos_incidence * cos_incidence, bounce > 0,
-             hit.material_id, echoes);
+             footprint_extent(path_m, r.direction, cell_azimuth, cell_elevation, hit.normal),
+             route_gain * backscatter, bounce > 0, hit.material_id, echoes);
     if (bounce >= sonar_.multipath_bounces || material.specular <= 0.0f) return rays_cast;
     // Specular route: the echo of the next surface comes back the same way, so the mirror's
     // coefficient counts twice.
     route_gain *= static_cast<double>(material.specular) * material.specular;
-    const Eigen::Vector3f hit_point = r.origin_m + hit.distance_m * r.direction;
-    r.direction = r.direction - 2.0f * r.direction.dot(hit.normal) * hit.normal;
+    r.direction = mirror(r.direction, hit.normal);
+    cell_azimuth = mirror(cell_azimuth, hit.normal);
+    cell_elevation = mirror(cell_elevation, hit.normal);
     r.origin_m = hit_point + 1e-3f * hit.normal;
     r.t_max_m = static_cast<float>(max_range_m - path_m);
     if (r.t_max_m <= 0.0f) return rays_cast;
@@ -199,8 +346,39 @@ std::uint32_t MsisModel::trace_from(const RayTemplate& ray, Ray r, RayHit hit, c
   }
 }
 
+double MsisModel::footprint_extent(double path_m, const Eigen::Vector3f& direction,
+                                   const Eigen::Vector3f& cell_azimuth,
+                                   const Eigen::Vector3f& cell_elevation,
+                                   const Eigen::Vector3f& normal) const {
+  if (!sonar_.footprint) return 0.0;
+  // A surface at distance t along d, normal n: t(d) = const / (d . n), so a change dd of the
+  // direction moves the hit by dt = -t (dd . n) / (d . n). Over the cell's two edges the ranges
+  // cover two boxes; their sum has the variance of a box of width sqrt(w_a^2 + w_e^2).
+  constexpr double kMinCos = 0.02;  // grazing: the footprint is bounded by the beam anyway
+  constexpr double kMaxExtent_m = 10.0;
+  const double cos_incidence =
+      std::max(std::abs(static_cast<double>(direction.dot(normal))), kMinCos);
+  const double w_azimuth = path_m * std::abs(cell_azimuth.dot(normal)) / cos_incidence;
+  const double w_elevation = path_m * std::abs(cell_elevation.dot(normal)) / cos_incidence;
+  return std::min(std::hypot(w_azimuth, w_elevation), kMaxExtent_m);
+}
+
+double MsisModel::footprint_area(double path_m, double cell_sr, double cos_incidence) const {
+  if (!sonar_.footprint) return 1.0;
+  constexpr double kMinCos = 0.02;  // as in footprint_extent
+  return path_m * path_m * cell_sr / std::max(cos_incidence, kMinCos);
+}
+
+double MsisModel::roughness_gain(const Eigen::Vector3f& point_m) const {
+  if (sonar_.roughness_db <= 0.0) return 1.0;
+  // Log-normal with mean 1: 10^(sigma_dB g / 10) / E[.], g the unit field.
+  const double sigma_ln = sonar_.roughness_db * std::log(10.0) / 10.0;
+  return std::exp(sigma_ln * roughness_field(point_m, sonar_.roughness_length_m) -
+                  0.5 * sigma_ln * sigma_ln);
+}
+
 void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m,
-                         double power, bool multipath, std::uint32_t material_id,
+                         double extent_m, double power, bool multipath, std::uint32_t material_id,
                          Echoes& echoes) const {
   // Received at t + 2 path / c: the last leg of the return runs from the first surface on the
   // route to where the head is then, and the receive pattern is taken there.
@@ -213,24 +391,50 @@ void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, d
   const double rx_leg_m = to_hit.norm();
   const double tx_leg_m = (first_hit_m - ping.tx.position_m).norm();
   const double range_m = (2.0 * path_m - tx_leg_m + rx_leg_m) / 2.0;
-  if (range_m < sonar_.min_range_m) return;
-  const long bin = static_cast<long>(range_m / sonar_.bin_m + 0.5) - 1;  // range_m > 0
-  if (bin < 0 || bin >= sonar_.bins) return;
   // The return direction in the receive head's frame: forward along the axis, left across it.
   const double forward = rx_axis.x() * to_hit.x() + rx_axis.y() * to_hit.y();
   const double left = rx_axis.x() * to_hit.y() - rx_axis.y() * to_hit.x();
   const double azimuth = std::atan2(left, forward);
   const double elevation =
       std::asin(std::clamp(to_hit.z() / rx_leg_m, -1.0, 1.0)) + sonar_.tilt_deg * kDegToRad;
-  const double rx_pattern =
-      one_way_pattern(azimuth, elevation, sonar_.horizontal_beamwidth_deg * kDegToRad,
-                      sonar_.vertical_beamwidth_deg * kDegToRad) /
-      pattern_norm_;
+  const double rx_pattern = one_way_pattern(azimuth, elevation, sonar_) / pattern_norm_;
   const double received = power * rx_pattern * two_way_loss(path_m, sonar_.absorption_db_per_m);
-  const auto k = static_cast<std::size_t>(bin);
-  (multipath ? echoes.multipath : echoes.direct)[k] += received;
-  if (received > echoes.largest[k]) {
-    echoes.largest[k] = received;
+  std::vector<double>& profile = multipath ? echoes.multipath : echoes.direct;
+  // Bin j holds ranges [(j + 1/2) bin, (j + 3/2) bin); the echo covers [range -+ extent / 2] at a
+  // uniform density, shared among the bins by overlap (all in one bin when the extent is 0).
+  const double lo_m = std::max(range_m - 0.5 * extent_m, sonar_.min_range_m);
+  const double hi_m = range_m + 0.5 * extent_m;
+  const double bins_m = sonar_.bins * sonar_.bin_m;
+  if (hi_m < sonar_.min_range_m || lo_m >= bins_m + 0.5 * sonar_.bin_m) return;
+  const auto bin_of = [&](double r_m) {
+    return std::clamp(static_cast<long>(std::floor(r_m / sonar_.bin_m - 0.5)), 0L,
+                      static_cast<long>(sonar_.bins) - 1);
+  };
+  const long first = bin_of(lo_m), last = bin_of(hi_m), centre = bin_of(range_m);
+  double at_centre = received;
+  if (extent_m <= 0.0) {
+    profile[static_cast<std::size_t>(centre)] += received;
+  } else {
+    // Partial first and last bins directly, the whole bins between as one step up and down;
+    // what lies under the minimum range or beyond the last bin is lost.
+    const double per_m = received / extent_m;
+    const double end_m = std::min(hi_m, bins_m + 0.5 * sonar_.bin_m);
+    const double first_edge_m = (static_cast<double>(first) + 1.5) * sonar_.bin_m;
+    const double last_edge_m = (static_cast<double>(last) + 0.5) * sonar_.bin_m;
+    if (first == last) {
+      profile[static_cast<std::size_t>(first)] += per_m * (end_m - lo_m);
+    } else {
+      profile[static_cast<std::size_t>(first)] += per_m * (first_edge_m - lo_m);
+      profile[static_cast<std::size_t>(last)] += per_m * (end_m - last_edge_m);
+      std::vector<double>& steps = multipath ? echoes.multipath_steps : echoes.direct_steps;
+      steps[static_cast<std::size_t>(first) + 1] += per_m * sonar_.bin_m;
+      steps[static_cast<std::size_t>(last)] -= per_m * sonar_.bin_m;
+    }
+    at_centre = per_m * std::min(extent_m, sonar_.bin_m);
+  }
+  const auto k = static_cast<std::size_t>(centre);
+  if (at_centre > echoes.largest[k]) {
+    echoes.largest[k] = at_centre;
     echoes.largest_material[k] = material_id;
   }
 }
@@ -281,7 +485,12 @@ std::vector<std::uint8_t> MsisModel::to_intensity(const Echoes& echoes, Rng& rng
     if (power == 0.0 && noise_power * kMaxExponential * tvg_linear_[k] < level_thresholds_[1]) {
       continue;
     }
-    if (sonar_.speckle && power > 0.0) power *= exponential(rng);
+    if (sonar_.speckle && power > 0.0) {
+      // Speckle averaged over L independent looks (the bin's samples): Gamma(L, 1/L), mean 1.
+      double looks = 0.0;
+      for (int l = 0; l < sonar_.speckle_looks; ++l) looks += exponential(rng);
+      power *= looks / sonar_.speckle_looks;
+    }
     power += noise_power * exponential(rng);
     // intensity = round(255 (10 log10(power x tvg) - min_db) / span_db), clamped to 0..255:
     // the number of quantisation boundaries the shown power reaches.

@@ -60,6 +60,11 @@ class MsisModel {
     double elevation_rad = 0.0;  ///< above the axis
     double weight = 0.0;         ///< one-way transmit pattern, normalised over the beam
     Eigen::Vector3f direction_beam = Eigen::Vector3f::UnitX();  ///< axis along x, tilt applied
+    /// The ray's cell of the aperture: d direction / d azimuth x cell width, and likewise in
+    /// elevation (beam frame).
+    Eigen::Vector3f cell_azimuth_beam = Eigen::Vector3f::Zero();
+    Eigen::Vector3f cell_elevation_beam = Eigen::Vector3f::Zero();
+    double cell_sr = 0.0;  ///< solid angle of the cell, sr
   };
   struct Echoes;
   struct Head;
@@ -72,8 +77,21 @@ class MsisModel {
   /// the primary one.
   std::uint32_t trace_from(const RayTemplate& ray, Ray r, RayHit hit, const Ping& ping,
                            Echoes& echoes) const;
-  void add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m, double power,
-                bool multipath, std::uint32_t material_id, Echoes& echoes) const;
+  /// Range extent (m) of the footprint of a ray's cell on the surface it hits; 0 when the
+  /// footprint spread is off.
+  double footprint_extent(double path_m, const Eigen::Vector3f& direction,
+                          const Eigen::Vector3f& cell_azimuth,
+                          const Eigen::Vector3f& cell_elevation,
+                          const Eigen::Vector3f& normal) const;
+  /// Area (m^2) of the footprint of a ray's cell on a surface; 1 when footprints are off (a ray
+  /// is then a point scatterer).
+  double footprint_area(double path_m, double cell_sr, double cos_incidence) const;
+  /// Backscatter factor of the surface at a point (roughness), mean 1.
+  double roughness_gain(const Eigen::Vector3f& point_m) const;
+  /// Adds an echo spread uniformly over range_m -+ extent_m / 2 to the profile.
+  void add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m,
+                double extent_m, double power, bool multipath, std::uint32_t material_id,
+                Echoes& echoes) const;
   BeamTruth truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const;
   std::uint8_t quantise(double shown_power) const;
   std::vector<std::uint8_t> to_intensity(const Echoes& echoes, Rng& rng) const;
@@ -82,8 +100,9 @@ class MsisModel {
   SonarConfig sonar_;
   double depth_m_;
   std::vector<RayTemplate> rays_;
-  double pattern_norm_ = 1.0;       ///< divides every one-way pattern value
-  std::vector<double> tvg_linear_;  ///< gain + TVG per bin as a power ratio
+  double pattern_norm_ = 1.0;         ///< divides every one-way pattern value
+  std::vector<double> tvg_linear_;    ///< gain + TVG per bin as a power ratio
+  std::vector<double> pulse_kernel_;  ///< echo spread over later bins by pulse and receiver
   /// Quantisation: intensity k is shown for levels from step k - 1/2 to k + 1/2 of the display
   /// range; entry k (1..255) is the lower boundary of k as a power ratio, entry 0 is 0.
   std::vector<double> level_thresholds_;

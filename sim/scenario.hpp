@@ -10,6 +10,7 @@
 
 #include "sim/mesh.hpp"
 #include "slam/calibration.hpp"
+#include "slam/detection_model.hpp"
 #include "slam/evaluation.hpp"
 
 namespace msislab::sim {
@@ -31,6 +32,12 @@ struct VehicleConfig {
   double step_s = 0.01;                 ///< integration step of the truth
 };
 
+/// Shape of the transducer's one-way power pattern in each plane.
+enum class BeamPattern {
+  kGaussian,  ///< exp(-2 ln2 (2a/W)^2): no sidelobes
+  kSinc,      ///< sinc^2 of a uniformly driven line aperture: nulls and -13 dB sidelobes
+};
+
 struct SonarConfig {
   int steps_per_revolution = 200;
   double revolution_s = 13.8;
@@ -39,8 +46,19 @@ struct SonarConfig {
   double horizontal_beamwidth_deg = 3.0;  ///< two-way -3 dB full width
   double vertical_beamwidth_deg = 35.0;   ///< two-way -3 dB full width
   double tilt_deg = 0.0;                  ///< beam axis below the horizontal, deg
+  BeamPattern beam_pattern = BeamPattern::kGaussian;
   int rays_horizontal = 3;                ///< rays across the horizontal aperture
   int rays_vertical = 24;                 ///< rays across the vertical aperture
+  double horizontal_span_beamwidths = 1;  ///< rays cover +-this many horizontal beamwidths
+  double vertical_span_beamwidths = 1;    ///< rays cover +-this many vertical beamwidths
+  /// Each ray stands for the patch of surface its cell of the aperture covers (its footprint):
+  /// the echo scales with the patch's area and spreads over the patch's ranges. Off: a ray is a
+  /// point scatterer whose echo lands in one bin.
+  bool footprint = false;
+  double pulse_length_us = 0.0;            ///< transmit pulse; an echo lasts c tau / 2 in range
+  double receiver_time_constant_us = 0.0;  ///< one-pole receiver filter: exponential tail
+  double roughness_db = 0.0;               ///< sd of the surfaces' backscatter variation, dB
+  double roughness_length_m = 2.0;         ///< its correlation length along a surface
   double sound_speed_mps = 1500.0;
   double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
   double gain_db = 50.0;                ///< receiver gain added to the level
@@ -49,6 +67,7 @@ struct SonarConfig {
   double display_min_db = 0.0;          ///< level shown as intensity 0
   double display_max_db = 45.0;         ///< level shown as intensity 255
   bool speckle = true;                  ///< multiplicative Rayleigh (exponential power) speckle
+  int speckle_looks = 1;                ///< independent looks averaged per bin (1: Rayleigh)
   int multipath_bounces = 1;            ///< specular bounces followed per ray
   double min_range_m = 0.3;             ///< returns closer than this are blanked (ring-down)
   SonarMount mount;                     ///< head position and bearing convention
@@ -87,6 +106,9 @@ struct Scenario {
   DvlConfig dvl;
   MruConfig mru;
   GpsConfig gps;
+  /// The detector that turns each simulated profile into *_detections.csv.gz, as the real
+  /// dataset's were made (slam/detection_model).
+  DetectionModelConfig detections;
   std::vector<TimeSegment> segments;
 };
 

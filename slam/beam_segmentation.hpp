@@ -15,7 +15,15 @@ enum class SegmentationMethod {
   kSmoothedFirst,    ///< smoothed profile; the peak of the first run above the threshold
 };
 
+/// Which sonar data of a dataset the front end reads when it has both.
+enum class SonarSource {
+  kAuto,        ///< the raw profiles (*_IS.log) when present, else the detections
+  kRaw,         ///< the raw profiles only
+  kDetections,  ///< the detected bins (*_detections.csv[.gz]) only, as the real St. Pere data
+};
+
 struct SegmentationConfig {
+  SonarSource source = SonarSource::kAuto;
   SegmentationMethod method = SegmentationMethod::kThresholdGroups;
   double min_range_m = 1.0;          ///< bins closer than this are ignored (ring-down, vehicle)
   double threshold = 100.0;          ///< intensity 0..255 a return must reach

@@ -19,14 +19,17 @@
 #include <vector>
 
 #include "app/run_command.hpp"
+#include "app/sonar_readings.hpp"
 #include "cli_runner.hpp"
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
+#include "io/detections.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scenario_yaml.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
+#include "slam/detection_model.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -64,9 +67,9 @@ constexpr const char* kScenario =
     "segments: {first_half: [0, 30], second_half: [30, 65]}\n";
 
 const char* const kDatasetFiles[] = {
-    "box_IS.log",      "box_SETUP.log",     "box_DVL.log",   "box_MTi.log",
-    "box_DGPS.log",    "calibration.yaml",  "scenario.yaml", "truth/trajectory.tum",
-    "truth/beams.csv", "truth/segments.csv"};
+    "box_IS.log",    "box_IS_timestamps.log", "box_detections.csv.gz", "box_SETUP.log",
+    "box_DVL.log",   "box_MTi.log",           "box_DGPS.log",          "calibration.yaml",
+    "scenario.yaml", "truth/trajectory.tum",  "truth/beams.csv",       "truth/segments.csv"};
 
 // The box: 4 walls (2 triangles each, group `walls`) and the bottom (2 triangles, group `bottom`),
 // counter-clockwise seen from inside so every normal faces the water.
@@ -421,6 +424,74 @@ TEST(SimulateCommand, DeadReckoningRunsOnTheSimulatedDataset) {
   EXPECT_EQ(outcome.metrics->segments[0].first, "first_half");
   EXPECT_EQ(outcome.metrics->segments[1].first, "second_half");
   EXPECT_TRUE(outcome.metrics->segments[0].second && outcome.metrics->segments[1].second);
+}
+
+// The detections file is the real file's layout: keyframe k is the k-th complete revolution (the
+// angle index from 199 down to 0), beam_row the beam's row in *_IS_timestamps.log, and its bins
+// are exactly the detector's on the IS log's profile; beams outside a revolution have no rows.
+// The real reader reads it, and the front end reads the dataset through it.
+TEST(SimulateCommand, DetectionsAreTheDetectorOnEveryProfileInTheRealLayout) {
+  const BoxDataset& box = box_dataset();
+  const auto beams = io::read_is_log((box.dir / "box_IS.log").string());
+  const auto times = io::read_beam_times_log((box.dir / "box_IS_timestamps.log").string());
+  ASSERT_EQ(times.size(), beams.size());
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    ASSERT_EQ(times[i].t_log_s, beams[i].t_log_s) << "beam " << i;
+    ASSERT_EQ(times[i].sensor_time_ms, beams[i].sensor_time_ms) << "beam " << i;
+  }
+  const auto rows = io::read_detections((box.dir / "box_detections.csv.gz").string());
+  ASSERT_FALSE(rows.empty());
+  const double step_rad = 2.0 * kPi / 200.0;
+  const auto angle_index = [&](std::size_t i) {
+    return static_cast<int>(std::lround(beams[i].transducer_angle_rad / step_rad)) % 200;
+  };
+  // The first complete revolution starts at the first beam whose angle index is 199.
+  std::size_t start = 0;
+  while (angle_index(start) != 199) ++start;
+  const std::size_t revolutions = (beams.size() - start) / 200;
+  ASSERT_GE(revolutions, 1u);
+  std::map<std::size_t, std::vector<const io::DetectionRecord*>> by_beam;
+  for (const io::DetectionRecord& r : rows) {
+    by_beam[static_cast<std::size_t>(r.beam_row)].push_back(&r);
+  }
+  const sim::Scenario scenario = io::read_scenario(box.scenario);
+  std::size_t detected_beams = 0;
+  for (std::size_t i = 0; i < beams.size(); ++i) {
+    const bool inside = i >= start && i < start + 200 * revolutions;
+    const auto found = by_beam.find(i);
+    if (!inside) {
+      EXPECT_TRUE(found == by_beam.end()) << "beam " << i << " is outside every revolution";
+      continue;
+    }
+    const std::vector<int> bins = detect_bins(beams[i].intensity, 0.1, scenario.detections);
+    const std::size_t listed = found == by_beam.end() ? 0 : found->second.size();
+    ASSERT_EQ(listed, bins.size()) << "beam " << i;
+    detected_beams += listed > 0;
+    for (std::size_t k = 0; k < listed; ++k) {
+      const io::DetectionRecord& r = *found->second[k];
+      ASSERT_EQ(r.keyframe, static_cast<int>((i - start) / 200) + 1) << "beam " << i;
+      ASSERT_EQ(r.angle_idx, angle_index(i)) << "beam " << i;
+      ASSERT_NEAR(r.angle_rad, r.angle_idx * step_rad, 1e-5) << "beam " << i;
+      ASSERT_EQ(r.t_log_s, beams[i].t_log_s) << "beam " << i;
+      ASSERT_NEAR(r.range_m, (bins[k] + 1) * 0.1, 1e-9) << "beam " << i;
+    }
+  }
+  // The walls of the box lie within 22 m of every point of the path: most beams see one.
+  EXPECT_GT(detected_beams, 100u * revolutions);
+
+  // The front end reads the dataset through the detections as through the raw profiles.
+  SlamConfig config;
+  config.segmentation.source = SonarSource::kDetections;
+  const io::DatasetFiles files = io::find_dataset_files(box.dir.string());
+  const Calibration calibration = io::load_calibration(files);
+  const SonarInput sonar = load_sonar_readings(files, calibration, config.segmentation);
+  EXPECT_EQ(sonar.source, "detections");
+  ASSERT_EQ(sonar.beams.size(), beams.size());
+  std::size_t with_readings = 0;
+  for (const BeamReadings& b : sonar.beams) with_readings += !b.readings.empty();
+  EXPECT_EQ(with_readings, detected_beams);
+  config.segmentation.source = SonarSource::kRaw;
+  EXPECT_EQ(load_sonar_readings(files, calibration, config.segmentation).source, "IS log");
 }
 
 // The message of the InputError that simulate(options) throws ("" and a failure when none).

@@ -61,6 +61,26 @@ void read_path(YamlMap& map, std::vector<Eigen::Vector2d>& path) {
   }
 }
 
+/// Optional leg_speeds_mps: one speed > 0 per leg, the whole path in under 30 days.
+void read_leg_speeds(YamlMap& map, sim::VehicleConfig& v) {
+  if (!map.numbers("leg_speeds_mps", v.leg_speeds_mps)) return;
+  const std::size_t legs = v.path_m.size() - 1;
+  if (v.leg_speeds_mps.size() != legs) {
+    map.fail("leg_speeds_mps", "expected " + std::to_string(legs) + " speeds (one per leg), got " +
+                                   std::to_string(v.leg_speeds_mps.size()));
+  }
+  double duration_s = 0.0;
+  for (std::size_t i = 0; i < legs; ++i) {
+    if (!(v.leg_speeds_mps[i] > 0.0)) {
+      map.fail("leg_speeds_mps", "speed " + std::to_string(i + 1) + " must be > 0");
+    }
+    duration_s += (v.path_m[i + 1] - v.path_m[i]).norm() / v.leg_speeds_mps[i];
+  }
+  if (duration_s > 30.0 * 86400.0) {
+    map.fail("leg_speeds_mps", "the path would take over 30 days at these speeds");
+  }
+}
+
 void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
   v.depth_m = map.required_number("depth_m");
   v.speed_mps = map.required_number("speed_mps");
@@ -73,6 +93,7 @@ void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
   if (length_m / v.speed_mps > 30.0 * 86400.0) {
     map.fail("speed_mps", "the path would take over 30 days at this speed");
   }
+  read_leg_speeds(map, v);
   double turn_rate_deg_s = v.max_turn_rate_radps * 180.0 / M_PI;
   map.number("max_turn_rate_deg_s", turn_rate_deg_s);
   require_positive(map, "max_turn_rate_deg_s", turn_rate_deg_s);

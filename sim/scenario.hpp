@@ -26,6 +26,8 @@ struct VehicleConfig {
   double depth_m = 1.5;
   double speed_mps = 0.2;
   std::vector<Eigen::Vector2d> path_m;  ///< waypoints in the scene frame, followed in order
+  std::vector<double> leg_speeds_mps;   ///< optional, one per leg (path_m[i] to [i + 1]), m/s;
+                                        ///< empty: every leg at speed_mps
   double max_turn_rate_radps = 0.15;    ///< bound on |yaw rate|
   double lookahead_m = 3.0;             ///< pure-pursuit carrot distance along the path
   double start_time_s = 1093455407.0;   ///< log time of the first sample (Unix s)

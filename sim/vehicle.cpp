@@ -41,6 +41,12 @@ class Path {
   }
   double length_m() const { return arc_m_.back(); }
 
+  /// The leg (0-based) that holds arc length s_m.
+  std::size_t leg_at(double s_m) const {
+    const std::size_t i = std::upper_bound(arc_m_.begin(), arc_m_.end(), s_m) - arc_m_.begin();
+    return std::clamp<std::size_t>(i, 1, points_.size() - 1) - 1;
+  }
+
   Eigen::Vector2d point_at(double s_m) const {
     s_m = std::clamp(s_m, 0.0, length_m());
     std::size_t i = std::upper_bound(arc_m_.begin(), arc_m_.end(), s_m) - arc_m_.begin();
@@ -89,7 +95,13 @@ VehicleTrajectory follow_path(const VehicleConfig& config) {
   const double dt = config.step_s;
   // Turn-rate loop gain (1/s): the heading error decays in ~2 s unless the rate bound is hit.
   const double heading_gain = 0.5;
-  const double max_duration_s = 3.0 * path.length_m() / config.speed_mps + 60.0;
+  const auto speed_at = [&](double s_m) {
+    return config.leg_speeds_mps.empty() ? config.speed_mps
+                                         : config.leg_speeds_mps[path.leg_at(s_m)];
+  };
+  double min_speed_mps = config.speed_mps;
+  for (const double v : config.leg_speeds_mps) min_speed_mps = std::min(min_speed_mps, v);
+  const double max_duration_s = 3.0 * path.length_m() / min_speed_mps + 60.0;
   std::vector<VehicleState> samples;
   double s_m = 0.0;
   for (double t = 0.0; t <= max_duration_s; t += dt) {
@@ -100,12 +112,13 @@ VehicleTrajectory follow_path(const VehicleConfig& config) {
         normalize_angle(std::atan2(to_carrot.y(), to_carrot.x()) - pose.yaw());
     const double r = std::clamp(heading_gain * heading_error, -config.max_turn_rate_radps,
                                 config.max_turn_rate_radps);
-    samples.push_back({config.start_time_s + t, pose, config.speed_mps, 0.0, r});
+    const double speed_mps = speed_at(s_m);
+    samples.push_back({config.start_time_s + t, pose, speed_mps, 0.0, r});
     // Done once the nearest point of the path is its end: the vehicle is at or abeam of the last
     // waypoint (a last leg shorter than the turning circle cannot be reached any closer).
     if (path.length_m() - s_m < 0.5) break;
     // Exact integration of a constant-speed arc over dt.
-    pose = pose.compose(arc_step(config.speed_mps, r, dt));
+    pose = pose.compose(arc_step(speed_mps, r, dt));
   }
   return VehicleTrajectory(std::move(samples));
 }

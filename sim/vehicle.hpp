@@ -1,5 +1,6 @@
-// The simulated vehicle: pure-pursuit path following at constant speed and depth with a bounded
-// turn rate, integrated at a fine step into the exact truth trajectory.
+// The simulated vehicle: pure-pursuit path following at constant depth, at a constant speed or one
+// speed per leg, with a bounded turn rate, integrated at a fine step into the exact truth
+// trajectory.
 #pragma once
 
 #include <vector>

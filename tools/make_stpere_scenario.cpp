@@ -1,7 +1,7 @@
 // msislab_make_stpere_scenario: writes the St. Pere replica scenario (docs/scenes.md): the real GPS
 // track, smoothed (centred moving average) and simplified (Douglas-Peucker) into waypoints in the
-// local frame, each kept inside the marina scene with a clearance from its walls; the speed makes
-// the path last as long as the real run.
+// local frame, each kept inside the marina scene with a small clearance from its walls; each leg's
+// speed makes the simulated vehicle reach its waypoints when the real one did.
 #include <CLI/CLI.hpp>
 #include <Eigen/Core>
 #include <algorithm>
@@ -19,6 +19,7 @@
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/mesh_io.hpp"
+#include "sim/vehicle.hpp"
 #include "slam/evaluation.hpp"
 
 namespace {
@@ -31,10 +32,12 @@ struct Options {
   std::string out_path;            ///< empty: standard output
   double smooth_s = 20.0;          ///< moving-average window, s
   double tolerance_m = 1.5;        ///< Douglas-Peucker tolerance, m
-  double clearance_m = 2.0;        ///< wanted distance from every waypoint to the walls, m
+  double clearance_m = 0.75;       ///< wanted distance from every waypoint to the walls, m
   double depth_m = 1.5;            ///< vehicle depth, m
   double leave_basin_s = 2000.0;   ///< real time (from the first fix) the basin is left, s
+  double exit_s = 2900.0;          ///< real time the exit part (canal end, east opening) begins, s
   double segments_end_s = 3400.0;  ///< end of the last segment, s
+  int timing_iterations = 8;       ///< leg speed corrections against the simulated vehicle
 };
 
 /// The scene's walls as 2-D segments and its bottom as 2-D triangles (from the OBJ groups).
@@ -175,21 +178,50 @@ double min_leg_clearance_m(const SceneOutline& outline, const Path& path) {
   return lowest_m;
 }
 
-/// Simulated time at which the constant-speed vehicle passes where the real one was at real_s
-/// (from the first fix): interpolated between the waypoints, whose real times are those of the
-/// fixes they were kept from.
-double simulated_time_s(const Path& path, const std::vector<double>& real_times_s, double speed_mps,
-                        double real_s) {
-  double along_m = 0.0;
+/// The time (from the start) at which the vehicle passes each waypoint: its closest approach,
+/// searched in order along the trajectory.
+std::vector<double> arrival_times_s(const msislab::sim::VehicleTrajectory& truth,
+                                    const Path& path) {
+  const auto& samples = truth.samples();
+  std::vector<double> arrivals = {0.0};
+  std::size_t i = 0;
   for (std::size_t k = 1; k < path.size(); ++k) {
-    const double leg_m = (path[k] - path[k - 1]).norm();
-    if (real_times_s[k] >= real_s) {
-      const double u = (real_s - real_times_s[k - 1]) / (real_times_s[k] - real_times_s[k - 1]);
-      return (along_m + std::clamp(u, 0.0, 1.0) * leg_m) / speed_mps;
+    double best_m = std::numeric_limits<double>::infinity();
+    std::size_t best = i;
+    for (; i < samples.size(); ++i) {
+      const double d_m = (samples[i].pose.translation() - path[k]).norm();
+      if (d_m < best_m) best_m = d_m, best = i;
+      if (best_m < 3.0 && d_m > best_m + 2.0) break;
     }
-    along_m += leg_m;
+    i = best;
+    arrivals.push_back(samples[best].t_s - truth.start_s());
   }
-  return along_m / speed_mps;
+  return arrivals;
+}
+
+/// Leg speeds that make the simulated vehicle reach every waypoint when the real one did: first
+/// leg length / real leg time, then each scaled by its simulated / real duration (the pursuit
+/// cuts corners) a few times. Returns the speeds and the arrival times reached.
+std::pair<std::vector<double>, std::vector<double>> timed_leg_speeds(
+    const Path& path, const std::vector<double>& real_times_s, const Options& options) {
+  msislab::sim::VehicleConfig vehicle;
+  vehicle.path_m = path;
+  for (std::size_t k = 1; k < path.size(); ++k) {
+    const double leg_s = std::max(real_times_s[k] - real_times_s[k - 1], 1.0);
+    vehicle.leg_speeds_mps.push_back(std::clamp((path[k] - path[k - 1]).norm() / leg_s, 0.02, 1.0));
+  }
+  std::vector<double> arrivals;
+  for (int iteration = 0; iteration <= options.timing_iterations; ++iteration) {
+    arrivals = arrival_times_s(msislab::sim::follow_path(vehicle), path);
+    if (iteration == options.timing_iterations) break;
+    for (std::size_t k = 1; k < path.size(); ++k) {
+      const double simulated_s = std::max(arrivals[k] - arrivals[k - 1], 1.0);
+      const double real_s = std::max(real_times_s[k] - real_times_s[k - 1], 1.0);
+      vehicle.leg_speeds_mps[k - 1] =
+          std::clamp(vehicle.leg_speeds_mps[k - 1] * simulated_s / real_s, 0.02, 1.0);
+    }
+  }
+  return {vehicle.leg_speeds_mps, arrivals};
 }
 
 /// Waypoints with the real time (from the first fix) of the fix each was kept from.
@@ -199,17 +231,18 @@ struct Waypoints {
 };
 
 /// The track smoothed and simplified; every waypoint then pulled inside the scene with the wanted
-/// clearance (reported on stderr), and one closer than 0.1 m to the previous dropped.
+/// clearance where it has less (reported on stderr), and one closer than 0.1 m to the previous
+/// dropped.
 Waypoints place_waypoints(const std::vector<msislab::PositionFix>& fixes, const Path& smoothed,
                           const SceneOutline& outline, const Options& options) {
   Waypoints waypoints;
   for (const std::size_t i : simplify(smoothed, options.tolerance_m)) {
     Eigen::Vector2d p = smoothed[i];
     const double before_m = clearance_m(outline, p);
-    if (pull_inside(outline, p, options.clearance_m) > 0.0) {
+    if (const double moved_m = pull_inside(outline, p, options.clearance_m); moved_m > 0.0) {
       std::cerr << std::fixed << std::setprecision(1) << "waypoint (" << smoothed[i].x() << ", "
-                << smoothed[i].y() << ") had clearance " << before_m << " m: moved to (" << p.x()
-                << ", " << p.y() << ")\n";
+                << smoothed[i].y() << ") had clearance " << before_m << " m: moved "
+                << std::setprecision(2) << moved_m << " m to (" << p.x() << ", " << p.y() << ")\n";
     }
     if (!waypoints.path.empty() && (p - waypoints.path.back()).norm() < 0.1) continue;
     waypoints.path.push_back(p);
@@ -218,23 +251,26 @@ Waypoints place_waypoints(const std::vector<msislab::PositionFix>& fixes, const 
   return waypoints;
 }
 
-std::string scenario_yaml(const Options& options, const Path& path, double speed_mps,
-                          double boundary_s, const std::string& mesh_ref) {
+std::string scenario_yaml(const Options& options, const Path& path,
+                          const std::vector<double>& leg_speeds_mps, const std::string& mesh_ref) {
   std::ostringstream yaml;
   yaml << "# The St. Pere replica: the real GPS track in the local frame (x East, y North, m from "
           "the\n# first fix), smoothed over "
        << options.smooth_s << " s, simplified at " << options.tolerance_m
        << " m, waypoints kept >= " << options.clearance_m
-       << " m off the walls.\n# The speed makes the path last as long as the real run; the "
-          "segments are simulated times\n# (the basin loop, then the canal). Written by "
-          "msislab_make_stpere_scenario (docs/scenes.md).\n";
+       << " m off the walls.\n# Each leg's speed makes the vehicle reach its waypoints when the "
+          "real "
+          "one did, so the\n# segments are the real times. Written by msislab_make_stpere_scenario "
+          "(docs/scenes.md).\n";
   yaml << "name: stpere_replica\nseed: 42\nscene:\n  mesh: " << mesh_ref
-       << "\nvehicle:\n  depth_m: " << options.depth_m << "\n  speed_mps: " << std::setprecision(4)
-       << speed_mps << "\n  path:\n"
+       << "\nvehicle:\n  depth_m: " << options.depth_m << "\n  speed_mps: 0.2\n  path:\n"
        << std::fixed << std::setprecision(2);
   for (const Eigen::Vector2d& p : path) yaml << "    - [" << p.x() << ", " << p.y() << "]\n";
-  yaml << std::setprecision(0) << "segments: {loop: [0, " << boundary_s << "], canal: ["
-       << boundary_s << ", " << options.segments_end_s << "]}\n"
+  yaml << "  leg_speeds_mps:\n" << std::setprecision(4);
+  for (const double v : leg_speeds_mps) yaml << "    - " << v << "\n";
+  yaml << std::setprecision(0) << "segments: {loop: [0, " << options.leave_basin_s << "], canal: ["
+       << options.leave_basin_s << ", " << options.segments_end_s << "], exit: [" << options.exit_s
+       << ", " << options.segments_end_s << "]}\n"
        << "sonar: {}\ndvl: {}\nmru: {}\ngps: {}\n";
   return yaml.str();
 }
@@ -247,28 +283,31 @@ void make_scenario(const Options& options) {
   const Path smoothed = smooth_track(fixes, options.smooth_s);
   const Waypoints waypoints = place_waypoints(fixes, smoothed, outline, options);
   const Path& path = waypoints.path;
+  const auto [leg_speeds_mps, arrivals_s] = timed_leg_speeds(path, waypoints.real_times_s, options);
 
   double lowest_m = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector2d& p : path) lowest_m = std::min(lowest_m, clearance_m(outline, p));
-  const double duration_s = fixes.back().t_s - fixes.front().t_s;
-  const double speed_mps = length_m(path) / duration_s;
-  const double boundary_s = 10.0 * std::round(simulated_time_s(path, waypoints.real_times_s,
-                                                               speed_mps, options.leave_basin_s) /
-                                              10.0);
+  double worst_s = 0.0;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    worst_s = std::max(worst_s, std::abs(arrivals_s[k] - waypoints.real_times_s[k]));
+  }
+  const auto [slowest, fastest] = std::minmax_element(leg_speeds_mps.begin(), leg_speeds_mps.end());
   std::cerr << std::fixed << std::setprecision(1) << path.size() << " waypoints, path "
             << length_m(path) << " m (smoothed GPS track " << length_m(smoothed) << " m), run "
-            << duration_s << " s, speed " << std::setprecision(4) << speed_mps << " m/s\n"
+            << fixes.back().t_s - fixes.front().t_s << " s; simulated arrival at the last waypoint "
+            << arrivals_s.back() << " s\n"
+            << std::setprecision(3) << "leg speeds " << *slowest << " .. " << *fastest << " m/s\n"
+            << std::setprecision(1) << "timing: every waypoint reached within " << worst_s
+            << " s of the real vehicle\n"
             << std::setprecision(2) << "clearance from the walls: waypoints >= " << lowest_m
-            << " m, legs >= " << min_leg_clearance_m(outline, path)
-            << " m\nthe simulated vehicle passes where the real one was at "
-            << options.leave_basin_s << " s (leaving the basin) at about " << boundary_s << " s\n";
+            << " m, legs >= " << min_leg_clearance_m(outline, path) << " m\n";
 
   std::string mesh_ref = options.scene_path;
   if (!options.out_path.empty()) {
     const auto out_dir = std::filesystem::absolute(options.out_path).parent_path();
     mesh_ref = std::filesystem::relative(std::filesystem::absolute(options.scene_path), out_dir);
   }
-  const std::string yaml = scenario_yaml(options, path, speed_mps, boundary_s, mesh_ref);
+  const std::string yaml = scenario_yaml(options, path, leg_speeds_mps, mesh_ref);
   if (options.out_path.empty()) {
     std::cout << yaml;
     return;

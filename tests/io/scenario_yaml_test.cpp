@@ -428,6 +428,24 @@ TEST(ScenarioYaml, BadPaths) {
              10, "vehicle.path");
 }
 
+TEST(ScenarioYaml, LegSpeedsOnePerLeg) {
+  const TempDir dir;
+  const std::string text = std::string(kMinimal) + "  leg_speeds_mps: [0.2, 0.05]\n";
+  const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
+  EXPECT_EQ(s.vehicle.leg_speeds_mps, (std::vector<double>{0.2, 0.05}));
+  EXPECT_TRUE(
+      read_scenario(write_text(dir.file("m.yaml"), kMinimal)).vehicle.leg_speeds_mps.empty());
+  expect_bad(std::string(kMinimal) + "  leg_speeds_mps: [0.2]\n", 8, "vehicle.leg_speeds_mps",
+             "expected 2 speeds (one per leg), got 1");
+  expect_bad(std::string(kMinimal) + "  leg_speeds_mps: [0.2, 0.1, 0.3]\n", 8,
+             "vehicle.leg_speeds_mps", "got 3");
+  expect_bad(std::string(kMinimal) + "  leg_speeds_mps: [0.2, 0]\n", 8, "vehicle.leg_speeds_mps",
+             "must be > 0");
+  expect_bad(std::string(kMinimal) + "  leg_speeds_mps: [0.2, fast]\n", 8,
+             "vehicle.leg_speeds_mps");
+  expect_bad(std::string(kMinimal) + "  leg_speed_mps: [0.2, 0.1]\n", 8, "vehicle.leg_speed_mps");
+}
+
 TEST(ScenarioYaml, MalformedYamlAndDuplicateKeys) {
   expect_bad(minimal_with(6, "  speed_mps: [0.5\n"), 0, "", "malformed YAML");
   expect_bad(minimal_with(6, "  speed_mps: 0.5\n  speed_mps: 0.7\n"), 7, "vehicle.speed_mps",

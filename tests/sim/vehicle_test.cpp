@@ -33,6 +33,19 @@ TEST(Vehicle, StraightLineAtTheGivenSpeed) {
   EXPECT_NEAR(truth.at(110.005).pose.x(), 5.0025, 1e-9);
 }
 
+TEST(Vehicle, LegSpeedsSetTheTimeOfEachLeg) {
+  VehicleConfig config;
+  config.speed_mps = 1.0;  // unused: every leg has its own speed
+  config.path_m = {{0, 0}, {20, 0}, {40, 0}};
+  config.leg_speeds_mps = {0.5, 0.1};
+  const VehicleTrajectory truth = follow_path(config);
+  // 20 m at 0.5 m/s, then 20 m at 0.1 m/s; the end stops up to 0.5 m short of the last waypoint.
+  EXPECT_NEAR(truth.at(config.start_time_s + 40.0).pose.x(), 20.0, 0.01);
+  EXPECT_NEAR(truth.end_s() - truth.start_s(), 40.0 + 200.0, 5.0);
+  EXPECT_EQ(truth.at(config.start_time_s + 10.0).surge_mps, 0.5);
+  EXPECT_EQ(truth.at(config.start_time_s + 100.0).surge_mps, 0.1);
+}
+
 TEST(Vehicle, SquareLoopStaysNearThePathWithBoundedTurnRate) {
   VehicleConfig config;
   config.speed_mps = 0.3;

@@ -1,0 +1,125 @@
+#include "sim/scene_builder.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "sim/polygon_triangulation.hpp"
+
+namespace msislab::sim {
+
+std::uint32_t MeshBuilder::group(const std::string& name, float backscatter, float specular) {
+  mesh_.materials.push_back({name, backscatter, specular});
+  mesh_.group_names.push_back(name);
+  return static_cast<std::uint32_t>(mesh_.materials.size() - 1);
+}
+
+int MeshBuilder::vertex(const Eigen::Vector3d& p_m) {
+  mesh_.vertices_m.push_back(p_m.cast<float>());
+  return static_cast<int>(mesh_.vertices_m.size() - 1);
+}
+
+void MeshBuilder::triangle(int a, int b, int c, std::uint32_t group) {
+  mesh_.triangles.emplace_back(a, b, c);
+  mesh_.material_ids.push_back(group);
+}
+
+void MeshBuilder::quad(int a, int b, int c, int d, std::uint32_t group) {
+  triangle(a, b, c, group);
+  triangle(a, c, d, group);
+}
+
+namespace {
+
+/// The unit normal to the left of a -> b: into the water of a counter-clockwise outline.
+Eigen::Vector2d inward_normal(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d d = (b - a).normalized();
+  return {-d.y(), d.x()};
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> wall_foot_polygon(const BasinOutline& outline, double offset_m) {
+  const std::vector<Eigen::Vector2d>& p = outline.ccw_polygon_m;
+  const std::size_t n = p.size();
+  std::vector<Eigen::Vector2d> shift(n, Eigen::Vector2d::Zero());
+  for (std::size_t i = 0; i < n && offset_m != 0.0; ++i) {
+    const std::size_t before = (i + n - 1) % n, after = (i + 1) % n;
+    const bool wall_before = outline.wall_edge[before], wall_after = outline.wall_edge[i];
+    if (!wall_before && !wall_after) continue;
+    const Eigen::Vector2d n_before = inward_normal(p[before], p[i]);
+    const Eigen::Vector2d n_after = inward_normal(p[i], p[after]);
+    if (wall_before != wall_after) {
+      shift[i] = offset_m * (wall_before ? n_before : n_after);
+      continue;
+    }
+    // Mitre: the point offset_m from both edges, length offset_m / cos(half the turn).
+    const Eigen::Vector2d bisector = (n_before + n_after).normalized();
+    shift[i] = bisector * offset_m / std::max(bisector.dot(n_before), 0.5);
+  }
+  // Where two foot edges cross (a shift longer than a short edge), the shifts of their four
+  // vertices are halved until none does: the foot comes closer to the top there.
+  std::vector<Eigen::Vector2d> foot(n);
+  for (int halving = 0; halving <= 30; ++halving) {
+    for (std::size_t i = 0; i < n; ++i) foot[i] = p[i] + shift[i];
+    const auto crossing = find_crossing_edges(foot);
+    if (!crossing) break;
+    for (const int e : {crossing->first, crossing->second}) {
+      shift[static_cast<std::size_t>(e)] *= 0.5;
+      shift[(static_cast<std::size_t>(e) + 1) % n] *= 0.5;
+    }
+  }
+  return foot;
+}
+
+void add_basin(MeshBuilder& builder, const BasinOutline& outline, const BasinProfile& profile,
+               std::uint32_t walls_group, std::uint32_t bottom_group) {
+  const std::size_t n = outline.ccw_polygon_m.size();
+  if (n < 3 || outline.wall_edge.size() != n) {
+    throw std::invalid_argument("add_basin: needs >= 3 vertices and one wall flag per edge");
+  }
+  const std::vector<Eigen::Vector2d> foot = wall_foot_polygon(outline, profile.wall_foot_offset_m);
+  if (find_crossing_edges(foot)) {
+    throw std::invalid_argument("add_basin: the wall foot polygon crosses itself");
+  }
+  std::vector<int> foot_index, top_index(n, -1);
+  for (const Eigen::Vector2d& q : foot) {
+    foot_index.push_back(builder.vertex({q.x(), q.y(), profile.z_bottom_m}));
+  }
+  const auto top = [&](std::size_t i) {
+    if (top_index[i] < 0) {
+      const Eigen::Vector2d& q = outline.ccw_polygon_m[i];
+      top_index[i] = builder.vertex({q.x(), q.y(), profile.z_top_m});
+    }
+    return top_index[i];
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!outline.wall_edge[i]) continue;
+    const std::size_t j = (i + 1) % n;
+    // Counter-clockwise seen from the outline's inside (its left): the normals face the water.
+    builder.triangle(foot_index[i], top(j), foot_index[j], walls_group);
+    builder.triangle(foot_index[i], top(i), top(j), walls_group);
+  }
+  for (const Eigen::Vector3i& t : triangulate_polygon(foot)) {
+    builder.triangle(foot_index[t[0]], foot_index[t[1]], foot_index[t[2]], bottom_group);
+  }
+}
+
+void add_prism(MeshBuilder& builder, const std::vector<Eigen::Vector2d>& ccw_footprint_m,
+               double z_low_m, double z_top_m, std::uint32_t group) {
+  std::vector<int> low, high;
+  for (const Eigen::Vector2d& q : ccw_footprint_m) {
+    low.push_back(builder.vertex({q.x(), q.y(), z_low_m}));
+    high.push_back(builder.vertex({q.x(), q.y(), z_top_m}));
+  }
+  const int n = static_cast<int>(ccw_footprint_m.size());
+  for (int k = 0; k < n; ++k) {
+    const int next = (k + 1) % n;
+    builder.quad(low[k], low[next], high[next], high[k], group);  // the outside is right of k
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    builder.triangle(high[0], high[k], high[k + 1], group);
+    builder.triangle(low[0], low[k + 1], low[k], group);
+  }
+}
+
+}  // namespace msislab::sim

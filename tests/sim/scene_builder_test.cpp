@@ -1,0 +1,105 @@
+// sim/scene_builder: basins from outlines (walls only on wall edges, vertical or sloped) and
+// prisms, checked for normals that face the water, closed prisms and the foot offset.
+#include "sim/scene_builder.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+namespace msislab::sim {
+namespace {
+
+Eigen::Vector3d normal_of(const TriangleMesh& mesh, std::size_t t) {
+  const Eigen::Vector3d a = mesh.vertices_m[mesh.triangles[t][0]].cast<double>();
+  const Eigen::Vector3d b = mesh.vertices_m[mesh.triangles[t][1]].cast<double>();
+  const Eigen::Vector3d c = mesh.vertices_m[mesh.triangles[t][2]].cast<double>();
+  return (b - a).cross(c - a);
+}
+
+Eigen::Vector3d centre_of(const TriangleMesh& mesh, std::size_t t) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) sum += mesh.vertices_m[mesh.triangles[t][k]].cast<double>();
+  return sum / 3.0;
+}
+
+BasinOutline square(double side_m) {
+  return {{{0.0, 0.0}, {side_m, 0.0}, {side_m, side_m}, {0.0, side_m}}, {true, true, true, true}};
+}
+
+TEST(SceneBuilder, BasinWallsFaceTheWaterAndTheBottomFacesUp) {
+  MeshBuilder builder;
+  const auto walls = builder.group("walls", 0.6f, 0.3f);
+  const auto bottom = builder.group("bottom", 0.3f, 0.2f);
+  add_basin(builder, square(10.0), {1.0, -3.0, 0.0}, walls, bottom);
+  const TriangleMesh& mesh = builder.mesh();
+  ASSERT_EQ(mesh.triangles.size(), 10u);  // 4 walls x 2 + bottom 2
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Eigen::Vector3d n = normal_of(mesh, t);
+    if (mesh.material_ids[t] == bottom) {
+      EXPECT_GT(n.z(), 0.0);
+    } else {
+      const Eigen::Vector3d to_middle = Eigen::Vector3d(5.0, 5.0, 0.0) - centre_of(mesh, t);
+      EXPECT_GT(n.head<2>().dot(to_middle.head<2>()), 0.0) << "wall triangle " << t;
+    }
+  }
+}
+
+TEST(SceneBuilder, OpenEdgesHaveNoWall) {
+  BasinOutline outline = square(10.0);
+  outline.wall_edge[1] = false;
+  MeshBuilder builder;
+  const auto walls = builder.group("walls", 0.6f, 0.3f);
+  const auto bottom = builder.group("bottom", 0.3f, 0.2f);
+  add_basin(builder, outline, {1.0, -3.0, 0.0}, walls, bottom);
+  const TriangleMesh& mesh = builder.mesh();
+  int wall_triangles = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    if (mesh.material_ids[t] != walls) continue;
+    ++wall_triangles;
+    EXPECT_LT(centre_of(mesh, t).x(), 9.9) << "no wall along the open east edge";
+  }
+  EXPECT_EQ(wall_triangles, 6);
+}
+
+TEST(SceneBuilder, FootOffsetSlopesTheWallsIntoTheWater) {
+  const std::vector<Eigen::Vector2d> foot = wall_foot_polygon(square(10.0), 1.0);
+  ASSERT_EQ(foot.size(), 4u);
+  EXPECT_NEAR((foot[0] - Eigen::Vector2d(1.0, 1.0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((foot[2] - Eigen::Vector2d(9.0, 9.0)).norm(), 0.0, 1e-12);
+  BasinOutline open_east = square(10.0);
+  open_east.wall_edge[1] = false;
+  const std::vector<Eigen::Vector2d> half = wall_foot_polygon(open_east, 1.0);
+  // Vertex 1 lies between the south wall and the open east edge: it moves off the wall only.
+  EXPECT_NEAR((half[1] - Eigen::Vector2d(10.0, 1.0)).norm(), 0.0, 1e-12);
+}
+
+TEST(SceneBuilder, FootOffsetLongerThanAnEdgeStillGivesASimpleBottom) {
+  BasinOutline notch = {
+      {{0, 0}, {10, 0}, {10, 10}, {5.2, 10}, {5.2, 9}, {4.8, 9}, {4.8, 10}, {0, 10}},
+      std::vector<bool>(8, true)};
+  MeshBuilder builder;
+  const auto walls = builder.group("walls", 0.6f, 0.3f);
+  const auto bottom = builder.group("bottom", 0.3f, 0.2f);
+  EXPECT_NO_THROW(add_basin(builder, notch, {1.0, -3.0, 2.0}, walls, bottom));
+}
+
+TEST(SceneBuilder, PrismIsClosedWithOutwardNormals) {
+  MeshBuilder builder;
+  const auto group = builder.group("clutter", 0.5f, 0.3f);
+  add_prism(builder, {{0, 0}, {4, 0}, {4, 2}, {0, 2}}, -3.0, 0.5, group);
+  const TriangleMesh& mesh = builder.mesh();
+  ASSERT_EQ(mesh.triangles.size(), 12u);
+  double volume_m3 = 0.0;  // divergence theorem: sum of a . (b x c) / 6
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Eigen::Vector3d a = mesh.vertices_m[mesh.triangles[t][0]].cast<double>();
+    const Eigen::Vector3d b = mesh.vertices_m[mesh.triangles[t][1]].cast<double>();
+    const Eigen::Vector3d c = mesh.vertices_m[mesh.triangles[t][2]].cast<double>();
+    volume_m3 += a.dot(b.cross(c)) / 6.0;
+    const Eigen::Vector3d outward = centre_of(mesh, t) - Eigen::Vector3d(2.0, 1.0, -1.25);
+    EXPECT_GT(normal_of(mesh, t).dot(outward), 0.0) << "triangle " << t;
+  }
+  EXPECT_NEAR(volume_m3, 4.0 * 2.0 * 3.5, 1e-4);
+}
+
+}  // namespace
+}  // namespace msislab::sim

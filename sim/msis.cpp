@@ -300,8 +300,6 @@ RenderedBeam MsisModel::render(const BeamSlot& slot, const VehicleTrajectory& tr
   }
   echoes.settle();
   beam.truth = truth_of(ping, echoes, trajectory.at(slot.t_s).pose);
-  spread_in_range(pulse_kernel_, echoes.direct);
-  spread_in_range(pulse_kernel_, echoes.multipath);
   beam.intensity = to_intensity(echoes, rng);
   return beam;
 }
@@ -477,21 +475,27 @@ std::vector<std::uint8_t> MsisModel::to_intensity(const Echoes& echoes, Rng& rng
   static const ExponentialTable exponential;
   const double kMaxExponential = ExponentialTable::max();
   const double noise_power = std::pow(10.0, sonar_.noise_level_db / 10.0);
-  std::vector<std::uint8_t> intensity(static_cast<std::size_t>(sonar_.bins));
+  // Speckle belongs to the echo as it arrives (scatterers interfering within a resolution
+  // cell): Rayleigh amplitude = exponential power, averaged over L independent looks (the bin's
+  // samples), Gamma(L, 1/L) with mean 1. The pulse and the receiver filter then smooth the
+  // speckled echo, so its tail decays with the echo instead of flickering bin by bin.
+  std::vector<double> echo(static_cast<std::size_t>(sonar_.bins));
+  for (std::size_t k = 0; k < echo.size(); ++k) {
+    echo[k] = echoes.direct[k] + echoes.multipath[k];
+    if (!sonar_.speckle || echo[k] == 0.0) continue;
+    double looks = 0.0;
+    for (int l = 0; l < sonar_.speckle_looks; ++l) looks += exponential(rng);
+    echo[k] *= looks / sonar_.speckle_looks;
+  }
+  spread_in_range(pulse_kernel_, echo);
+  std::vector<std::uint8_t> intensity(echo.size());
   for (std::size_t k = 0; k < intensity.size(); ++k) {
-    // Rayleigh amplitude speckle = exponential power; background noise likewise.
-    double power = echoes.direct[k] + echoes.multipath[k];
     // No echo and even the largest noise draw stays under intensity 1: 0, no draw needed.
-    if (power == 0.0 && noise_power * kMaxExponential * tvg_linear_[k] < level_thresholds_[1]) {
+    if (echo[k] == 0.0 && noise_power * kMaxExponential * tvg_linear_[k] < level_thresholds_[1]) {
       continue;
     }
-    if (sonar_.speckle && power > 0.0) {
-      // Speckle averaged over L independent looks (the bin's samples): Gamma(L, 1/L), mean 1.
-      double looks = 0.0;
-      for (int l = 0; l < sonar_.speckle_looks; ++l) looks += exponential(rng);
-      power *= looks / sonar_.speckle_looks;
-    }
-    power += noise_power * exponential(rng);
+    // Background noise: exponential power after the receiver.
+    const double power = echo[k] + noise_power * exponential(rng);
     // intensity = round(255 (10 log10(power x tvg) - min_db) / span_db), clamped to 0..255:
     // the number of quantisation boundaries the shown power reaches.
     intensity[k] = quantise(power * tvg_linear_[k]);

@@ -49,23 +49,23 @@ struct SonarConfig {
   double vertical_beamwidth_deg = 35.0;   ///< two-way -3 dB full width
   double tilt_deg = 0.0;                  ///< beam axis below the horizontal, deg
   BeamPattern beam_pattern = BeamPattern::kGaussian;
-  int rays_horizontal = 3;                ///< rays across the horizontal aperture
-  int rays_vertical = 24;                 ///< rays across the vertical aperture
-  double horizontal_span_beamwidths = 1;  ///< rays cover +-this many horizontal beamwidths
+  int rays_horizontal = 16;               ///< rays across the horizontal aperture
+  int rays_vertical = 12;                 ///< rays across the vertical aperture
+  double horizontal_span_beamwidths = 2;  ///< rays cover +-this many horizontal beamwidths
   double vertical_span_beamwidths = 1;    ///< rays cover +-this many vertical beamwidths
   /// Each ray stands for the patch of surface its cell of the aperture covers (its footprint):
   /// the echo scales with the patch's area and spreads over the patch's ranges. Off: a ray is a
   /// point scatterer whose echo lands in one bin.
-  bool footprint = false;
-  double pulse_length_us = 0.0;            ///< transmit pulse; an echo lasts c tau / 2 in range
-  double receiver_time_constant_us = 0.0;  ///< one-pole receiver filter: exponential tail
-  double roughness_db = 0.0;               ///< sd of the surfaces' backscatter variation, dB
-  double roughness_length_m = 2.0;         ///< its correlation length along a surface
+  bool footprint = true;
+  double pulse_length_us = 200.0;             ///< transmit pulse; an echo lasts c tau / 2 in range
+  double receiver_time_constant_us = 1000.0;  ///< one-pole receiver filter: exponential tail
+  double roughness_db = 10.0;                 ///< sd of the surfaces' backscatter variation, dB
+  double roughness_length_m = 10.0;           ///< its correlation length along a surface
   double sound_speed_mps = 1500.0;
   double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
   double gain_db = 50.0;                ///< receiver gain added to the level
-  double tvg_db_per_decade = 30.0;      ///< time-varying gain, dB per decade of range
-  double noise_level_db = -95.0;        ///< background noise power before gain and TVG, dB
+  double tvg_db_per_decade = 40.0;      ///< time-varying gain, dB per decade of range
+  double noise_level_db = -140.0;       ///< background noise power before gain and TVG, dB
   double display_min_db = 0.0;          ///< level shown as intensity 0
   double display_max_db = 45.0;         ///< level shown as intensity 255
   bool speckle = true;                  ///< multiplicative Rayleigh (exponential power) speckle

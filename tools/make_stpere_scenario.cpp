@@ -262,8 +262,13 @@ std::string scenario_yaml(const Options& options, const Path& path,
           "real "
           "one did, so the\n# segments are the real times. Written by msislab_make_stpere_scenario "
           "(docs/scenes.md).\n";
+  // Materials: rough quay walls and moored objects with little specular reflection, a mud
+  // bottom about 22 dB below them (docs/simulator.md, "Calibration against St. Pere").
   yaml << "name: stpere_replica\nseed: 42\nscene:\n  mesh: " << mesh_ref
-       << "\nvehicle:\n  depth_m: " << options.depth_m << "\n  speed_mps: 0.2\n  path:\n"
+       << "\n  groups:\n    walls: {backscatter: 0.5, specular: 0.05}\n"
+          "    clutter: {backscatter: 0.5, specular: 0.05}\n"
+          "    bottom: {backscatter: 0.003, specular: 0.3}\nvehicle:\n  depth_m: "
+       << options.depth_m << "\n  speed_mps: 0.2\n  path:\n"
        << std::fixed << std::setprecision(2);
   for (const Eigen::Vector2d& p : path) yaml << "    - [" << p.x() << ", " << p.y() << "]\n";
   yaml << "  leg_speeds_mps:\n" << std::setprecision(4);

@@ -59,6 +59,14 @@ std::string dataset_table(const FidelityReport& r) {
               [](const FidelitySide& s) { return "keyframe " + std::to_string(s.revolution); });
 }
 
+std::string readings_rule(const SegmentationConfig& seg) {
+  const std::string groups = " of bins with gaps of at most one bin";
+  if (seg.max_ranges_per_beam == 1)
+    return "one reading per beam, at the centre of its nearest group" + groups;
+  return "readings at the centres of the nearest " + std::to_string(seg.max_ranges_per_beam) +
+         " groups" + groups;
+}
+
 std::string definitions(const FidelityReport& r) {
   const SegmentationConfig seg;
   return "- **Counted beams**: every beam inside a keyframe (one revolution) of the detections "
@@ -86,9 +94,8 @@ std::string definitions(const FidelityReport& r) {
          "from the detections (`app::load_sonar_readings` on detections, default "
          "`SegmentationConfig`: " +
          to_string(seg.method) + ", bins under " + io::format_number(seg.min_range_m) +
-         " m ignored, the centre of the nearest " + std::to_string(seg.max_ranges_per_beam) +
-         " group(s) of bins with gaps of at most one bin), counted per keyframe; mean, p10 and "
-         "p90 over the keyframes.\n"
+         " m ignored, " + readings_rule(seg) +
+         "), counted per keyframe; mean, p10 and p90 over the keyframes.\n"
          "- **Beams per revolution**: for every angle step (`angle_idx`) with a detection in two "
          "consecutive keyframes k and k + 1, the beam rows between its two beams and their time "
          "difference in `*_IS_timestamps.log` (the revolution period); the medians.\n"

@@ -72,8 +72,8 @@ void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
   side.beams =
       group_detections(rows, *files.detections, times.size(), per_revolution, side.setup.range_m);
   side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m);
-  const SonarInput readings =
-      readings_from_detections(files, times, rows, side.setup, side.calibration.sonar, {});
+  const SonarInput readings = readings_from_detections(
+      files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
   side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);
   side.revolution = pick_revolution(side, revolution, revolution_option);
 }
@@ -142,9 +142,8 @@ FidelityReport compare_datasets(const FidelityOptions& options) {
 std::vector<std::string> write_fidelity(const FidelityReport& report) {
   fs::path target = fs::absolute(report.options.out_dir).lexically_normal();
   if (target.filename().empty()) target = target.parent_path();
-  const fs::path parent = target.parent_path();
-  const std::string pid = std::to_string(::getpid());
-  const fs::path partial = parent / ("." + target.filename().string() + ".partial-" + pid);
+  const fs::path partial = target.parent_path() / ("." + target.filename().string() + ".partial-" +
+                                                   std::to_string(::getpid()));
   std::error_code ec;
   fs::remove_all(partial, ec);
   io::create_output_dir((partial / "figures").string());
@@ -165,15 +164,7 @@ std::vector<std::string> write_fidelity(const FidelityReport& report) {
     fs::remove_all(partial, ec);
     throw;
   }
-  const fs::path old = parent / ("." + target.filename().string() + ".old-" + pid);
-  if (fs::exists(target)) fs::rename(target, old, ec);
-  if (!ec) fs::rename(partial, target, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove_all(partial, ec);
-    io::fail_file(target.string(), "cannot put the report in place: " + why);
-  }
-  fs::remove_all(old, ec);
+  io::replace_directory(partial.string(), target.string());
   const fs::path out = report.options.out_dir;
   return {(out / "fidelity.md").string(), (out / "fidelity.json").string(),
           (out / "figures" / "ranges.png").string(), (out / "figures" / "revolution.png").string()};

@@ -39,7 +39,17 @@ SonarInput from_detections(const io::DatasetFiles& files, const io::SonarSetup& 
     io::fail_file(files.dir, "detections need *_IS_timestamps.log for the beam times");
   }
   const std::vector<io::BeamTimeRecord> times = io::read_beam_times_log(*files.beam_times);
-  const std::vector<io::DetectionRecord> rows = io::read_detections(*files.detections);
+  return readings_from_detections(files, times, io::read_detections(*files.detections), setup,
+                                  mount, config);
+}
+
+}  // namespace
+
+SonarInput readings_from_detections(const io::DatasetFiles& files,
+                                    const std::vector<io::BeamTimeRecord>& times,
+                                    const std::vector<io::DetectionRecord>& rows,
+                                    const io::SonarSetup& setup, const SonarMount& mount,
+                                    const SegmentationConfig& config) {
   SonarInput input;
   input.source = "detections";
   for (const io::BeamTimeRecord& t : times) input.beams.push_back({t.t_log_s, {}});
@@ -58,10 +68,9 @@ SonarInput from_detections(const io::DatasetFiles& files, const io::SonarSetup& 
     beam.readings = readings_of(beam.t_s, segment_detections(ranges_m, setup.bin_m, config),
                                 sonar_bearing_in_vehicle(first.angle_rad, mount), config);
   }
+  input.beams_per_revolution = io::steps_per_revolution(setup);
   return input;
 }
-
-}  // namespace
 
 SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration& calibration,
                                const SegmentationConfig& segmentation) {
@@ -82,7 +91,7 @@ SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration&
   } else {
     io::fail_file(files.dir, "no sonar data (*_IS.log or *_detections.csv[.gz])");
   }
-  input.beams_per_revolution = static_cast<int>(std::lround(2.0 * M_PI / setup.step_rad));
+  input.beams_per_revolution = io::steps_per_revolution(setup);
   return input;
 }
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "io/dataset.hpp"
+#include "io/detections.hpp"
+#include "io/stpere_logs.hpp"
 #include "slam/beam_segmentation.hpp"
 #include "slam/calibration.hpp"
 #include "slam/scan_sequence.hpp"
@@ -18,5 +20,15 @@ struct SonarInput {
 /// Throws io::InputError when the dataset has neither a raw log nor detections with beam times.
 SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration& calibration,
                                const SegmentationConfig& segmentation);
+
+/// The readings of every beam of the beam times, chosen from the detected bins (rows in beam_row
+/// order) with segment_detections: what load_sonar_readings does with a dataset's detections, for
+/// a caller that has read them already. Throws io::InputError naming files.detections when a
+/// beam_row is not a row of the times.
+SonarInput readings_from_detections(const io::DatasetFiles& files,
+                                    const std::vector<io::BeamTimeRecord>& times,
+                                    const std::vector<io::DetectionRecord>& rows,
+                                    const io::SonarSetup& setup, const SonarMount& mount,
+                                    const SegmentationConfig& segmentation);
 
 }  // namespace msislab::app

@@ -134,6 +134,10 @@ void write_beam_times_log(const std::string& path, const std::vector<BeamTimeRec
   write_columns_log<BeamTimeFormat>(path, rows);
 }
 
+int steps_per_revolution(const SonarSetup& setup) {
+  return static_cast<int>(std::lround(2.0 * M_PI / setup.step_rad));
+}
+
 SonarSetup read_setup_log(const std::string& path) {
   DataLines lines(path);
   if (!lines.next()) require_data_rows(path, 0);

@@ -71,6 +71,9 @@ struct SonarSetup {
   bool operator==(const SonarSetup&) const;
 };
 
+/// Transducer steps in 360 deg: 2 pi / step_rad, rounded (200 at St. Pere).
+int steps_per_revolution(const SonarSetup& setup);
+
 /// One row of a raw *_IS.log: a sonar beam with its echo intensity profile (bin i at i x bin_m).
 struct SonarBeamRecord {
   double t_log_s = 0.0;

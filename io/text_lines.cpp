@@ -152,6 +152,12 @@ std::string format_fixed(double value, int decimals) {
   return text;
 }
 
+std::string format_count(std::size_t n) {
+  std::string digits = std::to_string(n);
+  for (std::size_t at = digits.size(); at > 3; at -= 3) digits.insert(at - 3, ",");
+  return digits;
+}
+
 void check_finite(double value, const std::string& path, std::size_t row, std::string_view column) {
   if (std::isfinite(value)) return;
   fail_file(path, "row " + std::to_string(row) + ": " + std::string(column) + " is not finite (" +

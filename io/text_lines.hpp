@@ -100,6 +100,8 @@ std::array<std::string_view, N> split_csv(std::string_view line, const std::stri
 std::string format_number(double value);
 /// The value with a fixed number of decimals, for tables and figure labels ("2.57").
 std::string format_fixed(double value, int decimals);
+/// A count with thousands separators ("1,092,064"), for tables and figure labels.
+std::string format_count(std::size_t n);
 /// Appends the shortest text that reads back as exactly the same double.
 void append_number(std::string& out, double value);
 /// For a writer: a non-finite value is an InputError naming the file, the 1-based data row and the

@@ -20,6 +20,7 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -141,6 +142,30 @@ void capture_png(const std::string& path, vtkRenderWindow* window) {
   });
 }
 
+/// One chart into the scene, its figure's bottom-left corner at (left_px, bottom_px).
+void add_chart(vtkContextScene& scene, const ChartSpec& spec, const ChartLayout& layout,
+               int left_px, int bottom_px) {
+  vtkNew<vtkChartXY> chart;
+  scene.AddItem(chart);
+  chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
+  chart->SetSize(vtkRectf(static_cast<float>(left_px + layout.left_px),
+                          static_cast<float>(bottom_px + layout.bottom_px),
+                          static_cast<float>(layout.plot_w_px),
+                          static_cast<float>(layout.plot_h_px)));
+  chart->SetTitle(spec.title);
+  set_font(chart->GetTitleProperties(), layout.text.title_pt, true);
+  for (const Series& s : spec.series) {
+    if (!s.x.empty()) add_series(*chart, s, static_cast<float>(layout.scale));
+  }
+  vtkAxis* x_axis = chart->GetAxis(vtkAxis::BOTTOM);
+  vtkAxis* y_axis = chart->GetAxis(vtkAxis::LEFT);
+  style_axis(x_axis, spec.x_label, layout);
+  style_axis(y_axis, spec.y_label, layout);
+  set_range(x_axis, layout.x, false, layout.tick_step);
+  set_range(y_axis, layout.y, layout.log_y, layout.tick_step);
+  style_legend(*chart, layout);
+}
+
 }  // namespace
 
 void append_ellipse(Series& series, const Eigen::Vector2d& mean, const Eigen::Matrix2d& cov,
@@ -172,37 +197,36 @@ ChartWriter::ChartWriter() : display_(open_x_display()) {
 ChartWriter::~ChartWriter() { close_x_display(display_); }
 
 void ChartWriter::write_png(const std::string& path, const ChartSpec& spec) const {
-  const ChartLayout layout = layout_chart(spec, path);
-  // A window, a renderer and a context actor holding the chart: no vtkContextView, whose X
+  write_png(path, std::vector<ChartSpec>{spec});
+}
+
+void ChartWriter::write_png(const std::string& path, const std::vector<ChartSpec>& panels) const {
+  if (panels.empty()) io::fail_file(path, "nothing to draw: no chart");
+  std::vector<ChartLayout> layouts;
+  int width_px = 0, height_px = 0;
+  for (const ChartSpec& spec : panels) {
+    layouts.push_back(layout_chart(spec, path));
+    width_px += spec.width_px;
+    height_px = std::max(height_px, spec.height_px);
+  }
+  // A window, a renderer and a context actor holding the charts: no vtkContextView, whose X
   // interactor (never needed offscreen) crashed now and then in XSync when it was initialised.
   vtkNew<vtkRenderWindow> window;
   window->SetDisplayId(display_);
   window->SetOffScreenRendering(1);
-  window->SetSize(spec.width_px, spec.height_px);
+  window->SetSize(width_px, height_px);
   vtkNew<vtkRenderer> renderer;
   renderer->SetBackground(1.0, 1.0, 1.0);
   window->AddRenderer(renderer);
   vtkNew<vtkContextActor> actor;
   actor->GetScene()->SetRenderer(renderer);
   renderer->AddActor(actor);
-  vtkNew<vtkChartXY> chart;
-  actor->GetScene()->AddItem(chart);
-  chart->SetLayoutStrategy(vtkChart::AXES_TO_RECT);
-  chart->SetSize(vtkRectf(static_cast<float>(layout.left_px), static_cast<float>(layout.bottom_px),
-                          static_cast<float>(layout.plot_w_px),
-                          static_cast<float>(layout.plot_h_px)));
-  chart->SetTitle(spec.title);
-  set_font(chart->GetTitleProperties(), layout.text.title_pt, true);
-  for (const Series& s : spec.series) {
-    if (!s.x.empty()) add_series(*chart, s, static_cast<float>(layout.scale));
+  int left_px = 0;
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    // Panels are top-aligned: a shorter one starts lower.
+    add_chart(*actor->GetScene(), panels[i], layouts[i], left_px, height_px - panels[i].height_px);
+    left_px += panels[i].width_px;
   }
-  vtkAxis* x_axis = chart->GetAxis(vtkAxis::BOTTOM);
-  vtkAxis* y_axis = chart->GetAxis(vtkAxis::LEFT);
-  style_axis(x_axis, spec.x_label, layout);
-  style_axis(y_axis, spec.y_label, layout);
-  set_range(x_axis, layout.x, false, layout.tick_step);
-  set_range(y_axis, layout.y, layout.log_y, layout.tick_step);
-  style_legend(*chart, layout);
   capture_png(path, window);
 }
 

@@ -56,6 +56,9 @@ class ChartWriter {
   /// Renders the chart and writes it to path as PNG, atomically. Throws io::InputError when there
   /// is nothing to draw or the file cannot be written.
   void write_png(const std::string& path, const ChartSpec& chart) const;
+  /// Several charts side by side in one PNG, left to right and top-aligned, each at its own
+  /// width_px x height_px: the figure is as wide as their sum and as tall as the tallest.
+  void write_png(const std::string& path, const std::vector<ChartSpec>& panels) const;
 
  private:
   void* display_ = nullptr;  ///< Xlib Display*

@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "app/eval_command.hpp"
+#include "app/fidelity_command.hpp"
 #include "app/image_command.hpp"
 #include "app/montecarlo_command.hpp"
 #include "app/plot_command.hpp"
@@ -249,6 +250,47 @@ void run_plot(const msislab::app::PlotOptions& options, int argc, char** argv) {
   std::cout << std::flush;
 }
 
+void add_fidelity_command(CLI::App& app, msislab::app::FidelityOptions& options) {
+  CLI::App* fidelity = app.add_subcommand(
+      "fidelity",
+      "Compare a simulated dataset with the real one, statistic by statistic, from their "
+      "detections: prints a Markdown table (values, sim / real, KS distance); --out also writes "
+      "fidelity.md, fidelity.json and figures (VTK: needs an X display, else reruns itself under "
+      "xvfb-run)");
+  fidelity
+      ->add_option("REAL_DATASET", options.real_dir,
+                   "Real dataset directory (*_detections.csv[.gz], *_IS_timestamps.log)")
+      ->required();
+  fidelity
+      ->add_option("SIM_DATASET", options.sim_dir,
+                   "Simulated dataset directory, in the same formats and sonar setup")
+      ->required();
+  fidelity->add_option("--out,-o", options.out_dir,
+                       "Report folder (fidelity.md, fidelity.json, figures/), replaced whole");
+  fidelity->add_option("--revolution-real", options.revolution_real,
+                       "Keyframe of the real detections drawn in revolution.png (default: the "
+                       "middle one)");
+  fidelity->add_option("--revolution-sim", options.revolution_sim,
+                       "Keyframe of the simulated detections drawn (default: the middle one)");
+}
+
+/// Reads both datasets and computes the table first (bad input fails without a display); the
+/// figures of --out need one, so without it the command runs again under xvfb-run.
+void run_fidelity(const msislab::app::FidelityOptions& options, int argc, char** argv) {
+  const msislab::app::FidelityReport report = msislab::app::compare_datasets(options);
+  if (!options.out_dir.empty() && !msislab::plot::x_display_available()) {
+    msislab::plot::rerun_under_xvfb(argc, argv);
+  }
+  std::cout << msislab::app::fidelity_markdown(report.table);
+  if (!options.out_dir.empty()) {
+    std::cout << "\n";
+    for (const std::string& file : msislab::app::write_fidelity(report)) {
+      std::cout << "wrote " << file << "\n";
+    }
+  }
+  std::cout << std::flush;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -275,6 +317,8 @@ int main(int argc, char** argv) {
   add_plot_command(app, plot_options);
   msislab::app::ReportOptions report_options;
   add_report_command(app, report_options);
+  msislab::app::FidelityOptions fidelity_options;
+  add_fidelity_command(app, fidelity_options);
 
   try {
     app.parse(argc, argv);
@@ -311,6 +355,7 @@ int main(int argc, char** argv) {
       std::cout << "wrote " << image_options.out_path << std::endl;
     }
     if (app.got_subcommand("plot")) run_plot(plot_options, argc, argv);
+    if (app.got_subcommand("fidelity")) run_fidelity(fidelity_options, argc, argv);
     if (app.got_subcommand("segment")) {
       std::cout << msislab::app::segment(segment_options).markdown << std::flush;
     }

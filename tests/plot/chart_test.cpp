@@ -59,12 +59,52 @@ TEST(Chart, EqualAspectCircleIsRound) {
   EXPECT_EQ(std::filesystem::directory_iterator(tmp.path())->path().filename(), "circle.png");
 }
 
+/// The bounding box of the pixels near a colour given as 0xRRGGBB.
+cv::Rect pixels_of(const cv::Mat& image, std::uint32_t rgb) {
+  const cv::Scalar bgr(rgb & 0xff, rgb >> 8 & 0xff, rgb >> 16 & 0xff);
+  cv::Mat mask;
+  cv::inRange(image, bgr - cv::Scalar(40, 40, 40), bgr + cv::Scalar(40, 40, 40), mask);
+  std::vector<cv::Point> pixels;
+  cv::findNonZero(mask, pixels);
+  return pixels.empty() ? cv::Rect() : cv::boundingRect(pixels);
+}
+
+TEST(Chart, PanelsSitSideBySideTopAligned) {
+  REQUIRE_X_DISPLAY();
+  const testing::TempDir tmp;
+  ChartSpec left;
+  left.title = "left";
+  left.width_px = 600;
+  left.height_px = 450;
+  left.series = {{"red", {0.0, 1.0}, {0.0, 1.0}, SeriesStyle::kLine, 0xff0000, 3.0f}};
+  ChartSpec right = left;
+  right.title = "right";
+  right.width_px = 500;
+  right.height_px = 300;
+  right.series = {{"blue", {0.0, 1.0}, {1.0, 0.0}, SeriesStyle::kLine, 0x0000ff, 3.0f}};
+  const std::string path = tmp.file("panels.png");
+  ChartWriter().write_png(path, std::vector<ChartSpec>{left, right});
+
+  const cv::Mat image = cv::imread(path, cv::IMREAD_COLOR);
+  ASSERT_EQ(image.cols, 1100);
+  ASSERT_EQ(image.rows, 450);
+  const cv::Rect red = pixels_of(image, 0xff0000), blue = pixels_of(image, 0x0000ff);
+  ASSERT_GT(red.area(), 0);
+  ASSERT_GT(blue.area(), 0);
+  EXPECT_LT(red.br().x, 600);
+  EXPECT_GE(blue.x, 600);
+  EXPECT_LT(blue.br().y, 300) << "the shorter panel sits at the top";
+  EXPECT_GT(red.br().y, 300);
+}
+
 TEST(Chart, NothingToDrawIsAnInputErrorAndWritesNothing) {
   REQUIRE_X_DISPLAY();
   const testing::TempDir tmp;
   ChartSpec spec;
   spec.series = {{"empty", {}, {}, SeriesStyle::kLine, 0, 1.0f}};
   EXPECT_THROW(ChartWriter().write_png(tmp.file("x.png"), spec), io::InputError);
+  EXPECT_THROW(ChartWriter().write_png(tmp.file("x.png"), std::vector<ChartSpec>{}),
+               io::InputError);
   EXPECT_TRUE(std::filesystem::is_empty(tmp.path()));
 }
 

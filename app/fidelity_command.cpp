@@ -1,0 +1,173 @@
+#include "app/fidelity_command.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+
+#include "app/fidelity_figures.hpp"
+#include "app/sonar_readings.hpp"
+#include "io/atomic_file.hpp"
+#include "io/detections.hpp"
+#include "io/input_error.hpp"
+#include "io/text_lines.hpp"
+#include "plot/chart.hpp"
+
+namespace msislab::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::set<std::string>& output_names() {
+  static const std::set<std::string> names = {"fidelity.md", "fidelity.json", "figures"};
+  return names;
+}
+
+std::vector<double> times_s(const std::vector<io::BeamTimeRecord>& times) {
+  std::vector<double> t_s;
+  t_s.reserve(times.size());
+  for (const io::BeamTimeRecord& t : times) t_s.push_back(t.t_log_s);
+  return t_s;
+}
+
+/// The requested keyframe, or the middle one; it must lie within the file's keyframes.
+std::int32_t pick_revolution(const FidelitySide& side, std::optional<std::int32_t> requested,
+                             const std::string& option) {
+  const std::int32_t first = side.beams.front().keyframe, last = side.beams.back().keyframe;
+  if (!requested) return first + (last - first) / 2;
+  if (*requested < first || *requested > last) {
+    io::fail_file(*side.files.detections, option + " " + std::to_string(*requested) +
+                                              ": the keyframes here are " + std::to_string(first) +
+                                              ".." + std::to_string(last));
+  }
+  return *requested;
+}
+
+/// The dataset's files, sonar setup and calibration.
+FidelitySide open_side(const std::string& dir) {
+  FidelitySide side;
+  side.dir = dir;
+  side.files = io::find_dataset_files(dir);
+  if (!side.files.detections) {
+    io::fail_file(dir, "no *_detections.csv[.gz] file (fidelity compares detected bins)");
+  }
+  if (!side.files.beam_times) {
+    io::fail_file(dir, "no *_IS_timestamps.log file (the detections need the beam times)");
+  }
+  side.setup = side.files.setup ? io::read_setup_log(*side.files.setup) : io::SonarSetup{};
+  side.calibration = io::load_calibration(side.files);
+  return side;
+}
+
+/// The detections and beam times, checked and reduced to statistics.
+void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
+                     const std::string& revolution_option) {
+  const io::DatasetFiles& files = side.files;
+  const std::vector<io::BeamTimeRecord> times = io::read_beam_times_log(*files.beam_times);
+  const std::vector<io::DetectionRecord> rows = io::read_detections(*files.detections);
+  side.beam_times = times.size();
+  const int per_revolution = io::steps_per_revolution(side.setup);
+  side.beams =
+      group_detections(rows, *files.detections, times.size(), per_revolution, side.setup.range_m);
+  side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m);
+  const SonarInput readings = readings_from_detections(
+      files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
+  side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);
+  side.revolution = pick_revolution(side, revolution, revolution_option);
+}
+
+std::string describe(const io::SonarSetup& s) {
+  return "range " + io::format_number(s.range_m) + " m, bin " + io::format_number(s.bin_m) +
+         " m, " + std::to_string(io::steps_per_revolution(s)) + " steps per revolution";
+}
+
+/// Equal to the digits a setup log gives (6 significant ones).
+bool same(double a, double b) { return std::abs(a - b) <= 1e-6 * std::max(std::abs(a), 1e-3); }
+
+void check_same_setup(const FidelitySide& real, const FidelitySide& sim) {
+  const io::SonarSetup& a = real.setup;
+  const io::SonarSetup& b = sim.setup;
+  if (same(a.range_m, b.range_m) && same(a.bin_m, b.bin_m) &&
+      io::steps_per_revolution(a) == io::steps_per_revolution(b)) {
+    return;
+  }
+  const std::string real_name = real.files.setup.value_or(real.dir + " (no *_SETUP.log: default)");
+  io::fail_file(sim.files.setup.value_or(sim.dir + " (no *_SETUP.log: default setup)"),
+                "sonar setup (" + describe(b) + ") differs from " + real_name + " (" + describe(a) +
+                    "): the statistics would not compare");
+}
+
+/// --out DIR is replaced whole at the end, so it must hold nothing but an earlier report.
+void check_out_dir(const std::string& out_dir) {
+  if (out_dir.empty() || !fs::exists(out_dir)) return;
+  if (!fs::is_directory(out_dir)) io::fail_file(out_dir, "--out exists and is not a directory");
+  for (const fs::directory_entry& entry : fs::directory_iterator(out_dir)) {
+    const std::string name = entry.path().filename().string();
+    if (output_names().count(name) == 0) {
+      io::fail_file(out_dir, "--out holds '" + name +
+                                 "', which msislab fidelity did not write; it replaces the "
+                                 "folder whole, so give a new or earlier fidelity folder");
+    }
+  }
+}
+
+std::string folder_name(const std::string& dir) {
+  fs::path path = fs::absolute(dir).lexically_normal();
+  if (path.filename().empty()) path = path.parent_path();
+  return path.filename().string();
+}
+
+FigureSide figure_side(const FidelitySide& side, const std::string& role) {
+  return {role,        folder_name(side.dir),  &side.stats,
+          &side.beams, side.calibration.sonar, side.revolution};
+}
+
+}  // namespace
+
+FidelityReport compare_datasets(const FidelityOptions& options) {
+  check_out_dir(options.out_dir);
+  FidelityReport report;
+  report.options = options;
+  report.real = open_side(options.real_dir);
+  report.sim = open_side(options.sim_dir);
+  check_same_setup(report.real, report.sim);
+  load_detections(report.real, options.revolution_real, "--revolution-real");
+  load_detections(report.sim, options.revolution_sim, "--revolution-sim");
+  report.table = sonar_rows(report.real.stats, report.sim.stats, report.real.setup.range_m);
+  return report;
+}
+
+std::vector<std::string> write_fidelity(const FidelityReport& report) {
+  fs::path target = fs::absolute(report.options.out_dir).lexically_normal();
+  if (target.filename().empty()) target = target.parent_path();
+  const fs::path partial = target.parent_path() / ("." + target.filename().string() + ".partial-" +
+                                                   std::to_string(::getpid()));
+  std::error_code ec;
+  fs::remove_all(partial, ec);
+  io::create_output_dir((partial / "figures").string());
+  const double range_m = report.real.setup.range_m;
+  const FigureSide real = figure_side(report.real, "Real"),
+                   sim = figure_side(report.sim, "Simulated");
+  try {
+    const plot::ChartWriter charts;
+    charts.write_png((partial / "figures" / "ranges.png").string(),
+                     range_charts(real, sim, range_m));
+    charts.write_png((partial / "figures" / "revolution.png").string(),
+                     revolution_charts(real, sim, range_m));
+    io::write_file_atomically((partial / "fidelity.json").string(),
+                              [&](std::ostream& out) { out << fidelity_json(report); });
+    io::write_file_atomically((partial / "fidelity.md").string(),
+                              [&](std::ostream& out) { out << fidelity_page(report); });
+  } catch (...) {
+    fs::remove_all(partial, ec);
+    throw;
+  }
+  io::replace_directory(partial.string(), target.string());
+  const fs::path out = report.options.out_dir;
+  return {(out / "fidelity.md").string(), (out / "fidelity.json").string(),
+          (out / "figures" / "ranges.png").string(), (out / "figures" / "revolution.png").string()};
+}
+
+}  // namespace msislab::app

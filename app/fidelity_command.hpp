@@ -1,0 +1,66 @@
+// `msislab fidelity REAL_DATASET SIM_DATASET [--out DIR]`: the simulator against the real sonar,
+// statistic by statistic (docs/fidelity.md): both datasets' detections go through the same code,
+// and the table gives the two values, their ratio and, for distributions, the KS distance.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/fidelity_statistics.hpp"
+#include "app/fidelity_table.hpp"
+#include "io/dataset.hpp"
+#include "io/stpere_logs.hpp"
+#include "slam/calibration.hpp"
+
+namespace msislab::app {
+
+struct FidelityOptions {
+  std::string real_dir;
+  std::string sim_dir;
+  std::string out_dir;                          ///< empty: print the table only
+  std::optional<std::int32_t> revolution_real;  ///< keyframe drawn; default: the middle one
+  std::optional<std::int32_t> revolution_sim;
+};
+
+/// One dataset's detections, read, checked and reduced to statistics.
+struct FidelitySide {
+  std::string dir;
+  io::DatasetFiles files;
+  io::SonarSetup setup;
+  Calibration calibration;
+  std::size_t beam_times = 0;  ///< rows of *_IS_timestamps.log
+  std::vector<DetectedBeam> beams;
+  SonarStatistics stats;
+  std::int32_t revolution = 0;  ///< the keyframe drawn in revolution.png
+};
+
+struct FidelityReport {
+  FidelityOptions options;
+  FidelitySide real;
+  FidelitySide sim;
+  FidelityTable table;  ///< the sonar rows; other statistics are appended as more rows
+};
+
+/// Reads both datasets (*_detections.csv[.gz], *_IS_timestamps.log, *_SETUP.log,
+/// calibration.yaml) and computes the table; needs no display. Throws io::InputError naming the
+/// file for a missing directory or file, malformed detections or beam times, setups that differ,
+/// a revolution not in the file, or an --out DIR that holds files this command did not write.
+FidelityReport compare_datasets(const FidelityOptions& options);
+
+/// `msislab fidelity ...` with the options as given: what the page says made it.
+std::string fidelity_command_line(const FidelityOptions& options);
+
+/// fidelity.md: the datasets, the table, how each statistic is computed, the figures.
+std::string fidelity_page(const FidelityReport& report);
+
+/// fidelity.json: the command, the datasets and every row.
+std::string fidelity_json(const FidelityReport& report);
+
+/// Writes DIR/fidelity.md, DIR/fidelity.json, DIR/figures/ranges.png and
+/// DIR/figures/revolution.png into a scratch sibling folder that then replaces DIR; returns the
+/// files. Needs an X display (plot/display.hpp).
+std::vector<std::string> write_fidelity(const FidelityReport& report);
+
+}  // namespace msislab::app

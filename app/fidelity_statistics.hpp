@@ -1,0 +1,81 @@
+// The sonar statistics that compare a simulated dataset with the real one (docs/fidelity.md),
+// computed from the detections file and the beam times alone, so the same code runs on both sides:
+// detected bins, runs and first ranges per beam, range distributions, readings per revolution and
+// the rotation of the head. Plus the sample tools they need: quantiles and the two-sample
+// Kolmogorov-Smirnov distance.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/detections.hpp"
+#include "slam/scan_sequence.hpp"
+
+namespace msislab::app {
+
+/// The p-quantile (0 <= p <= 1) by linear interpolation between order statistics: position
+/// h = (n - 1) p in the sorted sample. NaN for an empty sample.
+double quantile(std::vector<double> values, double p);
+
+/// Two-sample Kolmogorov-Smirnov distance sup_x |F_a(x) - F_b(x)| between the empirical
+/// distribution functions: 0 for identical samples, 1 for disjoint ones. NaN when either is empty.
+double ks_distance(std::vector<double> a, std::vector<double> b);
+
+/// Share (0..1) of the values in each band [k band_m, (k + 1) band_m), k = 0 .. bands - 1; the
+/// top edge bands x band_m belongs to the last band. Values outside [0, bands x band_m] are in no
+/// band. All zero for an empty sample.
+std::vector<double> band_shares(const std::vector<double>& values_m, double band_m, int bands);
+
+/// Runs in a beam's detected bins: each range is bin round(range / bin_m), and a gap of one
+/// missing bin or more starts a new run (a bin detected twice is one bin). 0 without bins.
+int count_runs(const std::vector<double>& ranges_m, double bin_m);
+
+/// One beam with detected bins.
+struct DetectedBeam {
+  std::int64_t beam_row = 0;     ///< 0-based row in *_IS_timestamps.log
+  std::int32_t keyframe = 0;     ///< the revolution it belongs to
+  std::int32_t angle_idx = 0;    ///< transducer step
+  double angle_rad = 0.0;        ///< transducer angle
+  std::vector<double> ranges_m;  ///< its detected bins, in file order
+};
+
+/// The beams of the detections file `path` that have rows, in beam_row order. Checks what the
+/// statistics rely on, with io::InputError naming the file and the row: every beam_row is a row of
+/// the beam times (beam_count of them), a beam's rows share keyframe and angle, the keyframe never
+/// decreases, a keyframe spans at most beams_per_revolution beam rows, the keyframes from the first
+/// to the last hold no more beams than the beam times, and every range lies in [0, max_range_m].
+std::vector<DetectedBeam> group_detections(const std::vector<io::DetectionRecord>& rows,
+                                           const std::string& path, std::size_t beam_count,
+                                           int beams_per_revolution, double max_range_m);
+
+/// The samples behind the per-beam statistics. Counted beams: every beam of the keyframes from the
+/// first to the last one in the file, beams_per_revolution per keyframe (a beam without detected
+/// bins is empty); beams outside every keyframe are not counted.
+struct SonarStatistics {
+  int keyframes = 0;
+  std::size_t beams = 0;                    ///< counted beams
+  std::size_t empty_beams = 0;              ///< counted beams without a detected bin
+  std::vector<double> bins_per_beam;        ///< every counted beam, empty ones included
+  std::vector<double> runs_per_beam;        ///< every counted beam, empty ones included
+  std::vector<double> first_ranges_m;       ///< the smallest detected range of each non-empty beam
+  std::vector<double> detected_ranges_m;    ///< every detected bin
+  std::vector<double> beams_per_360;        ///< beam rows between one angle step's beams in
+                                            ///< consecutive keyframes
+  std::vector<double> revolution_period_s;  ///< the beam times between the same two beams
+  std::vector<double> readings_per_revolution;  ///< per keyframe, see readings_per_keyframe
+};
+
+/// beam_times_s: the time of every beam row (*_IS_timestamps.log); beams from group_detections.
+SonarStatistics sonar_statistics(const std::vector<DetectedBeam>& beams,
+                                 const std::vector<double>& beam_times_s, int beams_per_revolution,
+                                 double bin_m);
+
+/// Readings per keyframe, from the first to the last keyframe of beams: the readings of each
+/// beam's row (readings is indexed by beam row, as load_sonar_readings returns it) summed over the
+/// keyframe's beams.
+std::vector<double> readings_per_keyframe(const std::vector<DetectedBeam>& beams,
+                                          const std::vector<BeamReadings>& readings);
+
+}  // namespace msislab::app

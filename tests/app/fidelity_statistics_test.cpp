@@ -1,0 +1,174 @@
+// The fidelity statistics on samples and beams built by hand, with answers worked out on paper:
+// quantiles, the KS distance (identical samples 0, disjoint 1, a known shift), band shares, runs,
+// the checks of the detections file, and the per-beam, rotation and per-scan samples.
+#include "app/fidelity_statistics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "io/input_error.hpp"
+
+namespace msislab::app {
+namespace {
+
+TEST(Quantile, InterpolatesBetweenOrderStatistics) {
+  const std::vector<double> v = {5.0, 1.0, 4.0, 2.0, 3.0};  // unsorted on purpose
+  EXPECT_DOUBLE_EQ(quantile(v, 0.5), 3.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 0.1), 1.4);  // h = 0.4
+  EXPECT_DOUBLE_EQ(quantile(v, 0.9), 4.6);  // h = 3.6
+  EXPECT_DOUBLE_EQ(quantile(v, 0.0), 1.0);
+  EXPECT_DOUBLE_EQ(quantile(v, 1.0), 5.0);
+  EXPECT_DOUBLE_EQ(quantile({7.0}, 0.9), 7.0);
+  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+}
+
+TEST(KsDistance, IdenticalSamplesAreZeroApart) {
+  const std::vector<double> a = {3.0, 1.0, 2.0, 2.0, 8.5};
+  EXPECT_DOUBLE_EQ(ks_distance(a, a), 0.0);
+  // The same distribution at another sample size: every step of F is the same.
+  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0}, {1.0, 1.0, 2.0, 2.0}), 0.0);
+}
+
+TEST(KsDistance, DisjointSamplesAreOneApart) {
+  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0, 3.0}, {3.5, 10.0}), 1.0);
+  EXPECT_DOUBLE_EQ(ks_distance({3.5, 10.0}, {1.0, 2.0, 3.0}), 1.0);
+}
+
+TEST(KsDistance, KnownShift) {
+  // 0..99 against 10..109: F_a - F_b = 10/100 on [10, 100).
+  std::vector<double> a, b;
+  for (int i = 0; i < 100; ++i) {
+    a.push_back(i);
+    b.push_back(i + 10);
+  }
+  EXPECT_NEAR(ks_distance(a, b), 0.1, 1e-12);
+  // Ties count at once: F_a(1) = 2/3, F_b(1) = 1/3.
+  EXPECT_NEAR(ks_distance({1.0, 1.0, 2.0}, {1.0, 2.0, 2.0}), 1.0 / 3.0, 1e-12);
+  EXPECT_TRUE(std::isnan(ks_distance({}, {1.0})));
+}
+
+TEST(BandShares, SplitsAtBandEdgesAndKeepsTheTopInTheLastBand) {
+  const std::vector<double> shares = band_shares({0.0, 5.0, 10.0, 19.9, 50.0}, 10.0, 5);
+  ASSERT_EQ(shares.size(), 5u);
+  EXPECT_DOUBLE_EQ(shares[0], 0.4);  // 0, 5
+  EXPECT_DOUBLE_EQ(shares[1], 0.4);  // 10, 19.9
+  EXPECT_DOUBLE_EQ(shares[2], 0.0);
+  EXPECT_DOUBLE_EQ(shares[3], 0.0);
+  EXPECT_DOUBLE_EQ(shares[4], 0.2);  // 50, the top edge
+  EXPECT_EQ(band_shares({}, 10.0, 3), std::vector<double>(3, 0.0));
+}
+
+TEST(CountRuns, AGapOfOneMissingBinStartsARun) {
+  EXPECT_EQ(count_runs({}, 0.1), 0);
+  EXPECT_EQ(count_runs({1.0, 1.1, 1.2}, 0.1), 1);
+  EXPECT_EQ(count_runs({1.0, 1.2}, 0.1), 2);  // bin 11 missing
+  EXPECT_EQ(count_runs({1.0, 1.1, 1.3, 1.4, 2.0}, 0.1), 3);
+  EXPECT_EQ(count_runs({1.2, 1.0, 1.1}, 0.1), 1);             // order does not matter
+  EXPECT_EQ(count_runs({1.0, 1.0}, 0.1), 1);                  // a bin detected twice is one bin
+  EXPECT_EQ(count_runs({0.30000000000000004, 0.4}, 0.1), 1);  // ranges round to bins
+}
+
+io::DetectionRecord row(std::int32_t keyframe, std::int64_t beam_row, std::int32_t angle_idx,
+                        double range_m) {
+  return {keyframe, beam_row, 0.0, 0, angle_idx, angle_idx * 2.0 * M_PI / 4.0, range_m};
+}
+
+/// Two keyframes of 4 beams (rows 0..3 and 4..7): 4 beams with detections, 4 empty.
+std::vector<io::DetectionRecord> hand_rows() {
+  return {row(1, 0, 3, 2.0), row(1, 0, 3, 2.1), row(1, 0, 3, 2.2),  // one run
+          row(1, 2, 1, 5.0), row(1, 2, 1, 5.2), row(1, 2, 1, 7.0),  // three runs
+          row(2, 4, 3, 3.0),                                        // angle 3 again
+          row(2, 7, 0, 1.5), row(2, 7, 0, 1.6)};
+}
+
+TEST(GroupDetections, GroupsRowsByBeam) {
+  const std::vector<DetectedBeam> beams = group_detections(hand_rows(), "d.csv", 8, 4, 50.0);
+  ASSERT_EQ(beams.size(), 4u);
+  EXPECT_EQ(beams[1].beam_row, 2);
+  EXPECT_EQ(beams[1].keyframe, 1);
+  EXPECT_EQ(beams[1].angle_idx, 1);
+  EXPECT_EQ(beams[1].ranges_m, (std::vector<double>{5.0, 5.2, 7.0}));
+  EXPECT_EQ(beams[3].ranges_m, (std::vector<double>{1.5, 1.6}));
+}
+
+void expect_rejected(const std::vector<io::DetectionRecord>& rows, std::size_t beam_count,
+                     const std::string& what) {
+  try {
+    group_detections(rows, "x_detections.csv", beam_count, 4, 50.0);
+    ADD_FAILURE() << "accepted; expected: " << what;
+  } catch (const io::InputError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("x_detections.csv: ", 0), 0u) << message;
+    EXPECT_NE(message.find(what), std::string::npos) << message << "\nexpected: " << what;
+  }
+}
+
+TEST(GroupDetections, RejectsWhatTheStatisticsCannotCount) {
+  std::vector<io::DetectionRecord> rows = hand_rows();
+  expect_rejected(rows, 7, "data row 8 (beam_row 7): not a row of the beam times (7 beams)");
+  rows[6].keyframe = 0;
+  expect_rejected(rows, 8, "data row 7 (beam_row 4): keyframe 0 after keyframe 1");
+  rows = hand_rows();
+  rows[1].angle_idx = 2;
+  expect_rejected(rows, 8, "data row 2 (beam_row 0): keyframe or angle_idx differs");
+  rows = hand_rows();
+  rows[6].keyframe = 1;  // keyframe 1 would span rows 0..4: five beams
+  expect_rejected(rows, 8, "keyframe 1 spans beam rows 0..4, more than one revolution of 4 beams");
+  rows = hand_rows();
+  rows[2].range_m = 50.5;
+  expect_rejected(rows, 8, "data row 3 (beam_row 0): range_m 50.5 outside the sonar range");
+  rows = hand_rows();
+  rows[7].keyframe = rows[8].keyframe = 3;  // keyframes 1..3: 12 beams
+  expect_rejected(rows, 8,
+                  "keyframes 1..3 make 12 beams of 4 per revolution, but the beam "
+                  "times have 8");
+}
+
+TEST(SonarStatistics, CountsEveryBeamOfTheKeyframes) {
+  const std::vector<DetectedBeam> beams = group_detections(hand_rows(), "d.csv", 10, 4, 50.0);
+  std::vector<double> times_s;
+  for (int i = 0; i < 10; ++i) times_s.push_back(10.0 + 0.5 * i);
+  const SonarStatistics s = sonar_statistics(beams, times_s, 4, 0.1);
+  EXPECT_EQ(s.keyframes, 2);
+  EXPECT_EQ(s.beams, 8u);
+  EXPECT_EQ(s.empty_beams, 4u);
+  EXPECT_EQ(s.bins_per_beam, (std::vector<double>{3, 3, 1, 2, 0, 0, 0, 0}));
+  EXPECT_EQ(s.runs_per_beam, (std::vector<double>{1, 3, 1, 1, 0, 0, 0, 0}));
+  EXPECT_EQ(s.first_ranges_m, (std::vector<double>{2.0, 5.0, 3.0, 1.5}));
+  EXPECT_EQ(s.detected_ranges_m.size(), 9u);
+  // Angle 3 is seen in keyframe 1 (row 0) and keyframe 2 (row 4): 4 beams, 2 s.
+  EXPECT_EQ(s.beams_per_360, (std::vector<double>{4.0}));
+  EXPECT_EQ(s.revolution_period_s, (std::vector<double>{2.0}));
+}
+
+TEST(SonarStatistics, PairsAnglesOnlyInConsecutiveKeyframes) {
+  std::vector<io::DetectionRecord> rows = hand_rows();
+  for (io::DetectionRecord& r : rows) {
+    if (r.keyframe == 2) {
+      r.keyframe = 3;
+      r.beam_row += 4;  // rows 8 and 11: keyframe 2 has no detection
+    }
+  }
+  const std::vector<DetectedBeam> beams = group_detections(rows, "d.csv", 12, 4, 50.0);
+  const SonarStatistics s = sonar_statistics(beams, std::vector<double>(12, 0.0), 4, 0.1);
+  EXPECT_EQ(s.keyframes, 3);
+  EXPECT_EQ(s.beams, 12u);
+  EXPECT_EQ(s.empty_beams, 8u);
+  EXPECT_TRUE(s.beams_per_360.empty());
+}
+
+TEST(ReadingsPerKeyframe, SumsTheReadingsOfEachKeyframesBeams) {
+  const std::vector<DetectedBeam> beams = group_detections(hand_rows(), "d.csv", 8, 4, 50.0);
+  std::vector<BeamReadings> readings(8);
+  readings[0].readings.resize(1);
+  readings[2].readings.resize(2);
+  readings[3].readings.resize(5);  // no detections there: not counted
+  readings[7].readings.resize(1);
+  EXPECT_EQ(readings_per_keyframe(beams, readings), (std::vector<double>{3.0, 1.0}));
+}
+
+}  // namespace
+}  // namespace msislab::app

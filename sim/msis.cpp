@@ -174,17 +174,26 @@ struct MsisModel::Echoes {
       : direct(bins, 0.0),
         multipath(bins, 0.0),
         direct_steps(bins + 1, 0.0),
-        multipath_steps(bins + 1, 0.0),
-        largest(bins, 0.0),
-        largest_material(bins, 0) {}
+        multipath_steps(bins + 1, 0.0) {}
   std::vector<double> direct;     ///< power per bin by direct backscatter
   std::vector<double> multipath;  ///< power per bin by a specular route
   /// Echoes spread over many bins add a constant power per bin to a run of bins: the change of
   /// that constant at each bin, summed into the profiles once all rays are in (O(1) per ray).
   std::vector<double> direct_steps;
   std::vector<double> multipath_steps;
-  std::vector<double> largest;                  ///< the largest single contribution to each bin
-  std::vector<std::uint32_t> largest_material;  ///< the surface that returned it
+  /// Every ray's echo as laid over the bins, so the truth can name the surface that gave the
+  /// most to any one bin.
+  struct Contribution {
+    long first = 0, last = 0;  ///< bins [first, last]
+    double at_first = 0.0, at_last = 0.0, between = 0.0;
+    std::uint32_t material_id = 0;
+    double at(long j) const {
+      if (j == first) return at_first;
+      if (j == last) return at_last;
+      return j > first && j < last ? between : 0.0;
+    }
+  };
+  std::vector<Contribution> contributions;
 
   /// Adds the spread echoes (the steps' running sums) into the profiles.
   void settle() {
@@ -225,9 +234,11 @@ MsisModel::MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicl
       rays_.push_back(ray);
     }
   }
-  // Normalise so the two-way weights sum to 1: a plane filling the beam at normal incidence
-  // returns its backscatter times the loss.
-  pattern_norm_ = std::sqrt(total);
+  // Point scatterers: normalise so the two-way weights sum to 1, so a plane filling the beam at
+  // normal incidence returns its backscatter times the loss. Footprints: the weights stay the
+  // pattern itself, since sum b^2 x cell solid angle already approximates the beam's integral
+  // of b^2 over solid angle, the same for any number of rays.
+  pattern_norm_ = sonar.footprint ? 1.0 : std::sqrt(total);
   for (RayTemplate& ray : rays_) ray.weight /= pattern_norm_;
   // Gain + TVG per bin: gain_db + tvg x log10(max(r, 1)).
   for (int j = 0; j < sonar.bins; ++j) {
@@ -397,7 +408,6 @@ void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, d
       std::asin(std::clamp(to_hit.z() / rx_leg_m, -1.0, 1.0)) + sonar_.tilt_deg * kDegToRad;
   const double rx_pattern = one_way_pattern(azimuth, elevation, sonar_) / pattern_norm_;
   const double received = power * rx_pattern * two_way_loss(path_m, sonar_.absorption_db_per_m);
-  std::vector<double>& profile = multipath ? echoes.multipath : echoes.direct;
   // Bin j holds ranges [(j + 1/2) bin, (j + 3/2) bin); the echo covers [range -+ extent / 2] at a
   // uniform density, shared among the bins by overlap (all in one bin when the extent is 0).
   const double lo_m = std::max(range_m - 0.5 * extent_m, sonar_.min_range_m);
@@ -408,10 +418,11 @@ void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, d
     return std::clamp(static_cast<long>(std::floor(r_m / sonar_.bin_m - 0.5)), 0L,
                       static_cast<long>(sonar_.bins) - 1);
   };
-  const long first = bin_of(lo_m), last = bin_of(hi_m), centre = bin_of(range_m);
-  double at_centre = received;
+  const long first = bin_of(lo_m), last = bin_of(hi_m);
+  Echoes::Contribution c{first, last, 0.0, 0.0, 0.0, material_id};
   if (extent_m <= 0.0) {
-    profile[static_cast<std::size_t>(centre)] += received;
+    c.first = c.last = bin_of(range_m);
+    c.at_first = c.at_last = received;
   } else {
     // Partial first and last bins directly, the whole bins between as one step up and down;
     // what lies under the minimum range or beyond the last bin is lost.
@@ -420,21 +431,20 @@ void MsisModel::add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, d
     const double first_edge_m = (static_cast<double>(first) + 1.5) * sonar_.bin_m;
     const double last_edge_m = (static_cast<double>(last) + 0.5) * sonar_.bin_m;
     if (first == last) {
-      profile[static_cast<std::size_t>(first)] += per_m * (end_m - lo_m);
+      c.at_first = c.at_last = per_m * (end_m - lo_m);
     } else {
-      profile[static_cast<std::size_t>(first)] += per_m * (first_edge_m - lo_m);
-      profile[static_cast<std::size_t>(last)] += per_m * (end_m - last_edge_m);
+      c.at_first = per_m * (first_edge_m - lo_m);
+      c.at_last = per_m * (end_m - last_edge_m);
+      c.between = per_m * sonar_.bin_m;
       std::vector<double>& steps = multipath ? echoes.multipath_steps : echoes.direct_steps;
-      steps[static_cast<std::size_t>(first) + 1] += per_m * sonar_.bin_m;
-      steps[static_cast<std::size_t>(last)] -= per_m * sonar_.bin_m;
+      steps[static_cast<std::size_t>(first) + 1] += c.between;
+      steps[static_cast<std::size_t>(last)] -= c.between;
     }
-    at_centre = per_m * std::min(extent_m, sonar_.bin_m);
   }
-  const auto k = static_cast<std::size_t>(centre);
-  if (at_centre > echoes.largest[k]) {
-    echoes.largest[k] = at_centre;
-    echoes.largest_material[k] = material_id;
-  }
+  std::vector<double>& profile = multipath ? echoes.multipath : echoes.direct;
+  profile[static_cast<std::size_t>(c.first)] += c.at_first;
+  if (c.last != c.first) profile[static_cast<std::size_t>(c.last)] += c.at_last;
+  echoes.contributions.push_back(c);
 }
 
 BeamTruth MsisModel::truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const {
@@ -449,14 +459,24 @@ BeamTruth MsisModel::truth_of(const Ping& ping, const Echoes& echoes, const Pose
   if (hit.hit) truth.first_hit_range_m = hit.distance_m;
   // The strongest echo as displayed (after TVG), before speckle and noise.
   double best = 0.0;
+  long strongest = -1;
   for (int j = 0; j < sonar_.bins; ++j) {
     const auto k = static_cast<std::size_t>(j);
     const double shown = (echoes.direct[k] + echoes.multipath[k]) * tvg_linear_[k];
     if (shown > best) {
       best = shown;
+      strongest = j;
       truth.strongest_range_m = (j + 1) * sonar_.bin_m;
       truth.strongest_is_multipath = echoes.multipath[k] > echoes.direct[k];
-      truth.strongest_surface = scene_.materials()[echoes.largest_material[k]].name;
+    }
+  }
+  if (strongest < 0) return truth;
+  // The surface whose single echo gave the most to that bin.
+  double largest = 0.0;
+  for (const Echoes::Contribution& c : echoes.contributions) {
+    if (c.at(strongest) > largest) {
+      largest = c.at(strongest);
+      truth.strongest_surface = scene_.materials()[c.material_id].name;
     }
   }
   return truth;

@@ -239,7 +239,7 @@ TEST(SimulateCommand, WritesEveryFileAndTheReadersReadThemBack) {
   // At constant speed the loop takes its length over the speed, a little less for cut corners.
   EXPECT_GT(duration_s, 0.85 * kPathLength_m / kSpeed_mps);
   EXPECT_LT(duration_s, 1.1 * kPathLength_m / kSpeed_mps);
-  EXPECT_EQ(box.summary.rays_per_beam, 3u * 24u);
+  EXPECT_EQ(box.summary.rays_per_beam, 16u * 12u);
 
   // Sonar: one row per beam, 500 bins, the angle stepping down one 1.8 deg step per beam, 200
   // beams per 13.8 s revolution.
@@ -321,7 +321,7 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
   const std::vector<BeamRow> rows = read_beams_csv((box.dir / "truth" / "beams.csv").string());
   const SonarMount mount = io::read_calibration((box.dir / "calibration.yaml").string()).sonar;
   ASSERT_FALSE(rows.empty());
-  std::size_t with_hit = 0, close = 0, multipath = 0, agree = 0;
+  std::size_t with_hit = 0, close = 0, multipath = 0, bottom_strongest = 0, agree = 0;
   double max_geometry_error_m = 0.0;
   for (const BeamRow& row : rows) {
     if (!row.first_hit_range_m) continue;
@@ -329,11 +329,30 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
     // The axis is horizontal (tilt 0) at 1.5 m depth: its first surface is a wall of the box.
     max_geometry_error_m = std::max(max_geometry_error_m,
                                     std::abs(*row.first_hit_range_m - range_to_wall_m(row, mount)));
-    const bool is_close =
-        row.strongest_range_m && std::abs(*row.strongest_range_m - *row.first_hit_range_m) <= 0.3;
+    // Each ray is a surface patch whose echo spreads over the patch's ranges and the receiver's
+    // 0.75 m tail, and the walls' roughness (10 dB) makes bright and dark patches, so the
+    // strongest bin lies among the ranges the beam's rays (+-2 beamwidths, +-6 deg) cover on the
+    // walls, not at the axis's first hit: on an oblique wall, or where a bright patch of a
+    // nearer wall at the beam's edge outshines a dark one on the axis, it can be metres away
+    // (docs/simulator.md). Before the footprints and the roughness, echoes were points on even
+    // walls, and 0.3 m from the first hit held for 90 % of this box's beams; now for 70 %.
+    double lobe_min_m = 1e300, lobe_max_m = 0.0;
+    for (double da_deg = -6.0; da_deg <= 6.0 + 1e-9; da_deg += 0.1) {
+      BeamRow turned = row;
+      turned.bearing_rad += da_deg * kPi / 180.0;
+      lobe_min_m = std::min(lobe_min_m, range_to_wall_m(turned, mount));
+      lobe_max_m = std::max(lobe_max_m, range_to_wall_m(turned, mount));
+    }
+    // The vertical lobe (+-17.5 deg) adds up to 5 % to a wall's range, the receiver 0.75 m.
+    const bool is_close = row.strongest_range_m && *row.strongest_range_m >= lobe_min_m - 0.3 &&
+                          *row.strongest_range_m <= 1.05 * lobe_max_m + 1.0;
     close += is_close ? 1 : 0;
     multipath += row.multipath ? 1 : 0;
-    agree += is_close || row.multipath ? 1 : 0;
+    // The box's bottom is bright (backscatter 0.3, against 0.003 for the shipped mud bottoms):
+    // as a surface patch it can outshine a far or oblique wall, and the truth names it.
+    const bool bottom = row.surface == "bottom";
+    bottom_strongest += bottom && !is_close && !row.multipath ? 1 : 0;
+    agree += is_close || row.multipath || bottom ? 1 : 0;
     // The box's groups, or the water surface the simulator adds.
     if (row.strongest_range_m) {
       EXPECT_TRUE(row.surface == "walls" || row.surface == "bottom" ||
@@ -345,10 +364,13 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
     return static_cast<double>(n) / static_cast<double>(std::max<std::size_t>(with_hit, 1));
   };
   std::printf(
-      "beams with a first hit: %zu of %zu (%.3f); of those: strongest within 0.3 m %.3f, "
-      "strongest by multipath %.3f, either %.3f; max first-hit error vs box geometry %.2g m\n",
+      "beams with a first hit: %zu of %zu (%.3f); of those: strongest among the wall ranges of the "
+      "rays %.3f, "
+      "strongest by multipath %.3f, from the bottom otherwise %.3f, any %.3f; max first-hit error "
+      "vs box geometry %.2g m\n",
       with_hit, rows.size(), static_cast<double>(with_hit) / static_cast<double>(rows.size()),
-      fraction(close), fraction(multipath), fraction(agree), max_geometry_error_m);
+      fraction(close), fraction(multipath), fraction(bottom_strongest), fraction(agree),
+      max_geometry_error_m);
   // The box is closed and at most ~30 m across from the path: every beam hits a wall in range.
   EXPECT_EQ(with_hit, rows.size());
   EXPECT_LT(max_geometry_error_m, 0.01);

@@ -104,7 +104,9 @@ void spread_in_range(const std::vector<double>& kernel, std::vector<double>& pow
 
 /// A smooth, zero-mean Gaussian field of unit variance with correlation length `length_m`: value
 /// noise (independent normal values at the corners of a cubic lattice, hashed from the corner's
-/// indices, trilinearly interpolated). The same for every ping: it belongs to the surfaces.
+/// indices), interpolated with the trilinear weights w_c and divided by sqrt(sum w_c^2), so its
+/// variance is 1 at every point, on the lattice or between. The same for every ping: it belongs
+/// to the surfaces.
 double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
   const auto corner_value = [](std::int64_t i, std::int64_t j, std::int64_t k) {
     std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
@@ -118,17 +120,17 @@ double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
   const Eigen::Vector3d q = p_m.cast<double>() / length_m;
   const Eigen::Vector3d f = q.array().floor();
   const Eigen::Vector3d t = q - f;
-  double value = 0.0;
+  double value = 0.0, weights_squared = 0.0;
   for (int c = 0; c < 8; ++c) {
     const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
     const double w =
         (dx ? t.x() : 1.0 - t.x()) * (dy ? t.y() : 1.0 - t.y()) * (dz ? t.z() : 1.0 - t.z());
+    weights_squared += w * w;
     value += w * corner_value(static_cast<std::int64_t>(f.x()) + dx,
                               static_cast<std::int64_t>(f.y()) + dy,
                               static_cast<std::int64_t>(f.z()) + dz);
   }
-  // Trilinear weights of independent unit values have a mean square of (2/3)^3 over the cell.
-  return value / std::sqrt(8.0 / 27.0);
+  return value / std::sqrt(weights_squared);
 }
 }  // namespace
 

@@ -47,7 +47,7 @@ TEST(ShippedScenarios, EveryScenarioParsesAndItsSceneBuilds) {
 
 struct BeamAgreement {
   int with_hit = 0;
-  int within_0_3_m = 0;
+  int within_1_5_m = 0;
   int multipath = 0;
   int other_surface = 0;  ///< direct, but from another surface than the walls (the bottom)
 };
@@ -63,8 +63,8 @@ BeamAgreement agreement(const std::string& beams_csv) {
     for (std::string cell; std::getline(row, cell, ',');) f.push_back(cell);
     if (f.size() < 9 || f[5].empty()) continue;
     ++a.with_hit;
-    if (!f[6].empty() && std::abs(std::stod(f[6]) - std::stod(f[5])) <= 0.3) {
-      ++a.within_0_3_m;
+    if (!f[6].empty() && std::abs(std::stod(f[6]) - std::stod(f[5])) <= 1.5) {
+      ++a.within_1_5_m;
     } else if (f[7] == "1") {
       ++a.multipath;
     } else if (f[8] != "walls") {
@@ -91,16 +91,24 @@ TEST(ShippedScenarios, StPereReplicaSimulatesAndAgreesWithItsTruth) {
   EXPECT_EQ(beams.front().intensity.size(), 500u);
 
   const BeamAgreement a = agreement(*files.truth_beams);
-  const double within = double(a.within_0_3_m) / a.with_hit;
+  const double within = double(a.within_1_5_m) / a.with_hit;
   const double flagged = double(a.multipath) / a.with_hit;
   const double other = double(a.other_surface) / a.with_hit;
-  std::cout << "beams seeing a surface: " << a.with_hit << ", strongest echo within 0.3 m of the "
+  std::cout << "beams seeing a surface: " << a.with_hit << ", strongest echo within 1.5 m of the "
             << "first hit: " << 100 * within << "%, multipath-flagged: " << 100 * flagged
             << "%, strongest echo from another surface (bottom): " << 100 * other << "%\n";
   EXPECT_GT(a.with_hit, static_cast<int>(summary.beams / 2));
-  EXPECT_GE(within, 0.95);  // measured 98.9%
-  // The rest is explained by the truth: a multipath route, or the bottom outshining a far wall.
-  EXPECT_GE(within + flagged + other, 0.995);
+  // Within 1.5 m, not 0.3 m as with point echoes: each ray is a surface patch whose echo
+  // spreads over its ranges and the receiver's 0.75 m tail, so an oblique wall's strongest bin
+  // lies up to a metre or so beyond the axis's first hit (docs/simulator.md). Measured at seed
+  // 42: 88.4 % within 0.3 m, 95.8 % within 1.5 m.
+  EXPECT_GE(within, 0.95);
+  // The rest is explained by the truth: a multipath route, or the bottom outshining a far wall;
+  // but for about 1 %, a nearer wall under the beam's +-6 deg skirt whose bright patch (10 dB
+  // roughness) outshines a dark or grazing one on the axis, which the per-beam truth cannot
+  // name (tests/app/simulate_command_test.cpp checks that case against the box's geometry).
+  // Measured: 98.9 %; it was 99.5 % or more with point echoes on even walls.
+  EXPECT_GE(within + flagged + other, 0.985);
 
   // The pipeline reads it: dead reckoning against the simulation truth, drift of a few metres.
   const RunOutcome dr = run({out, "deadreckoning", tmp.file("dr"), ""});

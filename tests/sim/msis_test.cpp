@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 #include "sim/random.hpp"
 
@@ -178,6 +180,123 @@ TEST(Msis, SameStreamSameBeamDifferentStreamDifferentSpeckle) {
   const auto beam_a = model.render(slot, straight(0.2), a).intensity;
   EXPECT_EQ(beam_a, model.render(slot, straight(0.2), b).intensity);
   EXPECT_NE(beam_a, model.render(slot, straight(0.2), c).intensity);
+}
+
+/// A wall through (range_m, 0) whose normal turns incidence_deg away from the beam axis (+x).
+TriangleMesh turned_wall_mesh(float range_m, double incidence_deg) {
+  const double phi = incidence_deg * M_PI / 180.0;
+  const auto at = [&](double t, float z) {
+    return Eigen::Vector3f(static_cast<float>(range_m - t * std::sin(phi)),
+                           static_cast<float>(t * std::cos(phi)), z);
+  };
+  TriangleMesh mesh = wall_mesh(range_m);
+  mesh.vertices_m = {at(-200, -50), at(200, -50), at(200, 1), at(-200, 1)};
+  return mesh;
+}
+
+/// No gain, TVG, pulse or receiver, the display spanning -100..0 dB (2.55 steps per dB): the
+/// footprints' own echo shows without clipping.
+SonarConfig bare_sonar() {
+  SonarConfig sonar = forward_sonar();
+  sonar.vertical_beamwidth_deg = 10.0;
+  sonar.tvg_db_per_decade = 0.0;
+  sonar.gain_db = 0.0;
+  sonar.display_min_db = -100.0;
+  sonar.display_max_db = 0.0;
+  sonar.pulse_length_us = 0.0;
+  sonar.receiver_time_constant_us = 0.0;
+  return sonar;
+}
+
+/// Bins within 10 dB (25.5 display steps) of the peak.
+int bins_within_10_db(const std::vector<std::uint8_t>& intensity) {
+  const int peak = intensity[peak_bin(intensity)];
+  return static_cast<int>(std::count_if(intensity.begin(), intensity.end(),
+                                        [&](std::uint8_t v) { return v + 25.5 >= peak; }));
+}
+
+// An oblique wall's echo covers the ranges its footprint spans: at 60 deg incidence and 20 m on
+// the axis, the two-way pattern's -10 dB half width (1.5 deg x sqrt(10 / 3) = 2.74 deg) meets
+// the wall from 10 / cos(57.26 deg) = 18.5 m to 10 / cos(62.74 deg) = 21.8 m, 33 bins; at normal
+// incidence only the vertical lobe spreads it, 20 (1 / cos(9 deg) - 1) = 0.25 m.
+TEST(Msis, ObliqueWallSmearsOverItsFootprint) {
+  const SonarConfig sonar = bare_sonar();
+  Rng rng(1);
+  const Scene normal(turned_wall_mesh(20.0f, 0.0), Material{"surface", 0.001f, 0.9f});
+  const RenderedBeam at_normal =
+      MsisModel(normal, sonar, 10.0).render({0, 0.0, 0.0}, straight(0.0), rng);
+  EXPECT_LE(bins_within_10_db(at_normal.intensity), 4);
+  const Scene oblique(turned_wall_mesh(20.0f, 60.0), Material{"surface", 0.001f, 0.9f});
+  const RenderedBeam at_60 =
+      MsisModel(oblique, sonar, 10.0).render({0, 0.0, 0.0}, straight(0.0), rng);
+  EXPECT_NEAR(*at_60.truth.first_hit_range_m, 20.0, 1e-3);
+  const int extent = bins_within_10_db(at_60.intensity);
+  std::printf("-10 dB extent: %d bins at normal incidence, %d at 60 deg\n",
+              bins_within_10_db(at_normal.intensity), extent);
+  // The far side loses to r^-2 and to its wider spread (dr/da grows as r tan(incidence)), about
+  // 3 dB at the pattern's -10 dB edge, so the extent lies between the -3 dB pattern width (19.1
+  // to 20.9 m, 18 bins) and the -10 dB one (33 bins).
+  EXPECT_GE(extent, 15);
+  EXPECT_LE(extent, 35);
+  // With point echoes (no footprints) the few rays land in a few bins only.
+  SonarConfig points = sonar;
+  points.footprint = false;
+  const RenderedBeam point_echo =
+      MsisModel(oblique, points, 10.0).render({0, 0.0, 0.0}, straight(0.0), rng);
+  EXPECT_LT(std::count_if(point_echo.intensity.begin(), point_echo.intensity.end(),
+                          [](std::uint8_t v) { return v > 0; }),
+            extent);
+}
+
+// With footprints the rays sample the beam's integral of b^2 over solid angle: four times the
+// rays give the same echo level (within 0.5 dB, 1.3 display steps).
+TEST(Msis, EchoLevelDoesNotDependOnTheRayCount) {
+  const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
+  const SonarConfig sonar = bare_sonar();
+  SonarConfig dense = sonar;
+  dense.rays_horizontal *= 2;
+  dense.rays_vertical *= 2;
+  Rng rng(1);
+  const auto level = [&](const SonarConfig& s) {
+    const RenderedBeam beam = MsisModel(scene, s, 10.0).render({0, 0.0, 0.0}, straight(0.0), rng);
+    return static_cast<int>(beam.intensity[peak_bin(beam.intensity)]);
+  };
+  EXPECT_NEAR(level(sonar), level(dense), 1.3);
+}
+
+// Roughness belongs to the wall: the same patch gives the same echo in every ping, and along the
+// wall the echo level varies by about roughness_db (less a little: each footprint averages a few
+// metres of a field correlated over 10 m), smoothly.
+TEST(Msis, RoughnessVariesTheWallAlongItsLengthAndNotFromPingToPing) {
+  const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
+  SonarConfig sonar = bare_sonar();
+  sonar.roughness_db = 10.0;
+  sonar.roughness_length_m = 10.0;
+  const MsisModel model(scene, sonar, 10.0);
+  std::vector<double> level_db;
+  double step_change_db = 0.0;
+  for (int k = 0; k < 400; ++k) {
+    // The vehicle moves along the wall (y) at 1 m/s; the beam looks at the wall (+x).
+    std::vector<VehicleState> samples;
+    for (int i = 0; i <= 100; ++i) {
+      samples.push_back({0.01 * i, Pose2(0.0, 0.5 * k, 0.0), 0.0, 0.0, 0.0});
+    }
+    const VehicleTrajectory at(samples);
+    Rng a(1), b(2);
+    const RenderedBeam beam = model.render({0, 0.0, 0.0}, at, a);
+    EXPECT_EQ(beam.intensity, model.render({0, 0.0, 0.0}, at, b).intensity);
+    level_db.push_back(beam.intensity[peak_bin(beam.intensity)] / 2.55);
+    if (k > 0) step_change_db += std::abs(level_db[k] - level_db[k - 1]) / 399.0;
+  }
+  double mean = 0.0, var = 0.0;
+  for (const double l : level_db) mean += l / static_cast<double>(level_db.size());
+  for (const double l : level_db)
+    var += (l - mean) * (l - mean) / static_cast<double>(level_db.size() - 1);
+  std::printf("roughness 10 dB: echo level sd %.2f dB along 200 m, mean step over 0.5 m %.2f dB\n",
+              std::sqrt(var), step_change_db);
+  EXPECT_GT(std::sqrt(var), 6.0);
+  EXPECT_LT(std::sqrt(var), 12.0);
+  EXPECT_LT(step_change_db, 2.0);
 }
 
 }  // namespace

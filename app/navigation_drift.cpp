@@ -197,8 +197,7 @@ std::vector<PositionFix> towed_buoy(const std::vector<PositionFix>& vehicle, dou
 }
 
 GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<PositionFix>& gps,
-                             const Eigen::Vector2d& p_vehicle_dvl_m, double dvl_sigma_mps,
-                             double dvl_interval_s, const GpsOptions& options) {
+                             const Eigen::Vector2d& p_vehicle_dvl_m, const GpsOptions& options) {
   GpsStatistics stats;
   std::vector<double> x, y, dt;
   for (std::size_t i = 0; i < gps.size(); ++i) {
@@ -234,10 +233,6 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
       0.0, options.max_tether_m, 0.1);
   // Structure function of the GPS error against the towed-buoy dead reckoning.
   const std::vector<PositionFix> buoy = towed_buoy(vehicle, stats.tether_m);
-  const double white_var =
-      0.5 * (std::pow(stats.white_x_m.sigma_sd, 2) + std::pow(stats.white_y_m.sigma_sd, 2));
-  const double diffusion_m2_per_s = dvl_sigma_mps * dvl_sigma_mps * dvl_interval_s;
-  std::vector<double> excess;
   for (const double lag_s : options.structure_lags_s) {
     double sum = 0.0;
     std::size_t count = 0;
@@ -252,9 +247,7 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
       ++count;
     }
     stats.structure_m2.push_back(count ? sum / static_cast<double>(count) : 0.0);
-    excess.push_back(stats.structure_m2.back() - 0.5 * diffusion_m2_per_s * lag_s - white_var);
   }
-  stats.correlated_m = fit_gauss_markov(options.structure_lags_s, excess);
   return stats;
 }
 

@@ -209,12 +209,9 @@ NavigationStatistics navigation_statistics(const NavigationData& data) {
     stats.heading_offset = heading_offset_statistics(nav, reference, data.p_vehicle_dvl_m, 50.0);
   }
   if (!data.gps.empty()) {
-    const double sigma_mps =
-        std::hypot(stats.dvl.surge_mps.sigma_sd, stats.dvl.sway_mps.sigma_sd) / std::sqrt(2.0);
     GpsOptions options;
     if (stats.heading_offset) options.heading_offset_deg = stats.heading_offset->mean_deg;
-    stats.gps = gps_statistics(nav, data.gps, data.p_vehicle_dvl_m, sigma_mps,
-                               1.0 / stats.dvl.rate_hz, options);
+    stats.gps = gps_statistics(nav, data.gps, data.p_vehicle_dvl_m, options);
   }
   if (!data.truth.empty()) {
     stats.drift = dead_reckoning_drift(nav, data.truth, data.p_vehicle_dvl_m, {});

@@ -140,8 +140,8 @@ struct GpsOptions {
   /// Removed from the MRU heading before dead reckoning (heading_offset_statistics' mean), so a
   /// constant heading or DVL-mount offset is not mistaken for slow GPS error.
   double heading_offset_deg = 0.0;
-  /// Lags of the structure function (s) for the correlated error.
-  std::vector<double> structure_lags_s = {1, 2, 5, 10, 20, 30, 60, 90, 120, 180, 240, 300};
+  /// Lags of the structure function, s.
+  std::vector<double> structure_lags_s = {1, 2, 5, 10, 20, 30, 45, 60, 90, 120};
 };
 struct GpsStatistics {
   double rate_hz = 0.0;
@@ -154,17 +154,15 @@ struct GpsStatistics {
   double tether_m = 0.0;
   double tether_residual_m = 0.0;
   /// Structure function S(k) = E[(e(t + k) - e(t))^2] / 2 per axis (mean of x and y) of
-  /// e = GPS - dead reckoning (tether applied), at GpsOptions::structure_lags_s.
+  /// e = GPS - dead reckoning (tether applied), at GpsOptions::structure_lags_s: the GPS's own
+  /// slow error plus the dead reckoning's drift, which one run cannot separate (docs/simulator.md
+  /// calibrates the simulated GPS error by matching it).
   std::vector<double> structure_m2;
-  /// S(k) minus the dead reckoning's random walk D k / 2 (D = DVL sigma^2 x DVL interval, per
-  /// axis) and the white noise, fitted as the GPS's own Gauss-Markov error.
-  GaussMarkov correlated_m;
 };
-/// dvl_sigma_mps and dvl_interval_s give the dead reckoning's random walk (from
-/// dvl_noise_statistics). Needs at least one window of fixes.
+/// Needs at least one window of fixes after the first heading.
 GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<PositionFix>& gps,
-                             const Eigen::Vector2d& p_vehicle_dvl_m, double dvl_sigma_mps,
-                             double dvl_interval_s, const GpsOptions& options = {});
+                             const Eigen::Vector2d& p_vehicle_dvl_m,
+                             const GpsOptions& options = {});
 
 /// The buoy of a taut tether of horizontal length L: it stays put while within L of the vehicle
 /// and is dragged along the line to it otherwise, p_b <- p_v + L (p_b - p_v) / |p_b - p_v|.

@@ -134,31 +134,4 @@ GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost) {
   return fit;
 }
 
-GaussMarkov fit_gauss_markov(const std::vector<double>& lag_s, const std::vector<double>& s) {
-  assert(lag_s.size() == s.size() && !s.empty());
-  GaussMarkov best;
-  double best_misfit = std::numeric_limits<double>::infinity();
-  constexpr int kSteps = 500;
-  for (int i = 0; i <= kSteps; ++i) {
-    const double tau_s = std::pow(10.0, 5.0 * i / kSteps);
-    double sg = 0.0, gg = 0.0;
-    for (std::size_t k = 0; k < s.size(); ++k) {
-      const double g = 1.0 - std::exp(-lag_s[k] / tau_s);
-      sg += s[k] * g;
-      gg += g * g;
-    }
-    const double variance = std::max(0.0, sg / gg);
-    double misfit = 0.0;
-    for (std::size_t k = 0; k < s.size(); ++k) {
-      const double r = s[k] - variance * (1.0 - std::exp(-lag_s[k] / tau_s));
-      misfit += r * r;
-    }
-    if (misfit < best_misfit) {
-      best_misfit = misfit;
-      best = {std::sqrt(variance), tau_s, std::sqrt(misfit / static_cast<double>(s.size()))};
-    }
-  }
-  return best;
-}
-
 }  // namespace msislab::app

@@ -1,7 +1,6 @@
 // Fits of the navigation noise models that docs/simulator.md ("Navigation noise from the real
-// logs") uses: a contaminated normal for heavy-tailed white noise, a two-state hidden Markov
-// (Gilbert-Elliott) model for bursty DVL dropouts, and a first-order Gauss-Markov process from a
-// structure function. Pure numerics on already-extracted samples.
+// logs") uses: a contaminated normal for heavy-tailed white noise and a two-state hidden Markov
+// (Gilbert-Elliott) model for bursty DVL dropouts. Pure numerics on already-extracted samples.
 #pragma once
 
 #include <Eigen/Core>
@@ -39,17 +38,5 @@ struct GilbertElliott {
 /// Baum-Welch (EM) fit of a GilbertElliott model to a sequence of per-sample losses (true = lost).
 /// Needs at least one loss and one non-loss.
 GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost);
-
-/// First-order Gauss-Markov error of variance sigma^2 and correlation time tau: its structure
-/// function is S(k) = sigma^2 (1 - exp(-k / tau)).
-struct GaussMarkov {
-  double sigma = 0.0;       ///< stationary standard deviation, units of the data
-  double time_s = 0.0;      ///< correlation time tau, s
-  double rms_misfit = 0.0;  ///< rms of the fit's residuals in S, units^2
-};
-
-/// Least-squares fit of S(k) = sigma^2 (1 - exp(-k / tau)) to structure-function values
-/// s[i] at lags lag_s[i] (tau on a log grid from 1 s to 10^5 s, sigma^2 >= 0 in closed form).
-GaussMarkov fit_gauss_markov(const std::vector<double>& lag_s, const std::vector<double>& s);
 
 }  // namespace msislab::app

@@ -160,19 +160,20 @@ TEST(GpsStatistics, RecoversAKnownLagTetherAndWhiteNoise) {
     late.push_back({run.truth[i].t_s, run.truth[i - 100].p_world_m + noise});
     towed.push_back({run.truth[i].t_s, buoy[i].p_world_m + noise});
   }
-  const GpsStatistics a = gps_statistics(run.log, late, Eigen::Vector2d::Zero(), 0.0, 0.67);
+  const GpsStatistics a = gps_statistics(run.log, late, Eigen::Vector2d::Zero());
   EXPECT_NEAR(a.lag_s, 10.0, 0.5);
   EXPECT_NEAR(a.rate_hz, 1.0, 1e-9);
   EXPECT_NEAR(a.white_x_m.sigma_sd, 0.05, 0.003);
   EXPECT_NEAR(a.white_y_m.sigma_sd, 0.05, 0.003);
-  const GpsStatistics b = gps_statistics(run.log, towed, Eigen::Vector2d::Zero(), 0.0, 0.67);
+  const GpsStatistics b = gps_statistics(run.log, towed, Eigen::Vector2d::Zero());
   EXPECT_NEAR(b.tether_m, 3.0, 0.15);
   EXPECT_NEAR(b.lag_s, 3.0 / 0.2, 2.0);  // a tether of L m lags by about L / speed
   EXPECT_LT(b.tether_residual_m, 0.1);
-  EXPECT_LT(b.correlated_m.sigma, 0.1);  // no slow error was added
+  EXPECT_LT(b.structure_m2.back(), 0.01);  // no slow error was added
 }
 
-TEST(GpsStatistics, RecoversAGaussMarkovError) {
+TEST(GpsStatistics, StructureFunctionOfAGaussMarkovError) {
+  // With exact navigation, S(k) of the GPS error is the Gauss-Markov one, sigma^2 (1 - e^(-k/tau)).
   const SyntheticRun run = synthetic_run(20000.0);
   std::mt19937 rng(13);
   std::normal_distribution<double> n01(0.0, 1.0);
@@ -183,10 +184,16 @@ TEST(GpsStatistics, RecoversAGaussMarkovError) {
     gps.push_back({run.truth[i].t_s, run.truth[i].p_world_m + e});
     e = phi * e + sigma * std::sqrt(1.0 - phi * phi) * Eigen::Vector2d(n01(rng), n01(rng));
   }
-  const GpsStatistics s = gps_statistics(run.log, gps, Eigen::Vector2d::Zero(), 0.0, 0.67);
-  // 20,000 s hold about 170 correlation times: the variance is known to about 10%.
-  EXPECT_NEAR(s.correlated_m.sigma, 1.0, 0.1);
-  EXPECT_NEAR(s.correlated_m.time_s, 60.0, 15.0);
+  const GpsOptions options;
+  const GpsStatistics s = gps_statistics(run.log, gps, Eigen::Vector2d::Zero(), options);
+  ASSERT_EQ(s.structure_m2.size(), options.structure_lags_s.size());
+  EXPECT_EQ(s.tether_m, 0.0);
+  for (std::size_t i = 0; i < s.structure_m2.size(); ++i) {
+    const double expected = sigma * sigma * (1.0 - std::exp(-options.structure_lags_s[i] / tau_s));
+    // 20,000 s hold 330 correlation times: S is known to about 8% (2 axes).
+    EXPECT_NEAR(s.structure_m2[i], expected, 0.15 * expected)
+        << "lag " << options.structure_lags_s[i];
+  }
 }
 
 TEST(Drift, ExactNavigationHasNoDrift) {

@@ -92,19 +92,5 @@ TEST(GilbertElliott, RecoversStrongBursts) {
   EXPECT_NEAR(fit.degraded_mean_samples, 10.0, 1.0);
 }
 
-TEST(GaussMarkov, RecoversSigmaAndTimeFromAnExactStructureFunction) {
-  std::vector<double> lags = {1, 2, 5, 10, 20, 30, 60, 90, 120, 180, 240, 300}, s;
-  for (const double k : lags) s.push_back(0.49 * (1.0 - std::exp(-k / 90.0)));
-  const GaussMarkov fit = fit_gauss_markov(lags, s);
-  EXPECT_NEAR(fit.sigma, 0.7, 0.003);
-  EXPECT_NEAR(fit.time_s, 90.0, 2.0);  // the log grid has 2.3% steps
-  EXPECT_LT(fit.rms_misfit, 0.003);
-}
-
-TEST(GaussMarkov, NoExcessGivesZeroSigma) {
-  const GaussMarkov fit = fit_gauss_markov({1, 10, 100}, {-0.01, -0.02, -0.05});
-  EXPECT_EQ(fit.sigma, 0.0);
-}
-
 }  // namespace
 }  // namespace msislab::app

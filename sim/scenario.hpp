@@ -89,9 +89,9 @@ struct MruConfig {
 struct GpsConfig {
   bool enabled = true;
   double rate_hz = 1.0;
-  double noise_sigma_m = 0.05;       ///< white noise per axis, m
-  double correlated_sigma_m = 0.7;   ///< Gauss-Markov error per axis, stationary sd
-  double correlation_time_s = 90.0;  ///< its correlation time, s
+  double noise_sigma_m = 0.03;        ///< white noise per axis, m
+  double correlated_sigma_m = 1.0;    ///< Gauss-Markov error per axis, stationary sd
+  double correlation_time_s = 300.0;  ///< its correlation time, s
   /// Horizontal reach of the taut tether (a tether of length l at depth d reaches
   /// sqrt(l^2 - d^2)), m; 0 puts the buoy above the vehicle.
   double tether_length_m = 0.0;

@@ -274,6 +274,7 @@ TEST(NavigationStatisticsStPere, DISABLED_CalibrateTheGpsError) {
   };
   for (const double sigma_m : {0.0, 0.7, 0.85, 1.0, 1.2, 1.4}) {
     for (const double tau_s : {90.0, 200.0, 300.0, 500.0, 800.0}) {
+      if (sigma_m == 0.0 && tau_s != 90.0) continue;  // no error: tau does not matter
       replica.scenario.gps.correlated_sigma_m = sigma_m;
       replica.scenario.gps.correlation_time_s = tau_s;
       // The mismatch: squared log ratios of S(k) at every lag, the residual and the sigma.

@@ -6,6 +6,7 @@
 #include <functional>
 
 #include "app/navigation_statistics.hpp"
+#include "sim/navigation_sensors.hpp"
 #include "slam/se2.hpp"
 
 namespace msislab::app {
@@ -188,9 +189,7 @@ std::vector<PositionFix> towed_buoy(const std::vector<PositionFix>& vehicle, dou
   if (vehicle.empty()) return buoy;
   Eigen::Vector2d p_buoy = vehicle.front().p_world_m;
   for (const PositionFix& v : vehicle) {
-    const Eigen::Vector2d away = p_buoy - v.p_world_m;
-    const double distance_m = away.norm();
-    if (distance_m > tether_m) p_buoy = v.p_world_m + away * (tether_m / distance_m);
+    p_buoy = sim::drag_buoy(p_buoy, v.p_world_m, tether_m);
     buoy.push_back({v.t_s, p_buoy});
   }
   return buoy;

@@ -164,8 +164,8 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
                              const Eigen::Vector2d& p_vehicle_dvl_m,
                              const GpsOptions& options = {});
 
-/// The buoy of a taut tether of horizontal length L: it stays put while within L of the vehicle
-/// and is dragged along the line to it otherwise, p_b <- p_v + L (p_b - p_v) / |p_b - p_v|.
+/// The simulator's towed buoy (sim::drag_buoy) behind a vehicle track: it stays put while within
+/// L of the vehicle and is dragged along the line to it otherwise.
 std::vector<PositionFix> towed_buoy(const std::vector<PositionFix>& vehicle, double tether_m);
 
 struct NavigationStatistics {
@@ -173,7 +173,7 @@ struct NavigationStatistics {
   DropoutStatistics dropouts;
   HeadingNoiseStatistics heading;
   std::optional<CompassComparison> compasses;
-  std::optional<HeadingOffsetStatistics> heading_offset;  ///< with truth
+  std::optional<HeadingOffsetStatistics> heading_offset;  ///< against the GPS, else truth
   std::optional<GpsStatistics> gps;                       ///< with a GPS log
   std::optional<DriftStatistics> drift;                   ///< against truth
   std::optional<DriftStatistics> drift_against_gps;       ///< simulated data: against its GPS

@@ -164,20 +164,37 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
   map.finish();
 }
 
+/// Reads a probability if present; fails naming the key unless it lies in [0, 1].
+void read_probability(YamlMap& map, const std::string& key, double& value) {
+  map.number(key, value);
+  if (value < 0.0 || value > 1.0) map.fail(key, "must be in [0, 1]");
+}
+
+/// Reads a value if present; fails naming the key if it is negative.
+void read_non_negative(YamlMap& map, const std::string& key, double& value) {
+  map.number(key, value);
+  if (value < 0.0) map.fail(key, "must be >= 0");
+}
+
 void read_dvl(YamlMap map, sim::DvlConfig& d) {
   map.number("rate_hz", d.rate_hz);
   require_positive(map, "rate_hz", d.rate_hz);
-  map.number("noise_sigma_mps", d.noise_sigma_mps);
-  if (d.noise_sigma_mps < 0.0) map.fail("noise_sigma_mps", "must be >= 0");
+  read_non_negative(map, "noise_sigma_mps", d.noise_sigma_mps);
+  read_probability(map, "outlier_probability", d.outlier_probability);
+  read_non_negative(map, "outlier_sigma_mps", d.outlier_sigma_mps);
   std::vector<double> bias;
   if (map.numbers("bias_mps", bias)) {
     if (bias.size() != 2) map.fail("bias_mps", "expected [x, y] in the DVL frame");
     d.bias_mps = {bias[0], bias[1]};
   }
-  map.number("dropout_probability", d.dropout_probability);
-  if (d.dropout_probability < 0.0 || d.dropout_probability > 1.0) {
-    map.fail("dropout_probability", "must be in [0, 1]");
+  read_probability(map, "dropout_probability", d.dropout_probability);
+  read_probability(map, "degraded_dropout_probability", d.degraded_dropout_probability);
+  map.number("degraded_fraction", d.degraded_fraction);
+  if (d.degraded_fraction < 0.0 || d.degraded_fraction >= 1.0) {
+    map.fail("degraded_fraction", "must be in [0, 1)");
   }
+  map.number("degraded_duration_s", d.degraded_duration_s);
+  require_positive(map, "degraded_duration_s", d.degraded_duration_s);
   map.number("max_altitude_m", d.max_altitude_m);
   require_positive(map, "max_altitude_m", d.max_altitude_m);
   YamlMap mount = map.map("mount");
@@ -189,13 +206,9 @@ void read_dvl(YamlMap map, sim::DvlConfig& d) {
 void read_mru(YamlMap map, sim::MruConfig& m) {
   map.number("rate_hz", m.rate_hz);
   require_positive(map, "rate_hz", m.rate_hz);
-  map.number("heading_noise_deg", m.heading_noise_deg);
+  read_non_negative(map, "heading_noise_deg", m.heading_noise_deg);
   map.number("bias_initial_deg", m.bias_initial_deg);
-  map.number("bias_random_walk_deg_per_sqrt_s", m.bias_random_walk_deg_per_sqrt_s);
-  if (m.heading_noise_deg < 0.0) map.fail("heading_noise_deg", "must be >= 0");
-  if (m.bias_random_walk_deg_per_sqrt_s < 0.0) {
-    map.fail("bias_random_walk_deg_per_sqrt_s", "must be >= 0");
-  }
+  read_non_negative(map, "bias_random_walk_deg_per_sqrt_s", m.bias_random_walk_deg_per_sqrt_s);
   YamlMap mount = map.map("mount");
   read_mru_mount(mount, m.mount);
   mount.finish();
@@ -206,8 +219,11 @@ void read_gps(YamlMap map, sim::GpsConfig& g) {
   map.boolean("enabled", g.enabled);
   map.number("rate_hz", g.rate_hz);
   require_positive(map, "rate_hz", g.rate_hz);
-  map.number("noise_sigma_m", g.noise_sigma_m);
-  if (g.noise_sigma_m < 0.0) map.fail("noise_sigma_m", "must be >= 0");
+  read_non_negative(map, "noise_sigma_m", g.noise_sigma_m);
+  read_non_negative(map, "correlated_sigma_m", g.correlated_sigma_m);
+  map.number("correlation_time_s", g.correlation_time_s);
+  require_positive(map, "correlation_time_s", g.correlation_time_s);
+  read_non_negative(map, "tether_length_m", g.tether_length_m);
   read_local_frame(map, g.frame);
   map.finish();
 }

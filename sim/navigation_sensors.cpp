@@ -37,8 +37,19 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
                                     const Scene& scene, double depth_m, std::uint64_t seed) {
   Rng rng = make_rng(seed, RandomStream::kDvl, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
-  std::bernoulli_distribution dropout(dvl.dropout_probability);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
   const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(dvl.mount).transpose();
+  // The clear/degraded chain per sample of dt: leave a state of mean duration T with
+  // probability 1 - exp(-dt / T); the clear periods last T_d (1 - f) / f for a degraded fraction f.
+  const double dt_s = 1.0 / dvl.rate_hz;
+  const double leave_degraded =
+      dvl.degraded_fraction > 0.0 ? -std::expm1(-dt_s / dvl.degraded_duration_s) : 1.0;
+  const double enter_degraded =
+      dvl.degraded_fraction > 0.0
+          ? -std::expm1(-dt_s * dvl.degraded_fraction /
+                        ((1.0 - dvl.degraded_fraction) * dvl.degraded_duration_s))
+          : 0.0;
+  bool degraded = u01(rng) < dvl.degraded_fraction;
   std::vector<DvlSample> samples;
   for (const double t_s : sample_times(truth, dvl.rate_hz)) {
     const VehicleState s = truth.at(t_s);
@@ -48,12 +59,17 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
     // Velocity of the DVL's mount point: v + r x p, in the vehicle frame, then the DVL frame.
     const Eigen::Vector2d v_vehicle(s.surge_mps - s.yaw_rate_radps * dvl.mount.y_m,
                                     s.sway_mps + s.yaw_rate_radps * dvl.mount.x_m);
+    // A fixed number of draws per sample, whatever the outcome.
+    const double u_dropout = u01(rng), u_outlier = u01(rng), u_state = u01(rng);
     const Eigen::Vector2d noise(n01(rng), n01(rng));
-    const bool lost = dropout(rng);
-    sample.bottom_lock = !lost && sample.altitude_m > 0.0;
+    const double p_dropout = degraded ? dvl.degraded_dropout_probability : dvl.dropout_probability;
+    const double sigma_mps =
+        u_outlier < dvl.outlier_probability ? dvl.outlier_sigma_mps : dvl.noise_sigma_mps;
+    sample.bottom_lock = u_dropout >= p_dropout && sample.altitude_m > 0.0;
     if (sample.bottom_lock) {
-      sample.v_dvl_mps = R_dvl_vehicle * v_vehicle + dvl.bias_mps + dvl.noise_sigma_mps * noise;
+      sample.v_dvl_mps = R_dvl_vehicle * v_vehicle + dvl.bias_mps + sigma_mps * noise;
     }
+    degraded = degraded ? u_state >= leave_degraded : u_state < enter_degraded;
     samples.push_back(sample);
   }
   return samples;
@@ -75,15 +91,37 @@ std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruCon
   return samples;
 }
 
+Eigen::Vector2d drag_buoy(const Eigen::Vector2d& p_buoy_m, const Eigen::Vector2d& p_vehicle_m,
+                          double tether_m) {
+  const Eigen::Vector2d away = p_buoy_m - p_vehicle_m;
+  const double distance_m = away.norm();
+  if (distance_m <= tether_m) return p_buoy_m;
+  return p_vehicle_m + away * (tether_m / distance_m);
+}
+
 std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig& gps,
                                  std::uint64_t seed) {
   std::vector<GpsFix> fixes;
   if (!gps.enabled) return fixes;
   Rng rng = make_rng(seed, RandomStream::kGps, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
+  // Gauss-Markov error e' = phi e + sigma sqrt(1 - phi^2) n, phi = exp(-dt / tau), stationary.
+  const double phi =
+      gps.correlated_sigma_m > 0.0 ? std::exp(-1.0 / (gps.rate_hz * gps.correlation_time_s)) : 0.0;
+  Eigen::Vector2d e_m = gps.correlated_sigma_m * Eigen::Vector2d(n01(rng), n01(rng));
+  // The buoy starts above the vehicle and is dragged through every truth sample.
+  const std::vector<VehicleState>& states = truth.samples();
+  Eigen::Vector2d p_buoy_m = states.front().pose.translation();
+  std::size_t next = 0;
   for (const double t_s : sample_times(truth, gps.rate_hz)) {
-    const Eigen::Vector2d noise(n01(rng), n01(rng));
-    fixes.push_back({t_s, truth.at(t_s).pose.translation() + gps.noise_sigma_m * noise});
+    for (; next < states.size() && states[next].t_s <= t_s; ++next) {
+      p_buoy_m = drag_buoy(p_buoy_m, states[next].pose.translation(), gps.tether_length_m);
+    }
+    p_buoy_m = drag_buoy(p_buoy_m, truth.at(t_s).pose.translation(), gps.tether_length_m);
+    const Eigen::Vector2d white(n01(rng), n01(rng));
+    fixes.push_back({t_s, p_buoy_m + e_m + gps.noise_sigma_m * white});
+    const Eigen::Vector2d n(n01(rng), n01(rng));
+    e_m = phi * e_m + gps.correlated_sigma_m * std::sqrt(1.0 - phi * phi) * n;
   }
   return fixes;
 }

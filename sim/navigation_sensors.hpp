@@ -1,6 +1,7 @@
 // Simulated navigation sensors sampled from the true trajectory, each with its own random stream:
-// DVL bottom velocity (white noise, bias, dropouts, altitude from the scene), MRU heading (white
-// noise plus a bias random walk) and a GPS buoy (white noise).
+// DVL bottom velocity (heavy-tailed white noise, bias, bursty dropouts, altitude from the scene),
+// MRU heading (white noise plus a bias random walk) and a GPS on a towed buoy (Gauss-Markov error
+// plus white noise). docs/simulator.md gives the equations and where the defaults come from.
 #pragma once
 
 #include <Eigen/Core>
@@ -34,6 +35,10 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
                                     const Scene& scene, double depth_m, std::uint64_t seed);
 std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruConfig& mru,
                                     std::uint64_t seed);
+/// The towed buoy's step: it stays put while within tether_m of the vehicle, else it is dragged
+/// along the line to it, p_b <- p_v + L (p_b - p_v) / |p_b - p_v|.
+Eigen::Vector2d drag_buoy(const Eigen::Vector2d& p_buoy_m, const Eigen::Vector2d& p_vehicle_m,
+                          double tether_m);
 std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig& gps,
                                  std::uint64_t seed);
 

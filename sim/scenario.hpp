@@ -77,26 +77,46 @@ struct SonarConfig {
 
 struct DvlConfig {
   double rate_hz = 1.5;
-  double noise_sigma_mps = 0.2;                        ///< white noise per axis (St. Pere: ~0.2)
+  /// White noise per axis, m/s: the core of a contaminated normal. With probability
+  /// outlier_probability a sample's noise (both axes) has outlier_sigma_mps instead. The
+  /// defaults here and below are the St. Pere estimates (docs/simulator.md).
+  double noise_sigma_mps = 0.104;
+  double outlier_probability = 0.25;                   ///< chance of the wide noise per sample
+  double outlier_sigma_mps = 0.37;                     ///< wide noise per axis, m/s
   Eigen::Vector2d bias_mps = Eigen::Vector2d::Zero();  ///< constant, DVL frame
-  double dropout_probability = 0.017;                  ///< chance a sample has no bottom lock
-  double max_altitude_m = 30.0;                        ///< no bottom lock above this
+  /// Bottom lock is lost independently per sample with dropout_probability in the clear state and
+  /// degraded_dropout_probability in the degraded state; the state switches as a Markov chain
+  /// spending degraded_fraction of the time degraded, in periods of degraded_duration_s on
+  /// average (degraded_fraction 0: always clear, independent dropouts).
+  double dropout_probability = 0.0038;
+  double degraded_dropout_probability = 0.07;
+  double degraded_fraction = 0.2;
+  double degraded_duration_s = 28.0;
+  double max_altitude_m = 30.0;  ///< no bottom lock above this
   DvlMount mount;
 };
 
 struct MruConfig {
   double rate_hz = 10.0;
-  double heading_noise_deg = 0.2;  ///< white noise
+  double heading_noise_deg = 0.04;  ///< white noise, deg
   double bias_initial_deg = 0.0;
   double bias_random_walk_deg_per_sqrt_s = 0.01;  ///< heading bias random walk density
   MruMount mount;
 };
 
+/// A GPS receiver on a buoy towed by the vehicle. The buoy stays put while the tether is slack and
+/// is dragged toward the vehicle along the tether when it is taut; the fix is the buoy position
+/// plus a first-order Gauss-Markov error and white noise. Defaults: the St. Pere estimates.
 struct GpsConfig {
   bool enabled = true;
   double rate_hz = 1.0;
-  double noise_sigma_m = 1.5;  ///< white noise per axis
-  LocalFrame frame;            ///< geodetic origin of the scene frame
+  double noise_sigma_m = 0.03;        ///< white noise per axis, m
+  double correlated_sigma_m = 1.0;    ///< Gauss-Markov error per axis, stationary sd
+  double correlation_time_s = 300.0;  ///< its correlation time, s
+  /// Horizontal reach of the taut tether (a tether of length l at depth d reaches
+  /// sqrt(l^2 - d^2)), m; 0 puts the buoy above the vehicle.
+  double tether_length_m = 0.0;
+  LocalFrame frame;  ///< geodetic origin of the scene frame
 };
 
 struct Scenario {

@@ -1,9 +1,10 @@
 // `msislab run --method robocentric|worldcentric` end to end. On the simulated replica (seed 42,
 // config/stpere_replica.yaml): both write the result files per interfaces.md, match scans, and
-// their mean error is well below dead reckoning's, overall and in the loop area and the canal
-// (the paper's Table I). The two trajectory parameterisations of the same IEKF agree closely: the
-// robocentric one must not be worse. On the real St. Pere dataset (skipped without it): the loop
-// area improves on dead reckoning and the whole run does not regress past a stated bound.
+// their mean error is below dead reckoning's (well below in the loop area) and below stated bounds,
+// overall and in the canal (the paper's Table I). The two trajectory parameterisations of the same
+// IEKF agree closely: the robocentric one must not be worse. On the real St. Pere dataset (skipped
+// without it): the loop area improves on dead reckoning and the whole run does not regress past a
+// stated bound.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,18 +44,30 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   const RunOutcome rc = run({dataset, "robocentric", tmp.file("rc"), config});
   ASSERT_TRUE(dr.metrics && wc.metrics && rc.metrics);
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("replica", *r->metrics);
-  // Measured (seed 42): robocentric 0.886 m (loop 0.75, canal 1.08), ANEES 2.78; world-centric
-  // the same to 1e-3 m; dead reckoning 6.28 m (loop 4.14, canal 9.22). With one-way spIC
-  // association (before reciprocal became the default): 2.163 m (0.94, 3.84), ANEES 14.
+  // Measured (seed 42, the navigation noise estimated from the real logs, docs/simulator.md):
+  // robocentric 1.222 m (loop 0.80, canal 1.81), ANEES 4.35; world-centric the same to 1e-3 m;
+  // dead reckoning 3.23 m (loop 3.62, canal 2.70).
+  // The ratios to dead reckoning depend on its drift, one random walk per run. Over seeds 42-51
+  // (msislab montecarlo, config/stpere_replica.yaml) dead reckoning gives 3.2-13.0 m (mean 7.3)
+  // and robocentric 0.66-2.57 m (mean 1.38); seed 42's dead reckoning is the best of the ten, so
+  // its ratios are the largest: 0.38 overall (ten seeds 0.10-0.38), loop 0.22 (0.09-0.26), canal
+  // 0.67 (0.09-0.67). The ratio bounds sit 20-35 % above seed 42's (so above all ten seeds');
+  // absolute bounds on the SLAM error (seed 42 plus 20-30 %) keep the test sensitive to a SLAM
+  // regression that a lucky dead reckoning would otherwise hide.
+  // (Before the noise was estimated, seed 42 drew dead reckoning 6.28 m and robocentric 0.886 m;
+  // one-way spIC association gave 2.163 m, ANEES 14.)
   for (const RunOutcome* slam : {&wc, &rc}) {
     const RunMetrics& m = *slam->metrics;
     EXPECT_GT(m.scans, 200);
     EXPECT_GT(m.matches_accepted, m.scans);
     ASSERT_TRUE(m.anees);
-    EXPECT_LT(m.errors.mean_m, 0.25 * dr.metrics->errors.mean_m) << m.method;          // 0.14
-    EXPECT_LT(segment(m, "loop"), 0.3 * segment(*dr.metrics, "loop")) << m.method;     // 0.18
-    EXPECT_LT(segment(m, "canal"), 0.25 * segment(*dr.metrics, "canal")) << m.method;  // 0.12
-    // One run's ANEES over 236 correlated scans: 2.78 (one-way association: 14).
+    EXPECT_LT(m.errors.mean_m, 0.5 * dr.metrics->errors.mean_m) << m.method;          // 0.38
+    EXPECT_LT(m.errors.mean_m, 1.6) << m.method;                                      // 1.22
+    EXPECT_LT(segment(m, "loop"), 0.3 * segment(*dr.metrics, "loop")) << m.method;    // 0.22
+    EXPECT_LT(segment(m, "canal"), 0.8 * segment(*dr.metrics, "canal")) << m.method;  // 0.67
+    EXPECT_LT(segment(m, "canal"), 2.2) << m.method;                                  // 1.81
+    // One run's ANEES over 236 correlated scans: 4.35 (ten seeds: 5.3 on average; one-way
+    // association: 14).
     EXPECT_LT(*m.anees, 5.0) << m.method;
   }
   EXPECT_LT(rc.metrics->errors.mean_m, wc.metrics->errors.mean_m + 0.02);

@@ -141,8 +141,13 @@ TEST(ScenarioYaml, MinimalScenarioKeepsEveryDefault) {
 
   EXPECT_EQ(s.dvl.rate_hz, d.dvl.rate_hz);
   EXPECT_EQ(s.dvl.noise_sigma_mps, d.dvl.noise_sigma_mps);
+  EXPECT_EQ(s.dvl.outlier_probability, d.dvl.outlier_probability);
+  EXPECT_EQ(s.dvl.outlier_sigma_mps, d.dvl.outlier_sigma_mps);
   EXPECT_EQ(s.dvl.bias_mps, d.dvl.bias_mps);
   EXPECT_EQ(s.dvl.dropout_probability, d.dvl.dropout_probability);
+  EXPECT_EQ(s.dvl.degraded_dropout_probability, d.dvl.degraded_dropout_probability);
+  EXPECT_EQ(s.dvl.degraded_fraction, d.dvl.degraded_fraction);
+  EXPECT_EQ(s.dvl.degraded_duration_s, d.dvl.degraded_duration_s);
   EXPECT_EQ(s.dvl.max_altitude_m, d.dvl.max_altitude_m);
   EXPECT_EQ(s.dvl.mount.yaw_deg, d.dvl.mount.yaw_deg);
   EXPECT_EQ(s.dvl.mount.x_m, d.dvl.mount.x_m);
@@ -157,6 +162,9 @@ TEST(ScenarioYaml, MinimalScenarioKeepsEveryDefault) {
   EXPECT_EQ(s.gps.enabled, d.gps.enabled);
   EXPECT_EQ(s.gps.rate_hz, d.gps.rate_hz);
   EXPECT_EQ(s.gps.noise_sigma_m, d.gps.noise_sigma_m);
+  EXPECT_EQ(s.gps.correlated_sigma_m, d.gps.correlated_sigma_m);
+  EXPECT_EQ(s.gps.correlation_time_s, d.gps.correlation_time_s);
+  EXPECT_EQ(s.gps.tether_length_m, d.gps.tether_length_m);
   EXPECT_EQ(s.gps.frame.origin_latitude_deg, d.gps.frame.origin_latitude_deg);
   EXPECT_EQ(s.gps.frame.origin_longitude_deg, d.gps.frame.origin_longitude_deg);
   EXPECT_TRUE(s.segments.empty());
@@ -210,8 +218,13 @@ TEST(ScenarioYaml, EverySectionOverrides) {
                            "dvl:\n"
                            "  rate_hz: 3\n"
                            "  noise_sigma_mps: 0.05\n"
+                           "  outlier_probability: 0.1\n"
+                           "  outlier_sigma_mps: 0.5\n"
                            "  bias_mps: [0.01, -0.02]\n"
                            "  dropout_probability: 0.1\n"
+                           "  degraded_dropout_probability: 0.6\n"
+                           "  degraded_fraction: 0.05\n"
+                           "  degraded_duration_s: 12\n"
                            "  max_altitude_m: 20\n"
                            "  mount: {yaw_deg: 45, x_m: 0.2, y_m: 0.1}\n"
                            "mru:\n"
@@ -224,6 +237,9 @@ TEST(ScenarioYaml, EverySectionOverrides) {
                            "  enabled: false\n"
                            "  rate_hz: 2\n"
                            "  noise_sigma_m: 3\n"
+                           "  correlated_sigma_m: 2\n"
+                           "  correlation_time_s: 300\n"
+                           "  tether_length_m: 4.5\n"
                            "  origin_latitude_deg: 41.5\n"
                            "  origin_longitude_deg: 2.25\n";
   const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
@@ -263,8 +279,13 @@ TEST(ScenarioYaml, EverySectionOverrides) {
 
   EXPECT_EQ(s.dvl.rate_hz, 3.0);
   EXPECT_EQ(s.dvl.noise_sigma_mps, 0.05);
+  EXPECT_EQ(s.dvl.outlier_probability, 0.1);
+  EXPECT_EQ(s.dvl.outlier_sigma_mps, 0.5);
   EXPECT_EQ(s.dvl.bias_mps, Eigen::Vector2d(0.01, -0.02));
   EXPECT_EQ(s.dvl.dropout_probability, 0.1);
+  EXPECT_EQ(s.dvl.degraded_dropout_probability, 0.6);
+  EXPECT_EQ(s.dvl.degraded_fraction, 0.05);
+  EXPECT_EQ(s.dvl.degraded_duration_s, 12.0);
   EXPECT_EQ(s.dvl.max_altitude_m, 20.0);
   EXPECT_EQ(s.dvl.mount.yaw_deg, 45.0);
   EXPECT_EQ(s.dvl.mount.x_m, 0.2);
@@ -279,6 +300,9 @@ TEST(ScenarioYaml, EverySectionOverrides) {
   EXPECT_FALSE(s.gps.enabled);
   EXPECT_EQ(s.gps.rate_hz, 2.0);
   EXPECT_EQ(s.gps.noise_sigma_m, 3.0);
+  EXPECT_EQ(s.gps.correlated_sigma_m, 2.0);
+  EXPECT_EQ(s.gps.correlation_time_s, 300.0);
+  EXPECT_EQ(s.gps.tether_length_m, 4.5);
   EXPECT_EQ(s.gps.frame.origin_latitude_deg, 41.5);
   EXPECT_EQ(s.gps.frame.origin_longitude_deg, 2.25);
 }
@@ -405,6 +429,20 @@ TEST(ScenarioYaml, BadValues) {
   expect_bad(std::string(kMinimal) + "dvl:\n  dropout_probability: 1.5\n", 9,
              "dvl.dropout_probability");
   expect_bad(std::string(kMinimal) + "dvl:\n  bias_mps: [0.1, 0.2, 0.3]\n", 9, "dvl.bias_mps");
+  expect_bad(std::string(kMinimal) + "dvl:\n  outlier_probability: -0.1\n", 9,
+             "dvl.outlier_probability");
+  expect_bad(std::string(kMinimal) + "dvl:\n  outlier_sigma_mps: -1\n", 9, "dvl.outlier_sigma_mps");
+  expect_bad(std::string(kMinimal) + "dvl:\n  degraded_dropout_probability: 2\n", 9,
+             "dvl.degraded_dropout_probability");
+  expect_bad(std::string(kMinimal) + "dvl:\n  rate_hz: 2\n  degraded_fraction: 1\n", 10,
+             "dvl.degraded_fraction");
+  expect_bad(std::string(kMinimal) + "dvl:\n  degraded_duration_s: 0\n", 9,
+             "dvl.degraded_duration_s");
+  expect_bad(std::string(kMinimal) + "gps:\n  correlated_sigma_m: -0.5\n", 9,
+             "gps.correlated_sigma_m");
+  expect_bad(std::string(kMinimal) + "gps:\n  correlation_time_s: 0\n", 9,
+             "gps.correlation_time_s");
+  expect_bad(std::string(kMinimal) + "gps:\n  tether_length_m: -2\n", 9, "gps.tether_length_m");
   expect_bad(minimal_with(3, "  mesh: basin.obj\n  backscatter: 2\n"), 4, "scene.backscatter");
   expect_bad(minimal_with(3, "  mesh: basin.obj\n  groups: {walls: {specular: -0.1}}\n"), 4,
              "scene.groups.walls.specular");

@@ -1,0 +1,249 @@
+// The navigation sensor models: statistics recovered from long simulated sequences (heavy-tailed
+// DVL noise, bursty dropouts, heading noise and bias random walk, the GPS's Gauss-Markov error),
+// the towed buoy's lag, and determinism. Tolerances are a few standard errors at these lengths.
+#include "sim/navigation_sensors.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "slam/calibration.hpp"
+
+namespace msislab::sim {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+/// A flat bottom 10 m down over +-10 km.
+TriangleMesh flat_bottom() {
+  TriangleMesh mesh;
+  mesh.vertices_m = {
+      {-1e4f, -1e4f, -10}, {1e4f, -1e4f, -10}, {1e4f, 1e4f, -10}, {-1e4f, 1e4f, -10}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.material_ids = {0, 0};
+  mesh.materials = {Material{"bottom", 0.5f, 0.3f}};
+  mesh.group_names = {"bottom"};
+  return mesh;
+}
+
+/// A circle of radius 50 m at 0.2 m/s from (50, 0) heading north, sampled every 0.1 s.
+VehicleTrajectory circling(double duration_s) {
+  const double speed = 0.2, radius = 50.0, rate = speed / radius;
+  std::vector<VehicleState> samples;
+  for (int k = 0; k * 0.1 <= duration_s; ++k) {
+    const double t = 0.1 * k, angle = rate * t;
+    samples.push_back({t,
+                       Pose2(radius * std::cos(angle), radius * std::sin(angle), angle + M_PI / 2),
+                       speed, 0.0, rate});
+  }
+  return VehicleTrajectory(samples);
+}
+
+/// A straight line along +x at speed_mps, stopping at t_stop_s, sampled every 0.01 s.
+VehicleTrajectory straight(double speed_mps, double duration_s, double t_stop_s) {
+  std::vector<VehicleState> samples;
+  for (int k = 0; k * 0.01 <= duration_s; ++k) {
+    const double t = 0.01 * k, moving = t < t_stop_s ? speed_mps : 0.0;
+    samples.push_back({t, Pose2(speed_mps * std::min(t, t_stop_s), 0.0, 0.0), moving, 0.0, 0.0});
+  }
+  return VehicleTrajectory(samples);
+}
+
+/// Autocorrelation of a sequence at lag m.
+template <typename T>
+double autocorrelation(const std::vector<T>& x, std::size_t m) {
+  double mean = 0.0;
+  for (const T v : x) mean += static_cast<double>(v) / static_cast<double>(x.size());
+  double c0 = 0.0, cm = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    c0 += (static_cast<double>(x[i]) - mean) * (static_cast<double>(x[i]) - mean);
+    if (i + m < x.size()) {
+      cm += (static_cast<double>(x[i]) - mean) * (static_cast<double>(x[i + m]) - mean);
+    }
+  }
+  return cm / c0 * static_cast<double>(x.size()) / static_cast<double>(x.size() - m);
+}
+
+TEST(DvlModel, HeavyTailedNoiseHasTheMixturesMoments) {
+  const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
+  DvlConfig dvl;  // the St. Pere defaults: 0.104 m/s, 25% at 0.37 m/s
+  dvl.dropout_probability = dvl.degraded_dropout_probability = 0.0;
+  const std::vector<DvlSample> samples = simulate_dvl(circling(40000.0), dvl, scene, 1.5, 7);
+  const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(dvl.mount).transpose();
+  double m2 = 0.0, m4 = 0.0;
+  for (const DvlSample& s : samples) {
+    ASSERT_TRUE(s.bottom_lock);
+    const Eigen::Vector2d e = s.v_dvl_mps - R_dvl_vehicle * Eigen::Vector2d(0.2, 0.0);
+    for (int axis = 0; axis < 2; ++axis) m2 += e(axis) * e(axis), m4 += std::pow(e(axis), 4);
+  }
+  const double n = 2.0 * static_cast<double>(samples.size());  // 120,000 values
+  const double a = dvl.noise_sigma_mps * dvl.noise_sigma_mps;
+  const double b = dvl.outlier_sigma_mps * dvl.outlier_sigma_mps, p = dvl.outlier_probability;
+  EXPECT_NEAR(m2 / n, (1 - p) * a + p * b, 0.01 * ((1 - p) * a + p * b));
+  const double m4_expected = 3.0 * ((1 - p) * a * a + p * b * b);
+  EXPECT_NEAR(m4 / n, m4_expected, 0.06 * m4_expected);  // the 4th moment's sampling error: 2.5%
+}
+
+TEST(DvlModel, DropoutsFollowTheTwoStateChain) {
+  const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
+  DvlConfig dvl;
+  dvl.dropout_probability = 0.01;
+  dvl.degraded_dropout_probability = 0.5;
+  dvl.degraded_fraction = 0.1;
+  dvl.degraded_duration_s = 20.0;
+  const std::vector<DvlSample> samples = simulate_dvl(circling(100000.0), dvl, scene, 1.5, 8);
+  std::vector<int> lost;
+  for (const DvlSample& s : samples) lost.push_back(s.bottom_lock ? 0 : 1);
+  const double n = static_cast<double>(lost.size());  // 150,000 samples, ~5000 degraded periods
+  const double rate = 0.9 * 0.01 + 0.1 * 0.5;
+  EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, rate, 0.1 * rate);
+  // Cov(lost_k, lost_k+m) = (p_d - p_c)^2 f (1 - f) lambda^m with lambda = 1 - P(enter) -
+  // P(leave) per sample: a correlation of 0.39 lambda^m here, 0 for independent dropouts.
+  const double dt = 1.0 / dvl.rate_hz;
+  const double lambda = std::exp(-dt / 20.0) + std::exp(-dt / 180.0) - 1.0;
+  const double scale = 0.49 * 0.49 * 0.09 / (rate * (1.0 - rate));
+  for (const std::size_t m : {1u, 10u, 30u}) {
+    EXPECT_NEAR(autocorrelation(lost, m), scale * std::pow(lambda, m), 0.03) << "lag " << m;
+  }
+  dvl.degraded_fraction = 0.0;
+  lost.clear();
+  for (const DvlSample& s : simulate_dvl(circling(100000.0), dvl, scene, 1.5, 8)) {
+    lost.push_back(s.bottom_lock ? 0 : 1);
+  }
+  EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, 0.01, 0.001);
+  EXPECT_NEAR(autocorrelation(lost, 1), 0.0, 0.01);
+}
+
+TEST(DvlModel, NoBottomInRangeIsADropout) {
+  const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
+  DvlConfig dvl;
+  dvl.max_altitude_m = 5.0;  // the bottom is 8.5 m below the vehicle
+  for (const DvlSample& s : simulate_dvl(circling(100.0), dvl, scene, 1.5, 9)) {
+    EXPECT_FALSE(s.bottom_lock);
+    EXPECT_EQ(s.altitude_m, 0.0);
+  }
+}
+
+TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
+  const VehicleTrajectory truth = circling(20000.0);
+  MruConfig mru;
+  mru.bias_random_walk_deg_per_sqrt_s = 0.0;
+  double sum_sq = 0.0;
+  std::vector<MruSample> samples = simulate_mru(truth, mru, 10);
+  for (const MruSample& s : samples) {
+    const double yaw = vehicle_yaw_from_mru(s.yaw_mru_deg, mru.mount);
+    sum_sq += std::pow(normalize_angle(yaw - truth.at(s.t_s).pose.yaw()) / kDegToRad, 2);
+  }
+  EXPECT_NEAR(std::sqrt(sum_sq / static_cast<double>(samples.size())), mru.heading_noise_deg,
+              0.025 * mru.heading_noise_deg);
+  // The bias alone: increments over 100 s have sd q sqrt(100) (200 increments: 5% error).
+  mru.heading_noise_deg = 0.0;
+  mru.bias_random_walk_deg_per_sqrt_s = 0.01;
+  samples = simulate_mru(truth, mru, 11);
+  sum_sq = 0.0;
+  int count = 0;
+  for (std::size_t i = 1000; i < samples.size(); i += 1000, ++count) {
+    const auto error_deg = [&](std::size_t k) {
+      const double yaw = vehicle_yaw_from_mru(samples[k].yaw_mru_deg, mru.mount);
+      return normalize_angle(yaw - truth.at(samples[k].t_s).pose.yaw()) / kDegToRad;
+    };
+    sum_sq += std::pow(error_deg(i) - error_deg(i - 1000), 2);
+  }
+  EXPECT_NEAR(std::sqrt(sum_sq / count), 0.01 * std::sqrt(100.0), 0.015);
+}
+
+TEST(GpsModel, GaussMarkovErrorAndWhiteNoise) {
+  const VehicleTrajectory truth = circling(40000.0);
+  GpsConfig gps;
+  gps.noise_sigma_m = 0.05;
+  gps.correlated_sigma_m = 0.7;
+  gps.correlation_time_s = 90.0;
+  gps.tether_length_m = 0.0;
+  const std::vector<GpsFix> fixes = simulate_gps(truth, gps, 12);
+  std::vector<double> ex, d2;
+  for (std::size_t i = 0; i < fixes.size(); ++i) {
+    ex.push_back(fixes[i].p_world_m.x() - truth.at(fixes[i].t_s).pose.x());
+  }
+  for (std::size_t i = 2; i < ex.size(); ++i) d2.push_back(ex[i] - 2 * ex[i - 1] + ex[i - 2]);
+  double var = 0.0, var_d2 = 0.0;
+  for (const double e : ex) var += e * e / static_cast<double>(ex.size());
+  for (const double d : d2) var_d2 += d * d / static_cast<double>(d2.size());
+  // 40,000 s hold 440 correlation times: the variance is known to about 7%.
+  EXPECT_NEAR(std::sqrt(var), 0.7, 0.05);
+  EXPECT_NEAR(autocorrelation(ex, 90), std::exp(-1.0), 0.1);
+  // Second differences: 6 sigma_w^2 = 0.015 m^2 from the white noise plus
+  // (6 - 8 phi + 2 phi^2) sigma^2 = 0.022 m^2 from the Gauss-Markov part (phi = exp(-1 / 90)).
+  const double phi = std::exp(-1.0 / 90.0);
+  const double expected = 6.0 * 0.05 * 0.05 + (6.0 - 8.0 * phi + 2.0 * phi * phi) * 0.49;
+  EXPECT_NEAR(var_d2, expected, 0.05 * expected);
+}
+
+TEST(GpsModel, TheTowedBuoyTrailsByTheTether) {
+  const VehicleTrajectory truth = straight(0.2, 200.0, 150.0);
+  GpsConfig gps;
+  gps.noise_sigma_m = gps.correlated_sigma_m = 0.0;
+  gps.tether_length_m = 3.0;
+  for (const GpsFix& fix : simulate_gps(truth, gps, 13)) {
+    const double x_vehicle = truth.at(fix.t_s).pose.x();
+    // Slack for the first 15 s (3 m / 0.2 m/s), then 3 m behind: a lag of 15 s; it waits
+    // 3 m behind after the vehicle stops.
+    EXPECT_NEAR(fix.p_world_m.x(), std::max(0.0, x_vehicle - 3.0), 1e-9) << "t " << fix.t_s;
+    EXPECT_EQ(fix.p_world_m.y(), 0.0);
+  }
+}
+
+TEST(GpsModel, TheBuoyStaysWithinTheTetherInTurns) {
+  const VehicleTrajectory truth = circling(2000.0);
+  GpsConfig gps;
+  gps.noise_sigma_m = gps.correlated_sigma_m = 0.0;
+  gps.tether_length_m = 5.0;
+  double min_m = 1e9;
+  for (const GpsFix& fix : simulate_gps(truth, gps, 14)) {
+    const double d = (fix.p_world_m - truth.at(fix.t_s).pose.translation()).norm();
+    EXPECT_LE(d, 5.0 + 1e-9);
+    if (fix.t_s > 100.0) min_m = std::min(min_m, d);
+  }
+  EXPECT_GT(min_m, 4.99);  // taut all the way round
+  EXPECT_EQ(drag_buoy({1, 0}, {0, 0}, 2.0), Eigen::Vector2d(1, 0));
+  EXPECT_EQ(drag_buoy({4, 0}, {0, 0}, 2.0), Eigen::Vector2d(2, 0));
+}
+
+TEST(NavigationSensors, SameSeedSameOutputDifferentSeedDifferent) {
+  const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
+  const VehicleTrajectory truth = circling(2000.0);
+  const auto run = [&](std::uint64_t seed) {
+    return std::make_tuple(simulate_dvl(truth, {}, scene, 1.5, seed), simulate_mru(truth, {}, seed),
+                           simulate_gps(truth, {}, seed));
+  };
+  const auto a = run(42), b = run(42), c = run(43);
+  const auto same_dvl = [](const std::vector<DvlSample>& x, const std::vector<DvlSample>& y) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (x[i].v_dvl_mps != y[i].v_dvl_mps || x[i].bottom_lock != y[i].bottom_lock) return false;
+    }
+    return true;
+  };
+  const auto same_gps = [](const std::vector<GpsFix>& x, const std::vector<GpsFix>& y) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (x[i].p_world_m != y[i].p_world_m) return false;
+    }
+    return true;
+  };
+  const auto same_mru = [](const std::vector<MruSample>& x, const std::vector<MruSample>& y) {
+    if (x.size() != y.size()) return false;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (x[i].yaw_mru_deg != y[i].yaw_mru_deg) return false;
+    }
+    return true;
+  };
+  EXPECT_TRUE(same_dvl(std::get<0>(a), std::get<0>(b)));
+  EXPECT_TRUE(same_mru(std::get<1>(a), std::get<1>(b)));
+  EXPECT_TRUE(same_gps(std::get<2>(a), std::get<2>(b)));
+  EXPECT_FALSE(same_dvl(std::get<0>(a), std::get<0>(c)));
+  EXPECT_FALSE(same_mru(std::get<1>(a), std::get<1>(c)));
+  EXPECT_FALSE(same_gps(std::get<2>(a), std::get<2>(c)));
+}
+
+}  // namespace
+}  // namespace msislab::sim

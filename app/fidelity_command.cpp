@@ -7,6 +7,7 @@
 #include <set>
 
 #include "app/fidelity_figures.hpp"
+#include "app/navigation_statistics.hpp"
 #include "app/sonar_readings.hpp"
 #include "io/atomic_file.hpp"
 #include "io/detections.hpp"
@@ -126,6 +127,46 @@ FigureSide figure_side(const FidelitySide& side, const std::string& role) {
 
 }  // namespace
 
+namespace {
+bool has_navigation_logs(const std::string& dir) {
+  const io::DatasetFiles files = io::find_dataset_files(dir);
+  return files.dvl && files.mti;
+}
+
+/// The navigation rows: noise from sample differences, dropouts and dead-reckoning drift per
+/// 100 m against the truth (docs/simulator.md, "Navigation noise from the real logs").
+void append_navigation_rows(const std::string& real_dir, const std::string& sim_dir,
+                            FidelityTable& table) {
+  const NavigationStatistics real = navigation_statistics(load_navigation_data(real_dir));
+  const NavigationStatistics sim = navigation_statistics(load_navigation_data(sim_dir));
+  const std::string section = "Navigation";
+  table.push_back({section, "dvl_noise_surge_mps", "DVL velocity noise, surge (sample differences)",
+                   real.dvl.surge_mps.sigma_sd, sim.dvl.surge_mps.sigma_sd, std::nullopt, "m/s",
+                   3});
+  table.push_back({section, "dvl_noise_sway_mps", "DVL velocity noise, sway (sample differences)",
+                   real.dvl.sway_mps.sigma_sd, sim.dvl.sway_mps.sigma_sd, std::nullopt, "m/s", 3});
+  table.push_back({section, "dvl_noise_surge_mad_mps", "DVL velocity noise, surge (robust, MAD)",
+                   real.dvl.surge_mps.sigma_mad, sim.dvl.surge_mps.sigma_mad, std::nullopt, "m/s",
+                   3});
+  table.push_back({section, "dvl_rate_hz", "DVL rate", real.dvl.rate_hz, sim.dvl.rate_hz,
+                   std::nullopt, "Hz", 3});
+  table.push_back({section, "dvl_dropout_percent", "DVL rows without bottom lock",
+                   100.0 * real.dropouts.fraction, 100.0 * sim.dropouts.fraction, std::nullopt, "%",
+                   2});
+  table.push_back({section, "heading_noise_deg", "heading noise (second differences)",
+                   real.heading.noise_deg.sigma_sd, sim.heading.noise_deg.sigma_sd, std::nullopt,
+                   "deg", 3});
+  if (real.drift && sim.drift) {
+    table.push_back({section, "drift_per_100m_mean_m",
+                     "dead-reckoning drift per 100 m against the truth, mean", real.drift->mean_m,
+                     sim.drift->mean_m, std::nullopt, "m", 2});
+    table.push_back({section, "drift_per_100m_p90_m",
+                     "dead-reckoning drift per 100 m against the truth, p90", real.drift->p90_m,
+                     sim.drift->p90_m, std::nullopt, "m", 2});
+  }
+}
+}  // namespace
+
 FidelityReport compare_datasets(const FidelityOptions& options) {
   check_out_dir(options.out_dir);
   FidelityReport report;
@@ -136,6 +177,9 @@ FidelityReport compare_datasets(const FidelityOptions& options) {
   load_detections(report.real, options.revolution_real, "--revolution-real");
   load_detections(report.sim, options.revolution_sim, "--revolution-sim");
   report.table = sonar_rows(report.real.stats, report.sim.stats, report.real.setup.range_m);
+  // Datasets that carry the DVL and MTi logs are compared on their navigation too.
+  report.navigation = has_navigation_logs(options.real_dir) && has_navigation_logs(options.sim_dir);
+  if (report.navigation) append_navigation_rows(options.real_dir, options.sim_dir, report.table);
   return report;
 }
 

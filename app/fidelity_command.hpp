@@ -40,7 +40,8 @@ struct FidelityReport {
   FidelityOptions options;
   FidelitySide real;
   FidelitySide sim;
-  FidelityTable table;  ///< the sonar rows; other statistics are appended as more rows
+  FidelityTable table;      ///< the sonar rows, then the navigation rows
+  bool navigation = false;  ///< both datasets have DVL and MTi logs: navigation rows present
 };
 
 /// Reads both datasets (*_detections.csv[.gz], *_IS_timestamps.log, *_SETUP.log,

@@ -99,6 +99,17 @@ std::string definitions(const FidelityReport& r) {
          "- **Beams per revolution**: for every angle step (`angle_idx`) with a detection in two "
          "consecutive keyframes k and k + 1, the beam rows between its two beams and their time "
          "difference in `*_IS_timestamps.log` (the revolution period); the medians.\n"
+         "- **Navigation** (when both datasets have `*_DVL.log` and `*_MTi.log`; "
+         "`app/navigation_statistics`, docs/simulator.md): DVL velocity noise from the first "
+         "differences of consecutive bottom-lock samples (no dropout between) over sqrt(2), "
+         "per vehicle axis, as a standard deviation and robustly (1.4826 MAD); the DVL rate and "
+         "the share of its rows without bottom lock; heading noise from the second differences "
+         "of the wrapped MRU heading over sqrt(6); dead-reckoning drift per 100 m: the project's "
+         "dead-reckoning EKF restarted at the truth every 25 m of path, its position error 100 m "
+         "of path later, mean and p90 over the windows (truth: GPS for real data, the "
+         "simulation's for simulated data)." +
+         std::string(r.navigation ? "" : " Not computed here: a dataset lacks those logs.") +
+         "\n"
          "- **sim / real**: the simulated value over the real one (`-` when the real one is 0).\n";
 }
 

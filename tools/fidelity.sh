@@ -3,7 +3,10 @@
 # sonar (issue 11). Builds msislab, simulates scenarios/stpere_replica.yaml into
 # out/fidelity/stpere_replica, compares its detections with the real St. Pere ones
 # (msislab fidelity ../shared/datasets/stpere out/fidelity/stpere_replica --out
-# out/fidelity/report), then copies the page and its figures into docs/.
+# out/fidelity/report), then copies the page and its figures into docs/. Without --sim it also
+# runs robocentric SLAM and dead reckoning on the real data and on the replica (seed 42 and
+# seeds 1-4, the sonar read from detections on both sides) and appends what the pipeline does
+# downstream to the page.
 # Usage: tools/fidelity.sh [--sim DATASET_DIR]
 #   --sim: compare this simulated dataset (it must have *_detections.csv[.gz] and
 #          *_IS_timestamps.log) instead of simulating the replica.
@@ -11,9 +14,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 sim=""
+downstream=1
 while [ $# -gt 0 ]; do
   case "$1" in
-    --sim) sim="$2"; shift 2 ;;
+    --sim) sim="$2"; downstream=0; shift 2 ;;
     -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/fidelity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -35,8 +39,8 @@ if [ -z "$sim" ]; then
   "$msislab" simulate scenarios/stpere_replica.yaml --out "$sim"
 fi
 if ! compgen -G "$sim/*_detections.csv*" >/dev/null; then
-  echo "tools/fidelity.sh: $sim has no *_detections.csv[.gz]: this msislab simulate does not" \
-    "write detections; give --sim DATASET_DIR with a dataset that has them" >&2
+  echo "tools/fidelity.sh: $sim has no *_detections.csv[.gz] (simulated by an older msislab?);" \
+    "simulate it again, or give --sim DATASET_DIR with a dataset that has them" >&2
   exit 2
 fi
 
@@ -56,4 +60,52 @@ rm -rf docs/fidelity
 mv "$scratch/fidelity" docs/fidelity
 mv "$scratch/fidelity.md" docs/fidelity.md
 rmdir "$scratch"
+
+# Downstream: the same pipeline on both (the real config, and the replica's, which reads the
+# replica's detections), one row per run.
+metric() { sed -n "s/.*\"$2\": \([-0-9.e]*\).*/\1/p" "$1/metrics.json" | head -n 1; }
+segment() { sed -n "s/.*\"segments\": {[^}]*\"$2\": \([-0-9.e]*\).*/\1/p" "$1/metrics.json"; }
+candidates() { sed -n 's/.*"scan_candidates": \([0-9]*\).*/\1/p' "$1/metrics.json"; }
+row() {  # label, robocentric dir, dead-reckoning dir
+  printf '| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %d / %d (%.0f %%) | %.2f |\n' "$1" \
+    "$(metric "$2" mean_error_m)" "$(segment "$2" loop)" "$(segment "$2" canal)" \
+    "$(segment "$2" exit)" "$(metric "$2" max_error_m)" "$(metric "$2" matches_accepted)" \
+    "$(candidates "$2")" "$(awk -v a="$(metric "$2" matches_accepted)" -v c="$(candidates "$2")" \
+      'BEGIN { print 100 * a / c }')" "$(metric "$3" mean_error_m)"
+}
+if [ "$downstream" = 1 ]; then
+  d=out/fidelity/downstream
+  rm -rf "$d"
+  echo "== Downstream: robocentric SLAM and dead reckoning on the real data and the replica"
+  for m in robocentric deadreckoning; do
+    "$msislab" run "$real" --method "$m" --out "$d/real_$m" --config config/stpere.yaml >/dev/null
+    "$msislab" run "$sim" --method "$m" --out "$d/replica42_$m" \
+      --config config/stpere_replica.yaml >/dev/null
+  done
+  rows=("$(row "real St. Pere (GPS)" "$d/real_robocentric" "$d/real_deadreckoning")"
+        "$(row "replica, seed 42" "$d/replica42_robocentric" "$d/replica42_deadreckoning")")
+  for seed in 1 2 3 4; do
+    "$msislab" simulate scenarios/stpere_replica.yaml --seed "$seed" --out "$d/sim$seed" >/dev/null
+    for m in robocentric deadreckoning; do
+      "$msislab" run "$d/sim$seed" --method "$m" --out "$d/replica${seed}_$m" \
+        --config config/stpere_replica.yaml >/dev/null
+    done
+    rows+=("$(row "replica, seed $seed" "$d/replica${seed}_robocentric" \
+      "$d/replica${seed}_deadreckoning")")
+  done
+  {
+    echo
+    echo "## Downstream: the pipeline on the real data and on the replica"
+    echo
+    echo "Robocentric trajectory SLAM (\`msislab run --method robocentric\`, default filter and spIC"
+    echo "settings) and dead reckoning, the real run with \`config/stpere.yaml\` (scored against GPS),"
+    echo "the replica with \`config/stpere_replica.yaml\` (scored against the simulation truth), both"
+    echo "reading the sonar from detections. Mean position errors in metres; segments are the real"
+    echo "run's times (the replica is timed to the real GPS)."
+    echo
+    echo "| run | SLAM mean | loop | canal | exit | max | spIC matches accepted | dead reckoning mean |"
+    echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
+    printf '%s\n' "${rows[@]}"
+  } >>docs/fidelity.md
+fi
 echo "docs/fidelity.md and docs/fidelity/ are up to date; review and commit them."

@@ -36,7 +36,15 @@ void print(const std::string& data, const RunMetrics& m) {
 TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   testing::TempDir tmp;
   const std::string dataset = tmp.file("replica");
-  const std::string config = std::string(MSISLAB_SOURCE_DIR) + "/config/stpere_replica.yaml";
+  // The raw profiles, not the detections that config/stpere_replica.yaml reads: since the
+  // simulator's echoes have the real extent (issue 11), SLAM on the replica's detections is worse
+  // than dead reckoning, as on the real canal (docs/fidelity.md, "Downstream"); that is the
+  // failure issue 12 takes on. Here the filters must still beat dead reckoning where the front
+  // end sees the peaks of the echoes.
+  const std::string config = tmp.file("replica_raw.yaml");
+  testing::write_text(config,
+                      "segmentation: {source: raw}\n"
+                      "segments: {loop: [0, 2000], canal: [2000, 3400], exit: [2900, 3400]}\n");
   simulate({std::string(MSISLAB_SOURCE_DIR) + "/scenarios/stpere_replica.yaml", dataset,
             std::nullopt, 2});
   const RunOutcome dr = run({dataset, "deadreckoning", tmp.file("dr"), config});
@@ -44,16 +52,17 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   const RunOutcome rc = run({dataset, "robocentric", tmp.file("rc"), config});
   ASSERT_TRUE(dr.metrics && wc.metrics && rc.metrics);
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("replica", *r->metrics);
-  // Measured (seed 42, the navigation noise estimated from the real logs, docs/simulator.md):
-  // robocentric 1.222 m (loop 0.80, canal 1.81), ANEES 4.35; world-centric the same to 1e-3 m;
-  // dead reckoning 3.23 m (loop 3.62, canal 2.70).
-  // The ratios to dead reckoning depend on its drift, one random walk per run. Over seeds 42-51
-  // (msislab montecarlo, config/stpere_replica.yaml) dead reckoning gives 3.2-13.0 m (mean 7.3)
-  // and robocentric 0.66-2.57 m (mean 1.38); seed 42's dead reckoning is the best of the ten, so
-  // its ratios are the largest: 0.38 overall (ten seeds 0.10-0.38), loop 0.22 (0.09-0.26), canal
-  // 0.67 (0.09-0.67). The ratio bounds sit 20-35 % above seed 42's (so above all ten seeds');
-  // absolute bounds on the SLAM error (seed 42 plus 20-30 %) keep the test sensitive to a SLAM
-  // regression that a lucky dead reckoning would otherwise hide.
+  // Measured (seed 42, the navigation noise estimated from the real logs and the sonar model
+  // calibrated against the real detections, docs/simulator.md; raw profiles): robocentric
+  // 1.308 m (loop 0.76, canal 2.12), ANEES 2.43; world-centric the same to 1e-3 m; dead
+  // reckoning 3.59 m (loop 3.06, canal 4.37).
+  // The ratios to dead reckoning depend on its drift, one random walk per run; with the sonar
+  // before its calibration, over seeds 42-51 dead reckoning gave 3.2-13.0 m (mean 7.3) and
+  // robocentric 0.66-2.57 m, seed 42's dead reckoning the best of the ten. The ratio bounds sit
+  // 20-35 % above seed 42's; absolute bounds on the SLAM error (seed 42 plus 20-30 %) keep the
+  // test sensitive to a SLAM regression that a lucky dead reckoning would otherwise hide. The
+  // canal's absolute bound moved from 2.2 m (seed 42 gave 1.81 m with point echoes) to 2.6 m:
+  // the calibrated echoes are metres deep on oblique walls and the canal's are the most oblique.
   // (Before the noise was estimated, seed 42 drew dead reckoning 6.28 m and robocentric 0.886 m;
   // one-way spIC association gave 2.163 m, ANEES 14.)
   for (const RunOutcome* slam : {&wc, &rc}) {
@@ -61,13 +70,13 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
     EXPECT_GT(m.scans, 200);
     EXPECT_GT(m.matches_accepted, m.scans);
     ASSERT_TRUE(m.anees);
-    EXPECT_LT(m.errors.mean_m, 0.5 * dr.metrics->errors.mean_m) << m.method;          // 0.38
-    EXPECT_LT(m.errors.mean_m, 1.6) << m.method;                                      // 1.22
-    EXPECT_LT(segment(m, "loop"), 0.3 * segment(*dr.metrics, "loop")) << m.method;    // 0.22
-    EXPECT_LT(segment(m, "canal"), 0.8 * segment(*dr.metrics, "canal")) << m.method;  // 0.67
-    EXPECT_LT(segment(m, "canal"), 2.2) << m.method;                                  // 1.81
-    // One run's ANEES over 236 correlated scans: 4.35 (ten seeds: 5.3 on average; one-way
-    // association: 14).
+    EXPECT_LT(m.errors.mean_m, 0.5 * dr.metrics->errors.mean_m) << m.method;          // 0.36
+    EXPECT_LT(m.errors.mean_m, 1.6) << m.method;                                      // 1.31
+    EXPECT_LT(segment(m, "loop"), 0.3 * segment(*dr.metrics, "loop")) << m.method;    // 0.25
+    EXPECT_LT(segment(m, "canal"), 0.8 * segment(*dr.metrics, "canal")) << m.method;  // 0.48
+    EXPECT_LT(segment(m, "canal"), 2.6) << m.method;                                  // 2.12
+    // One run's ANEES over 242 correlated scans: 2.43 (4.35 with point echoes; ten seeds then:
+    // 5.3 on average; one-way association: 14).
     EXPECT_LT(*m.anees, 5.0) << m.method;
   }
   EXPECT_LT(rc.metrics->errors.mean_m, wc.metrics->errors.mean_m + 0.02);

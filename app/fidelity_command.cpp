@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <set>
 
 #include "app/fidelity_figures.hpp"
@@ -77,6 +78,37 @@ void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
       files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
   side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);
   side.revolution = pick_revolution(side, revolution, revolution_option);
+  side.beam_t_s = times_s(times);
+}
+
+/// Mean log time of a keyframe's detected beams; NaN when it has none.
+double keyframe_time_s(const FidelitySide& side, std::int32_t keyframe) {
+  double sum_s = 0.0;
+  int n = 0;
+  for (const DetectedBeam& b : side.beams) {
+    if (b.keyframe != keyframe) continue;
+    sum_s += side.beam_t_s[static_cast<std::size_t>(b.beam_row)];
+    ++n;
+  }
+  return n > 0 ? sum_s / n : std::nan("");
+}
+
+/// A simulated run timed to the real one (its log times overlap the real keyframe drawn): the
+/// simulated keyframe nearest in time, so the figure shows both at the same place.
+void align_simulated_revolution(const FidelitySide& real, FidelitySide& sim) {
+  const double t_s = keyframe_time_s(real, real.revolution);
+  if (!std::isfinite(t_s) || sim.beam_t_s.empty() || t_s < sim.beam_t_s.front() ||
+      t_s > sim.beam_t_s.back()) {
+    return;
+  }
+  double best_s = std::numeric_limits<double>::infinity();
+  for (std::int32_t k = sim.beams.front().keyframe; k <= sim.beams.back().keyframe; ++k) {
+    const double d_s = std::abs(keyframe_time_s(sim, k) - t_s);
+    if (d_s < best_s) {
+      best_s = d_s;
+      sim.revolution = k;
+    }
+  }
 }
 
 std::string describe(const io::SonarSetup& s) {
@@ -176,6 +208,7 @@ FidelityReport compare_datasets(const FidelityOptions& options) {
   check_same_setup(report.real, report.sim);
   load_detections(report.real, options.revolution_real, "--revolution-real");
   load_detections(report.sim, options.revolution_sim, "--revolution-sim");
+  if (!options.revolution_sim) align_simulated_revolution(report.real, report.sim);
   report.table = sonar_rows(report.real.stats, report.sim.stats, report.real.setup.range_m);
   // Datasets that carry the DVL and MTi logs are compared on their navigation too.
   report.navigation = has_navigation_logs(options.real_dir) && has_navigation_logs(options.sim_dir);

@@ -21,7 +21,7 @@ struct FidelityOptions {
   std::string sim_dir;
   std::string out_dir;                          ///< empty: print the table only
   std::optional<std::int32_t> revolution_real;  ///< keyframe drawn; default: the middle one
-  std::optional<std::int32_t> revolution_sim;
+  std::optional<std::int32_t> revolution_sim;   ///< default: nearest in time to the real one
 };
 
 /// One dataset's detections, read, checked and reduced to statistics.
@@ -33,7 +33,8 @@ struct FidelitySide {
   std::size_t beam_times = 0;  ///< rows of *_IS_timestamps.log
   std::vector<DetectedBeam> beams;
   SonarStatistics stats;
-  std::int32_t revolution = 0;  ///< the keyframe drawn in revolution.png
+  std::int32_t revolution = 0;   ///< the keyframe drawn in revolution.png
+  std::vector<double> beam_t_s;  ///< log time of every row of *_IS_timestamps.log
 };
 
 struct FidelityReport {

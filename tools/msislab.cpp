@@ -271,7 +271,9 @@ void add_fidelity_command(CLI::App& app, msislab::app::FidelityOptions& options)
                        "Keyframe of the real detections drawn in revolution.png (default: the "
                        "middle one)");
   fidelity->add_option("--revolution-sim", options.revolution_sim,
-                       "Keyframe of the simulated detections drawn (default: the middle one)");
+                       "Keyframe of the simulated detections drawn (default: the one nearest in "
+                       "time to the real one drawn when the runs overlap in time, else the middle "
+                       "one)");
 }
 
 /// Reads both datasets and computes the table first (bad input fails without a display); the

@@ -27,8 +27,10 @@ msislab=build/release/tools/msislab
 mc="out/montecarlo/stpere_replica_${runs}runs"
 echo "== Monte Carlo: $runs runs of scenarios/stpere_replica.yaml into $mc"
 montecarlo() {
+  # The replica's config, as the main job's: its sonar read from detections like the real data.
   "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
-    --methods robocentric,worldcentric,deadreckoning --out "$mc"   # it draws its nees.png
+    --methods robocentric,worldcentric,deadreckoning --config config/stpere_replica.yaml \
+    --out "$mc"   # it draws its nees.png
 }
 # An interrupted sweep resumes; one made by an earlier build is stale for this page: start again.
 mkdir -p "$(dirname "$mc")"

@@ -47,6 +47,20 @@ SonarConfig forward_sonar() {
   return sonar;
 }
 
+/// No gain, TVG, pulse or receiver, the display spanning -100..0 dB (2.55 steps per dB): the
+/// footprints' own echo shows without clipping.
+SonarConfig bare_sonar() {
+  SonarConfig sonar = forward_sonar();
+  sonar.vertical_beamwidth_deg = 10.0;
+  sonar.tvg_db_per_decade = 0.0;
+  sonar.gain_db = 0.0;
+  sonar.display_min_db = -100.0;
+  sonar.display_max_db = 0.0;
+  sonar.pulse_length_us = 0.0;
+  sonar.receiver_time_constant_us = 0.0;
+  return sonar;
+}
+
 std::size_t peak_bin(const std::vector<std::uint8_t>& intensity) {
   return static_cast<std::size_t>(std::max_element(intensity.begin(), intensity.end()) -
                                   intensity.begin());
@@ -98,13 +112,8 @@ TEST(Msis, WallAtAKnownRangeGivesItsEcho) {
 }
 
 TEST(Msis, EchoWeakensWithRange) {
-  SonarConfig sonar = forward_sonar();
-  sonar.vertical_beamwidth_deg = 10.0;
   // No gain or TVG and a display spanning -100..0 dB: the bare loss shows without clipping.
-  sonar.tvg_db_per_decade = 0.0;
-  sonar.gain_db = 0.0;
-  sonar.display_min_db = -100.0;
-  sonar.display_max_db = 0.0;
+  const SonarConfig sonar = bare_sonar();
   std::vector<int> peaks;
   for (const float wall_x : {5.0f, 10.0f, 20.0f, 40.0f}) {
     const Scene scene(wall_mesh(wall_x), Material{"surface", 0.001f, 0.9f});
@@ -192,20 +201,6 @@ TriangleMesh turned_wall_mesh(float range_m, double incidence_deg) {
   TriangleMesh mesh = wall_mesh(range_m);
   mesh.vertices_m = {at(-200, -50), at(200, -50), at(200, 1), at(-200, 1)};
   return mesh;
-}
-
-/// No gain, TVG, pulse or receiver, the display spanning -100..0 dB (2.55 steps per dB): the
-/// footprints' own echo shows without clipping.
-SonarConfig bare_sonar() {
-  SonarConfig sonar = forward_sonar();
-  sonar.vertical_beamwidth_deg = 10.0;
-  sonar.tvg_db_per_decade = 0.0;
-  sonar.gain_db = 0.0;
-  sonar.display_min_db = -100.0;
-  sonar.display_max_db = 0.0;
-  sonar.pulse_length_us = 0.0;
-  sonar.receiver_time_constant_us = 0.0;
-  return sonar;
 }
 
 /// Bins within 10 dB (25.5 display steps) of the peak.

@@ -3,34 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/sonar_physics.hpp"
 #include "slam/calibration.hpp"
 
 namespace msislab::sim {
 
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
-const double kLn2 = std::log(2.0);
-
-/// sinc(x)^4 = 1/2 at x = this: where the two-way sinc^2 x sinc^2 pattern is down 3 dB.
-constexpr double kSincHalfPower = 1.0019063576966067;
-
-/// One-way power pattern in one plane, 1 on the axis and 1/sqrt(2) (so -3 dB two-way) at
-/// +-width/2: Gaussian exp(-2 ln2 u^2), or sinc^2(x) of a uniformly driven line aperture,
-/// u = 2a / width.
-double pattern_1d(double angle_rad, double width_rad, BeamPattern shape) {
-  const double u = 2.0 * angle_rad / width_rad;
-  if (shape == BeamPattern::kGaussian) return std::exp(-2.0 * kLn2 * u * u);
-  const double x = kSincHalfPower * u;
-  if (std::abs(x) < 1e-6) return 1.0;
-  const double sinc = std::sin(x) / x;
-  return sinc * sinc;
-}
-
-/// The two-way -3 dB widths at +-width/2 in each plane; the pattern is their product.
-double one_way_pattern(double azimuth_rad, double elevation_rad, const SonarConfig& sonar) {
-  return pattern_1d(azimuth_rad, sonar.horizontal_beamwidth_deg * kDegToRad, sonar.beam_pattern) *
-         pattern_1d(elevation_rad, sonar.vertical_beamwidth_deg * kDegToRad, sonar.beam_pattern);
-}
 
 Eigen::Vector3f direction(double azimuth_rad, double elevation_rad) {
   return Eigen::Vector3f(static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)),
@@ -58,80 +37,6 @@ Eigen::Vector3f mirror(const Eigen::Vector3f& v, const Eigen::Vector3f& normal) 
   return v - 2.0f * v.dot(normal) * normal;
 }
 
-/// The echo's range extent from the pulse and the receiver, as weights over bin offsets 0, 1, ...
-/// (normalised to sum 1): a rectangular pulse of c tau / 2 in range convolved with the one-pole
-/// receiver's exponential response exp(-2 x / (c tau_rx)), integrated over each bin.
-std::vector<double> pulse_kernel(const SonarConfig& sonar) {
-  const double pulse_m = sonar.sound_speed_mps * sonar.pulse_length_us * 1e-6 / 2.0;
-  const double tail_m = sonar.sound_speed_mps * sonar.receiver_time_constant_us * 1e-6 / 2.0;
-  if (pulse_m <= 0.0 && tail_m <= 0.0) return {1.0};
-  constexpr int kSubsteps = 20;  // samples per bin
-  const double dx_m = sonar.bin_m / kSubsteps;
-  const int pulse_n = std::max(1, static_cast<int>(std::lround(pulse_m / dx_m)));
-  // The receiver's tail to 1e-4 of its start, then the pulse box run through it.
-  const int tail_n = tail_m > 0.0 ? static_cast<int>(std::ceil(tail_m * std::log(1e4) / dx_m)) : 0;
-  std::vector<double> fine(static_cast<std::size_t>(pulse_n + tail_n + 1), 0.0);
-  for (int i = 0; i < pulse_n; ++i) {
-    if (tail_n == 0) {
-      fine[i] += 1.0;
-      continue;
-    }
-    for (int k = 0; k <= tail_n; ++k) fine[i + k] += std::exp(-k * dx_m / tail_m);
-  }
-  std::vector<double> kernel;
-  double total = 0.0;
-  for (std::size_t i = 0; i < fine.size(); ++i) {
-    const auto m = static_cast<std::size_t>((static_cast<double>(i) + 0.5) / kSubsteps);
-    if (m >= kernel.size()) kernel.resize(m + 1, 0.0);
-    kernel[m] += fine[i];
-    total += fine[i];
-  }
-  for (double& k : kernel) k /= total;
-  return kernel;
-}
-
-/// out[j] = sum_m kernel[m] in[j - m]: each echo spreads to later bins.
-void spread_in_range(const std::vector<double>& kernel, std::vector<double>& power) {
-  if (kernel.size() <= 1) return;
-  std::vector<double> out(power.size(), 0.0);
-  for (std::size_t j = 0; j < power.size(); ++j) {
-    if (power[j] == 0.0) continue;
-    const std::size_t end = std::min(power.size(), j + kernel.size());
-    for (std::size_t k = j; k < end; ++k) out[k] += kernel[k - j] * power[j];
-  }
-  power.swap(out);
-}
-
-/// A smooth, zero-mean Gaussian field of unit variance with correlation length `length_m`: value
-/// noise (independent normal values at the corners of a cubic lattice, hashed from the corner's
-/// indices), interpolated with the trilinear weights w_c and divided by sqrt(sum w_c^2), so its
-/// variance is 1 at every point, on the lattice or between. The same for every ping: it belongs
-/// to the surfaces.
-double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
-  const auto corner_value = [](std::int64_t i, std::int64_t j, std::int64_t k) {
-    std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
-                      static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full ^
-                      static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull;
-    const std::uint64_t a = splitmix64(h), b = splitmix64(a);
-    const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = static_cast<double>(b >> 11) * 0x1.0p-53;
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
-  };
-  const Eigen::Vector3d q = p_m.cast<double>() / length_m;
-  const Eigen::Vector3d f = q.array().floor();
-  const Eigen::Vector3d t = q - f;
-  double value = 0.0, weights_squared = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-    const double w =
-        (dx ? t.x() : 1.0 - t.x()) * (dy ? t.y() : 1.0 - t.y()) * (dz ? t.z() : 1.0 - t.z());
-    weights_squared += w * w;
-    value += w * corner_value(static_cast<std::int64_t>(f.x()) + dx,
-                              static_cast<std::int64_t>(f.y()) + dy,
-                              static_cast<std::int64_t>(f.z()) + dz);
-  }
-  return value / std::sqrt(weights_squared);
-}
 }  // namespace
 
 double two_way_loss(double range_m, double absorption_db_per_m) {

@@ -58,12 +58,12 @@ struct SonarConfig {
   /// point scatterer whose echo lands in one bin.
   bool footprint = true;
   double pulse_length_us = 200.0;             ///< transmit pulse; an echo lasts c tau / 2 in range
-  double receiver_time_constant_us = 1000.0;  ///< one-pole receiver filter: exponential tail
+  double receiver_time_constant_us = 1200.0;  ///< one-pole receiver filter: exponential tail
   double roughness_db = 10.0;                 ///< sd of the surfaces' backscatter variation, dB
   double roughness_length_m = 10.0;           ///< its correlation length along a surface
   double sound_speed_mps = 1500.0;
   double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
-  double gain_db = 41.7;                ///< receiver gain added to the level
+  double gain_db = 36.2;                ///< receiver gain added to the level
   double tvg_db_per_decade = 40.0;      ///< time-varying gain, dB per decade of range
   double noise_level_db = -140.0;       ///< background noise power before gain and TVG, dB
   double display_min_db = 0.0;          ///< level shown as intensity 0

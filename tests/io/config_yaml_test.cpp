@@ -289,6 +289,23 @@ TEST(SlamConfigYaml, DuplicateSegmentNamesAreRejected) {
   expect_bad_slam_config("segments:\n  a: [0, 10]\n  a: [20, 30]\n", 3, "segments.a");
 }
 
+// Which sonar data `run` reads: auto by default, raw or detections when named; a typo is an error.
+TEST(SlamConfigYaml, SegmentationSource) {
+  const TempDir dir;
+  EXPECT_EQ(read_slam_config(write_text(dir.file("a.yaml"), "# defaults\n")).segmentation.source,
+            SonarSource::kAuto);
+  const std::pair<const char*, SonarSource> cases[] = {{"auto", SonarSource::kAuto},
+                                                       {"raw", SonarSource::kRaw},
+                                                       {"detections", SonarSource::kDetections}};
+  for (const auto& [name, source] : cases) {
+    const std::string text = std::string("segmentation:\n  source: ") + name + "\n";
+    EXPECT_EQ(read_slam_config(write_text(dir.file("s.yaml"), text)).segmentation.source, source)
+        << name;
+  }
+  expect_bad_slam_config("segmentation:\n  source: detection\n", 2, "segmentation.source");
+  expect_bad_slam_config("segmentation:\n  source: [raw]\n", 2, "segmentation.source");
+}
+
 TEST(SlamConfigYaml, NonPositiveSigmasRejected) {
   for (const std::string key :
        {"dvl_sigma_mps", "heading_sigma_deg", "accel_sigma_mps2", "yaw_accel_sigma_radps2",

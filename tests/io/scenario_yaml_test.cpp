@@ -417,6 +417,39 @@ TEST(ScenarioYaml, WrongTypesAndNonFiniteNumbers) {
   expect_bad(std::string(kMinimal) + "sonar: 3\n", 8, "sonar");
 }
 
+// The sonar model's terms and the detector (issue 11): read when given, checked when wrong.
+TEST(ScenarioYaml, SonarPhysicsAndDetectorKeys) {
+  const TempDir dir;
+  const std::string path = write_text(
+      dir.file("s.yaml"),
+      std::string(kMinimal) +
+          "sonar: {beam_pattern: sinc, horizontal_span_beamwidths: 3, footprint: false,\n"
+          "        pulse_length_us: 100, receiver_time_constant_us: 0, roughness_db: 4,\n"
+          "        roughness_length_m: 2.5, speckle_looks: 3}\n"
+          "detections: {smoothing_bins: 3, ramp_max: 20, threshold: 50, min_range_m: 1.5}\n");
+  const sim::Scenario s = read_scenario(path);
+  EXPECT_EQ(s.sonar.beam_pattern, sim::BeamPattern::kSinc);
+  EXPECT_EQ(s.sonar.horizontal_span_beamwidths, 3.0);
+  EXPECT_FALSE(s.sonar.footprint);
+  EXPECT_EQ(s.sonar.pulse_length_us, 100.0);
+  EXPECT_EQ(s.sonar.receiver_time_constant_us, 0.0);
+  EXPECT_EQ(s.sonar.roughness_db, 4.0);
+  EXPECT_EQ(s.sonar.roughness_length_m, 2.5);
+  EXPECT_EQ(s.sonar.speckle_looks, 3);
+  EXPECT_EQ(s.detections.smoothing_bins, 3);
+  EXPECT_EQ(s.detections.ramp_max, 20.0);
+  EXPECT_EQ(s.detections.threshold, 50.0);
+  EXPECT_EQ(s.detections.min_range_m, 1.5);
+  expect_bad(std::string(kMinimal) + "sonar: {beam_pattern: cone}\n", 8, "sonar.beam_pattern");
+  expect_bad(std::string(kMinimal) + "sonar:\n  pulse_length_us: -1\n", 9, "sonar.pulse_length_us");
+  expect_bad(std::string(kMinimal) + "sonar:\n  roughness_length_m: 0\n", 9,
+             "sonar.roughness_length_m");
+  expect_bad(std::string(kMinimal) + "sonar:\n  speckle_looks: 0\n", 9, "sonar.speckle_looks");
+  expect_bad(std::string(kMinimal) + "detections:\n  smoothing_bins: 4\n", 9,
+             "detections.smoothing_bins", "odd");
+  expect_bad(std::string(kMinimal) + "detections:\n  treshold: 45\n", 9, "detections.treshold");
+}
+
 TEST(ScenarioYaml, BadValues) {
   expect_bad(minimal_with(6, "  speed_mps: 0\n"), 6, "vehicle.speed_mps");
   expect_bad(minimal_with(6, "  speed_mps: -0.5\n"), 6, "vehicle.speed_mps");

@@ -179,6 +179,8 @@ std::optional<CompassComparison> compare_compasses(const std::vector<HeadingRead
   CompassComparison c;
   c.offset_deg = x(0);
   c.deviation_amplitude_deg = std::hypot(x(1), x(2));
+  c.deviation_cos_deg = x(1);
+  c.deviation_sin_deg = x(2);
   c.residual_sd_deg = std::sqrt(residual.squaredNorm() / static_cast<double>(n - 3));
   std::vector<double> block_means;
   for (Eigen::Index i = 0; i < n;) {

@@ -85,6 +85,8 @@ HeadingNoiseStatistics heading_noise_statistics(const std::vector<HeadingReading
 struct CompassComparison {
   double offset_deg = 0.0;
   double deviation_amplitude_deg = 0.0;  ///< sqrt(a^2 + b^2)
+  double deviation_cos_deg = 0.0;        ///< a
+  double deviation_sin_deg = 0.0;        ///< b
   double residual_sd_deg = 0.0;
   double block_mean_sd_deg = 0.0;  ///< sd of the residual's means over blocks of kCompassBlock_s
   /// A heading bias random walk of density q, seen over a span T, has an sd of about q sqrt(T / 6)

@@ -209,6 +209,8 @@ void read_mru(YamlMap map, sim::MruConfig& m) {
   read_non_negative(map, "heading_noise_deg", m.heading_noise_deg);
   map.number("bias_initial_deg", m.bias_initial_deg);
   read_non_negative(map, "bias_random_walk_deg_per_sqrt_s", m.bias_random_walk_deg_per_sqrt_s);
+  map.number("deviation_cos_deg", m.deviation_cos_deg);
+  map.number("deviation_sin_deg", m.deviation_sin_deg);
   YamlMap mount = map.map("mount");
   read_mru_mount(mount, m.mount);
   mount.finish();

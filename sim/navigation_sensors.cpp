@@ -83,8 +83,11 @@ std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruCon
   const double dt_s = 1.0 / mru.rate_hz;
   std::vector<MruSample> samples;
   for (const double t_s : sample_times(truth, mru.rate_hz)) {
-    const double error_deg = bias_deg + mru.heading_noise_deg * n01(rng);
-    const double yaw_rad = truth.at(t_s).pose.yaw() + error_deg * kDegToRad;
+    const double true_yaw_rad = truth.at(t_s).pose.yaw();
+    const double deviation_deg = mru.deviation_cos_deg * std::cos(true_yaw_rad) +
+                                 mru.deviation_sin_deg * std::sin(true_yaw_rad);
+    const double error_deg = bias_deg + deviation_deg + mru.heading_noise_deg * n01(rng);
+    const double yaw_rad = true_yaw_rad + error_deg * kDegToRad;
     samples.push_back({t_s, mru_yaw_from_vehicle(yaw_rad, mru.mount)});
     bias_deg += mru.bias_random_walk_deg_per_sqrt_s * std::sqrt(dt_s) * n01(rng);
   }

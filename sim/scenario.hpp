@@ -101,6 +101,10 @@ struct MruConfig {
   double heading_noise_deg = 0.04;  ///< white noise, deg
   double bias_initial_deg = 0.0;
   double bias_random_walk_deg_per_sqrt_s = 0.01;  ///< heading bias random walk density
+  /// One-cycle compass deviation (hard iron): the reading is off by
+  /// cos_deg cos(yaw) + sin_deg sin(yaw), yaw in the scene frame.
+  double deviation_cos_deg = 0.0;
+  double deviation_sin_deg = 0.0;
   MruMount mount;
 };
 

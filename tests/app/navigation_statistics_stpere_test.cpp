@@ -37,7 +37,8 @@ void print(const NavigationStatistics& s) {
             << "\n";
   if (s.compasses) {
     std::cout << "compasses offset " << s.compasses->offset_deg << " deviation "
-              << s.compasses->deviation_amplitude_deg << " residual "
+              << s.compasses->deviation_amplitude_deg << " (cos " << s.compasses->deviation_cos_deg
+              << ", sin " << s.compasses->deviation_sin_deg << ") residual "
               << s.compasses->residual_sd_deg << " block sd " << s.compasses->block_mean_sd_deg
               << " rw bound " << s.compasses->random_walk_bound_deg_per_sqrt_s << "\n";
   }

@@ -152,6 +152,24 @@ TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
   EXPECT_NEAR(std::sqrt(sum_sq / count), 0.01 * std::sqrt(100.0), 0.015);
 }
 
+// A one-cycle compass deviation: with no noise or bias, the reading's error is exactly
+// a cos(yaw) + b sin(yaw) at every heading of a circle.
+TEST(MruModel, CompassDeviationFollowsTheHeading) {
+  const VehicleTrajectory truth = circling(1600.0);  // one turn and a half at 0.2 m/s, r 50 m
+  MruConfig mru;
+  mru.heading_noise_deg = 0.0;
+  mru.bias_random_walk_deg_per_sqrt_s = 0.0;
+  mru.deviation_cos_deg = -4.7;
+  mru.deviation_sin_deg = 2.4;
+  for (const MruSample& s : simulate_mru(truth, mru, 3)) {
+    const double true_yaw = truth.at(s.t_s).pose.yaw();
+    const double yaw = vehicle_yaw_from_mru(s.yaw_mru_deg, mru.mount);
+    ASSERT_NEAR(normalize_angle(yaw - true_yaw) / kDegToRad,
+                -4.7 * std::cos(true_yaw) + 2.4 * std::sin(true_yaw), 1e-6)
+        << "t = " << s.t_s;
+  }
+}
+
 TEST(GpsModel, GaussMarkovErrorAndWhiteNoise) {
   const VehicleTrajectory truth = circling(40000.0);
   GpsConfig gps;

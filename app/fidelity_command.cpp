@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <set>
 
 #include "app/fidelity_figures.hpp"
@@ -81,32 +82,33 @@ void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
   side.beam_t_s = times_s(times);
 }
 
-/// Mean log time of a keyframe's detected beams; NaN when it has none.
-double keyframe_time_s(const FidelitySide& side, std::int32_t keyframe) {
-  double sum_s = 0.0;
-  int n = 0;
+/// Mean log time of each keyframe's detected beams, in one pass.
+std::map<std::int32_t, double> keyframe_times_s(const FidelitySide& side) {
+  std::map<std::int32_t, std::pair<double, int>> sums;
   for (const DetectedBeam& b : side.beams) {
-    if (b.keyframe != keyframe) continue;
+    auto& [sum_s, n] = sums[b.keyframe];
     sum_s += side.beam_t_s[static_cast<std::size_t>(b.beam_row)];
     ++n;
   }
-  return n > 0 ? sum_s / n : std::nan("");
+  std::map<std::int32_t, double> times_s;
+  for (const auto& [keyframe, sum] : sums) times_s[keyframe] = sum.first / sum.second;
+  return times_s;
 }
 
 /// A simulated run timed to the real one (its log times overlap the real keyframe drawn): the
 /// simulated keyframe nearest in time, so the figure shows both at the same place.
 void align_simulated_revolution(const FidelitySide& real, FidelitySide& sim) {
-  const double t_s = keyframe_time_s(real, real.revolution);
-  if (!std::isfinite(t_s) || sim.beam_t_s.empty() || t_s < sim.beam_t_s.front() ||
-      t_s > sim.beam_t_s.back()) {
+  const std::map<std::int32_t, double> real_times_s = keyframe_times_s(real);
+  const auto drawn = real_times_s.find(real.revolution);
+  if (drawn == real_times_s.end() || sim.beam_t_s.empty() || drawn->second < sim.beam_t_s.front() ||
+      drawn->second > sim.beam_t_s.back()) {
     return;
   }
   double best_s = std::numeric_limits<double>::infinity();
-  for (std::int32_t k = sim.beams.front().keyframe; k <= sim.beams.back().keyframe; ++k) {
-    const double d_s = std::abs(keyframe_time_s(sim, k) - t_s);
-    if (d_s < best_s) {
-      best_s = d_s;
-      sim.revolution = k;
+  for (const auto& [keyframe, t_s] : keyframe_times_s(sim)) {
+    if (std::abs(t_s - drawn->second) < best_s) {
+      best_s = std::abs(t_s - drawn->second);
+      sim.revolution = keyframe;
     }
   }
 }

@@ -10,6 +10,9 @@ namespace msislab::sim {
 
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
+/// At grazing incidence a footprint's area and extent grow without bound as 1 / cos; the beam
+/// bounds them in fact, so cos(incidence) is taken as at least this.
+constexpr double kMinFootprintCos = 0.02;
 
 Eigen::Vector3f direction(double azimuth_rad, double elevation_rad) {
   return Eigen::Vector3f(static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)),
@@ -189,9 +192,8 @@ std::vector<Ray> MsisModel::primary_rays(const Ping& ping) const {
   const float c = static_cast<float>(ping.tx.axis.x()), s = static_cast<float>(ping.tx.axis.y());
   std::vector<Ray> rays(rays_.size());
   for (std::size_t i = 0; i < rays_.size(); ++i) {
-    const Eigen::Vector3f& d = rays_[i].direction_beam;
     rays[i].origin_m = ping.tx.position_m;
-    rays[i].direction = Eigen::Vector3f(c * d.x() - s * d.y(), s * d.x() + c * d.y(), d.z());
+    rays[i].direction = rotate_z(rays_[i].direction_beam, c, s);
     rays[i].t_max_m = static_cast<float>(sonar_.bins * sonar_.bin_m);
   }
   return rays;
@@ -270,10 +272,9 @@ double MsisModel::footprint_extent(double path_m, const Eigen::Vector3f& directi
   // A surface at distance t along d, normal n: t(d) = const / (d . n), so a change dd of the
   // direction moves the hit by dt = -t (dd . n) / (d . n). Over the cell's two edges the ranges
   // cover two boxes; their sum has the variance of a box of width sqrt(w_a^2 + w_e^2).
-  constexpr double kMinCos = 0.02;  // grazing: the footprint is bounded by the beam anyway
   constexpr double kMaxExtent_m = 10.0;
   const double cos_incidence =
-      std::max(std::abs(static_cast<double>(direction.dot(normal))), kMinCos);
+      std::max(std::abs(static_cast<double>(direction.dot(normal))), kMinFootprintCos);
   const double w_azimuth = path_m * std::abs(cell_azimuth.dot(normal)) / cos_incidence;
   const double w_elevation = path_m * std::abs(cell_elevation.dot(normal)) / cos_incidence;
   return std::min(std::hypot(w_azimuth, w_elevation), kMaxExtent_m);
@@ -281,8 +282,7 @@ double MsisModel::footprint_extent(double path_m, const Eigen::Vector3f& directi
 
 double MsisModel::footprint_area(double path_m, double cell_sr, double cos_incidence) const {
   if (!sonar_.footprint) return 1.0;
-  constexpr double kMinCos = 0.02;  // as in footprint_extent
-  return path_m * path_m * cell_sr / std::max(cos_incidence, kMinCos);
+  return path_m * path_m * cell_sr / std::max(cos_incidence, kMinFootprintCos);
 }
 
 double MsisModel::roughness_gain(const Eigen::Vector3f& point_m) const {

@@ -14,6 +14,7 @@
 #include "io/mesh_io.hpp"
 #include "sim/mesh.hpp"
 #include "sim/polygon_triangulation.hpp"
+#include "sim/scene_builder.hpp"
 
 namespace {
 
@@ -35,34 +36,7 @@ struct Options {
   double hull_buried_m = 0.3;               ///< keel below the bottom, m
 };
 
-/// Collects vertices and triangles by group, each group one material.
-class MeshBuilder {
- public:
-  std::uint32_t group(const std::string& name, float backscatter, float specular) {
-    mesh_.materials.push_back({name, backscatter, specular});
-    mesh_.group_names.push_back(name);
-    return static_cast<std::uint32_t>(mesh_.materials.size() - 1);
-  }
-  int vertex(const Eigen::Vector3d& p_m) {
-    mesh_.vertices_m.push_back(p_m.cast<float>());
-    return static_cast<int>(mesh_.vertices_m.size() - 1);
-  }
-  /// Counter-clockwise seen from the side the normal points to.
-  void triangle(int a, int b, int c, std::uint32_t group) {
-    mesh_.triangles.emplace_back(a, b, c);
-    mesh_.material_ids.push_back(group);
-  }
-  /// a, b, c, d counter-clockwise seen from the front.
-  void quad(int a, int b, int c, int d, std::uint32_t group) {
-    triangle(a, b, c, group);
-    triangle(a, c, d, group);
-  }
-  const Eigen::Vector3f& position(int index) const { return mesh_.vertices_m[index]; }
-  const msislab::sim::TriangleMesh& mesh() const { return mesh_; }
-
- private:
-  msislab::sim::TriangleMesh mesh_;
-};
+using msislab::sim::MeshBuilder;
 
 /// Four walls facing inward and a flat bottom facing up.
 void add_basin(MeshBuilder& builder, const Options& options) {

@@ -115,38 +115,31 @@ plot::ChartSpec revolution_panel(const FigureSide& side, const Colours& colours,
 
 std::vector<plot::ChartSpec> range_charts(const FigureSide& real, const FigureSide& sim,
                                           double max_range_m) {
-  const SonarStatistics& r = *real.stats;
-  const SonarStatistics& s = *sim.stats;
-  plot::ChartSpec first =
-      range_panel("First detected range of a beam (KS " +
-                      io::format_fixed(ks_distance(r.first_ranges_m, s.first_ranges_m), 3) + ")",
-                  "beams [% per m]", max_range_m);
-  first.series = {
-      histogram(r.first_ranges_m, max_range_m,
-                legend(real) + ": " + io::format_count(r.first_ranges_m.size()) + " beams",
-                plot::SeriesStyle::kLine, kReal.line),
-      histogram(s.first_ranges_m, max_range_m,
-                legend(sim) + ": " + io::format_count(s.first_ranges_m.size()) + " beams",
-                plot::SeriesStyle::kDashedLine, kSim.line)};
-  plot::ChartSpec all = range_panel(
-      "All detected bins (KS " +
-          io::format_fixed(ks_distance(r.detected_ranges_m, s.detected_ranges_m), 3) + ")",
-      "detected bins [% per m]", max_range_m);
-  all.series = {
-      histogram(r.detected_ranges_m, max_range_m,
-                legend(real) + ": " + io::format_count(r.detected_ranges_m.size()) + " bins",
-                plot::SeriesStyle::kLine, kReal.line),
-      histogram(s.detected_ranges_m, max_range_m,
-                legend(sim) + ": " + io::format_count(s.detected_ranges_m.size()) + " bins",
-                plot::SeriesStyle::kDashedLine, kSim.line)};
-  for (plot::ChartSpec* chart : {&first, &all}) {
+  // One panel: a sample of each side as histograms overlaid, its KS distance in the title.
+  const auto panel = [&](const std::string& title, const std::string& y_label,
+                         const std::vector<double>& real_m, const std::vector<double>& sim_m,
+                         const std::string& unit) {
+    plot::ChartSpec chart =
+        range_panel(title + " (KS " + io::format_fixed(ks_distance(real_m, sim_m), 3) + ")",
+                    y_label, max_range_m);
+    chart.series = {
+        histogram(real_m, max_range_m, legend(real) + ": " + io::format_count(real_m.size()) + unit,
+                  plot::SeriesStyle::kLine, kReal.line),
+        histogram(sim_m, max_range_m, legend(sim) + ": " + io::format_count(sim_m.size()) + unit,
+                  plot::SeriesStyle::kDashedLine, kSim.line)};
     double y_max = 0.0;
-    for (const plot::Series& series : chart->series) {
+    for (const plot::Series& series : chart.series) {
       for (const double y : series.y) y_max = std::max(y_max, y);
     }
-    chart->y_range = plot::AxisRange{0.0, std::max(1.1 * y_max, 1.0)};
-  }
-  return {first, all};
+    chart.y_range = plot::AxisRange{0.0, std::max(1.1 * y_max, 1.0)};
+    return chart;
+  };
+  const SonarStatistics& r = *real.stats;
+  const SonarStatistics& s = *sim.stats;
+  return {panel("First detected range of a beam", "beams [% per m]", r.first_ranges_m,
+                s.first_ranges_m, " beams"),
+          panel("All detected bins", "detected bins [% per m]", r.detected_ranges_m,
+                s.detected_ranges_m, " bins")};
 }
 
 std::vector<plot::ChartSpec> revolution_charts(const FigureSide& real, const FigureSide& sim,

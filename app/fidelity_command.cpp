@@ -74,7 +74,8 @@ void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
   const int per_revolution = io::steps_per_revolution(side.setup);
   side.beams =
       group_detections(rows, *files.detections, times.size(), per_revolution, side.setup.range_m);
-  side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m);
+  side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m,
+                                side.setup.step_rad);
   const SonarInput readings = readings_from_detections(
       files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
   side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);

@@ -93,6 +93,34 @@ void add_rotation(const std::vector<DetectedBeam>& beams, const std::vector<doub
 
 }  // namespace
 
+namespace {
+
+/// The nearest run's length of each beam whose neighbouring beam rows in its keyframe have
+/// detections, by the incidence their first ranges give.
+void add_run_lengths(const std::vector<DetectedBeam>& beams, double bin_m, double angle_step_rad,
+                     SonarStatistics& stats) {
+  stats.run_length_by_incidence_m.assign(kIncidenceBands, {});
+  const auto first_range = [](const DetectedBeam& b) {
+    return *std::min_element(b.ranges_m.begin(), b.ranges_m.end());
+  };
+  for (std::size_t i = 1; i + 1 < beams.size(); ++i) {
+    const DetectedBeam &before = beams[i - 1], &beam = beams[i], &after = beams[i + 1];
+    if (before.beam_row + 1 != beam.beam_row || beam.beam_row + 1 != after.beam_row ||
+        before.keyframe != beam.keyframe || after.keyframe != beam.keyframe) {
+      continue;
+    }
+    const double incidence_deg = incidence_from_neighbours_deg(
+        first_range(before), first_range(beam), first_range(after), angle_step_rad);
+    if (!std::isfinite(incidence_deg)) continue;
+    const auto band = static_cast<int>(incidence_deg / kIncidenceBand_deg);
+    if (band >= kIncidenceBands) continue;
+    stats.run_length_by_incidence_m[static_cast<std::size_t>(band)].push_back(
+        first_run_length_m(beam.ranges_m, bin_m));
+  }
+}
+
+}  // namespace
+
 double quantile(std::vector<double> values, double p) {
   if (values.empty()) return kNaN;
   std::sort(values.begin(), values.end());
@@ -142,6 +170,26 @@ int count_runs(const std::vector<double>& ranges_m, double bin_m) {
   return runs;
 }
 
+double first_run_length_m(const std::vector<double>& ranges_m, double bin_m) {
+  if (ranges_m.empty()) return 0.0;
+  std::vector<long> bins;
+  bins.reserve(ranges_m.size());
+  for (const double r : ranges_m) bins.push_back(std::lround(r / bin_m));
+  std::sort(bins.begin(), bins.end());
+  std::size_t last = 0;
+  while (last + 1 < bins.size() && bins[last + 1] - bins[last] <= 1) ++last;
+  return static_cast<double>(bins[last] - bins[0] + 1) * bin_m;
+}
+
+double incidence_from_neighbours_deg(double r_before_m, double r_m, double r_after_m,
+                                     double angle_step_rad, double max_jump_m) {
+  if (!(r_m > 0.0) || !(angle_step_rad > 0.0) || std::abs(r_before_m - r_m) > max_jump_m ||
+      std::abs(r_after_m - r_m) > max_jump_m) {
+    return kNaN;
+  }
+  return std::atan(std::abs(r_after_m - r_before_m) / (r_m * 2.0 * angle_step_rad)) * 180.0 / M_PI;
+}
+
 std::vector<DetectedBeam> group_detections(const std::vector<io::DetectionRecord>& rows,
                                            const std::string& path, std::size_t beam_count,
                                            int beams_per_revolution, double max_range_m) {
@@ -172,7 +220,7 @@ std::vector<DetectedBeam> group_detections(const std::vector<io::DetectionRecord
 
 SonarStatistics sonar_statistics(const std::vector<DetectedBeam>& beams,
                                  const std::vector<double>& beam_times_s, int beams_per_revolution,
-                                 double bin_m) {
+                                 double bin_m, double angle_step_rad) {
   SonarStatistics stats;
   if (beams.empty()) return stats;
   stats.keyframes = beams.back().keyframe - beams.front().keyframe + 1;
@@ -189,6 +237,7 @@ SonarStatistics sonar_statistics(const std::vector<DetectedBeam>& beams,
   stats.bins_per_beam = with_zeros(std::move(stats.bins_per_beam), stats.beams);
   stats.runs_per_beam = with_zeros(std::move(stats.runs_per_beam), stats.beams);
   add_rotation(beams, beam_times_s, stats);
+  add_run_lengths(beams, bin_m, angle_step_rad, stats);
   return stats;
 }
 

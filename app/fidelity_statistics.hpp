@@ -32,6 +32,21 @@ std::vector<double> band_shares(const std::vector<double>& values_m, double band
 /// missing bin or more starts a new run (a bin detected twice is one bin). 0 without bins.
 int count_runs(const std::vector<double>& ranges_m, double bin_m);
 
+/// Length of the nearest run of a beam's detected bins (bins as in count_runs), in metres:
+/// (last bin - first bin + 1) x bin_m. 0 without bins.
+double first_run_length_m(const std::vector<double>& ranges_m, double bin_m);
+
+/// Incidence bands of the echo-extent statistic: [0, 15), [15, 30), ... [60, 75) deg.
+constexpr int kIncidenceBands = 5;
+constexpr double kIncidenceBand_deg = 15.0;
+
+/// Incidence of the beam on the surface it saw (deg from the surface normal), from the first
+/// ranges r_before, r_after of the beams either side (angle_step_rad apart each) and its own r:
+/// atan(|r_after - r_before| / (r x 2 angle_step_rad)). NaN when a neighbour is more than
+/// max_jump_m away from r (another surface, an edge) or r is not positive.
+double incidence_from_neighbours_deg(double r_before_m, double r_m, double r_after_m,
+                                     double angle_step_rad, double max_jump_m = 3.0);
+
 /// One beam with detected bins.
 struct DetectedBeam {
   std::int64_t beam_row = 0;     ///< 0-based row in *_IS_timestamps.log
@@ -65,12 +80,17 @@ struct SonarStatistics {
                                             ///< consecutive keyframes
   std::vector<double> revolution_period_s;  ///< the beam times between the same two beams
   std::vector<double> readings_per_revolution;  ///< per keyframe, see readings_per_keyframe
+  /// The nearest run's length of every beam whose two neighbouring beam rows (same keyframe) have
+  /// detections, by the incidence incidence_from_neighbours_deg gives it (kIncidenceBands bands
+  /// of kIncidenceBand_deg; steeper beams are in none): how an echo smears over an oblique wall.
+  std::vector<std::vector<double>> run_length_by_incidence_m;
 };
 
-/// beam_times_s: the time of every beam row (*_IS_timestamps.log); beams from group_detections.
+/// beam_times_s: the time of every beam row (*_IS_timestamps.log); beams from group_detections;
+/// angle_step_rad: the head's step between consecutive beams.
 SonarStatistics sonar_statistics(const std::vector<DetectedBeam>& beams,
                                  const std::vector<double>& beam_times_s, int beams_per_revolution,
-                                 double bin_m);
+                                 double bin_m, double angle_step_rad);
 
 /// Readings per keyframe, from the first to the last keyframe of beams: the readings of each
 /// beam's row (readings is indexed by beam row, as load_sonar_readings returns it) summed over the

@@ -85,6 +85,28 @@ void add_bands(FidelityTable& t, const SonarStatistics& real, const SonarStatist
   add_shares("first_ranges", "first ranges", real.first_ranges_m, sim.first_ranges_m);
 }
 
+void add_run_lengths(FidelityTable& t, const SonarStatistics& real, const SonarStatistics& sim) {
+  const std::string s = "Echo extent by incidence";
+  for (int k = 0; k < kIncidenceBands; ++k) {
+    const auto band = static_cast<std::size_t>(k);
+    const auto lo = static_cast<int>(k * kIncidenceBand_deg);
+    const auto hi = static_cast<int>((k + 1) * kIncidenceBand_deg);
+    const auto samples = [&](const SonarStatistics& side) {
+      return band < side.run_length_by_incidence_m.size() ? side.run_length_by_incidence_m[band]
+                                                          : std::vector<double>{};
+    };
+    const std::vector<double> r = samples(real), m = samples(sim);
+    t.push_back({s,
+                 "first_run_length_incidence_" + std::to_string(lo) + "_" + std::to_string(hi) +
+                     "_deg_median_m",
+                 "nearest run's length at incidence " + std::to_string(lo) + "-" +
+                     std::to_string(hi) + " deg, median",
+                 quantile(r, 0.5), quantile(m, 0.5),
+                 r.empty() || m.empty() ? std::nullopt : std::optional<double>(ks_distance(r, m)),
+                 "m", 2});
+  }
+}
+
 void add_scans_and_rotation(FidelityTable& t, const SonarStatistics& real,
                             const SonarStatistics& sim) {
   const std::string scans = "Scans after segmentation";
@@ -124,6 +146,7 @@ FidelityTable sonar_rows(const SonarStatistics& real, const SonarStatistics& sim
   FidelityTable table;
   add_per_beam(table, real, sim);
   add_bands(table, real, sim, max_range_m);
+  add_run_lengths(table, real, sim);
   add_scans_and_rotation(table, real, sim);
   return table;
 }

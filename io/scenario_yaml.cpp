@@ -17,9 +17,18 @@ void read_fraction(YamlMap& map, const std::string& key, float& value) {
   value = static_cast<float>(v);
 }
 
-void read_material(YamlMap map, sim::Material& material) {
+/// backscatter, specular and incidence_exponent of a material; the map's other keys stay.
+void read_material_keys(YamlMap& map, sim::Material& material) {
   read_fraction(map, "backscatter", material.backscatter);
   read_fraction(map, "specular", material.specular);
+  double exponent = material.incidence_exponent;
+  map.number("incidence_exponent", exponent);
+  if (exponent < 0.0 || exponent > 10.0) map.fail("incidence_exponent", "must be in [0, 10]");
+  material.incidence_exponent = static_cast<float>(exponent);
+}
+
+void read_material(YamlMap map, sim::Material& material) {
+  read_material_keys(map, material);
   map.finish();
 }
 
@@ -28,8 +37,7 @@ void read_scene(YamlMap map, const std::string& scenario_dir, sim::SceneConfig& 
   std::string mesh;
   map.text("mesh", mesh);
   scene.mesh_path = (std::filesystem::path(scenario_dir) / mesh).lexically_normal().string();
-  read_fraction(map, "backscatter", scene.default_material.backscatter);
-  read_fraction(map, "specular", scene.default_material.specular);
+  read_material_keys(map, scene.default_material);
   YamlMap groups = map.map("groups");
   for (const std::string& name : groups.keys()) {
     sim::Material material = scene.default_material;

@@ -14,6 +14,9 @@ struct Material {
   std::string name;
   float backscatter = 0.5f;  ///< diffuse backscatter strength toward the source, 0..1
   float specular = 0.3f;     ///< fraction of energy reflected in the mirror direction, 0..1
+  /// Backscatter per unit area falls as cos^n(incidence): 2 is Lambert's law (a smooth, matte
+  /// surface); lower for rough surfaces (rubble, fouled quays) that return sound at grazing too.
+  float incidence_exponent = 2.0f;
 };
 
 struct TriangleMesh {

@@ -31,6 +31,13 @@ Eigen::Vector3f direction_d_elevation(double azimuth_rad, double elevation_rad) 
                          static_cast<float>(std::cos(elevation_rad)));
 }
 
+/// strength x cos^n(incidence), the backscatter law per unit area. Lambert's n = 2 multiplies by
+/// the cosine twice, in the order the law always had, so its bytes stay the same.
+double with_incidence_law(double strength, double cos_incidence, float exponent) {
+  if (exponent == 2.0f) return strength * cos_incidence * cos_incidence;
+  return strength * std::pow(cos_incidence, static_cast<double>(exponent));
+}
+
 /// Rotation about z by the beam axis azimuth (cos, sin).
 Eigen::Vector3f rotate_z(const Eigen::Vector3f& v, float c, float s) {
   return Eigen::Vector3f(c * v.x() - s * v.y(), s * v.x() + c * v.y(), v.z());
@@ -240,10 +247,12 @@ std::uint32_t MsisModel::trace_from(const RayTemplate& ray, Ray r, RayHit hit, c
     const Material& material = scene_.materials()[hit.material_id];
     const double cos_incidence = std::abs(r.direction.dot(hit.normal));
     const Eigen::Vector3f hit_point = r.origin_m + hit.distance_m * r.direction;
-    // Lambert-like backscatter: strength x cos^2(incidence) toward the source, varied along the
-    // surface by its roughness; over the ray's footprint, of area path^2 x cell / cos(incidence).
-    const double backscatter = material.backscatter * roughness_gain(hit_point) * cos_incidence *
-                               cos_incidence * footprint_area(path_m, ray.cell_sr, cos_incidence);
+    // Backscatter: strength x cos^n(incidence) toward the source (n = 2: Lambert), varied along
+    // the surface by its roughness; over the ray's footprint, of area path^2 x cell /
+    // cos(incidence).
+    const double backscatter = with_incidence_law(material.backscatter * roughness_gain(hit_point),
+                                                  cos_incidence, material.incidence_exponent) *
+                               footprint_area(path_m, ray.cell_sr, cos_incidence);
     add_echo(ping, first_hit_m, path_m,
              footprint_extent(path_m, r.direction, cell_azimuth, cell_elevation, hit.normal),
              route_gain * backscatter, bounce > 0, hit.material_id, echoes);

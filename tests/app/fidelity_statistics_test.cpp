@@ -131,7 +131,7 @@ TEST(SonarStatistics, CountsEveryBeamOfTheKeyframes) {
   const std::vector<DetectedBeam> beams = group_detections(hand_rows(), "d.csv", 10, 4, 50.0);
   std::vector<double> times_s;
   for (int i = 0; i < 10; ++i) times_s.push_back(10.0 + 0.5 * i);
-  const SonarStatistics s = sonar_statistics(beams, times_s, 4, 0.1);
+  const SonarStatistics s = sonar_statistics(beams, times_s, 4, 0.1, 0.5);
   EXPECT_EQ(s.keyframes, 2);
   EXPECT_EQ(s.beams, 8u);
   EXPECT_EQ(s.empty_beams, 4u);
@@ -142,6 +142,55 @@ TEST(SonarStatistics, CountsEveryBeamOfTheKeyframes) {
   // Angle 3 is seen in keyframe 1 (row 0) and keyframe 2 (row 4): 4 beams, 2 s.
   EXPECT_EQ(s.beams_per_360, (std::vector<double>{4.0}));
   EXPECT_EQ(s.revolution_period_s, (std::vector<double>{2.0}));
+  // No three consecutive beam rows have detections: no beam has an incidence.
+  ASSERT_EQ(s.run_length_by_incidence_m.size(), static_cast<std::size_t>(kIncidenceBands));
+  for (const std::vector<double>& band : s.run_length_by_incidence_m) EXPECT_TRUE(band.empty());
+}
+
+TEST(FirstRunLength, IsTheNearestRunsExtentInWholeBins) {
+  EXPECT_EQ(first_run_length_m({}, 0.1), 0.0);
+  EXPECT_NEAR(first_run_length_m({2.0}, 0.1), 0.1, 1e-12);
+  // Bins 50, 51, 52 then a gap: the run 5.0..5.2 is 3 bins; the order of the rows does not matter.
+  EXPECT_NEAR(first_run_length_m({7.0, 5.2, 5.0, 5.1, 7.1}, 0.1), 0.3, 1e-12);
+  EXPECT_NEAR(first_run_length_m({5.0, 5.2}, 0.1), 0.1, 1e-12);  // one missing bin splits
+}
+
+TEST(IncidenceFromNeighbours, RecoversAFlatWallsIncidence) {
+  // A flat wall 10 m away whose normal lies incidence_deg off the middle beam: r = d / cos(theta -
+  // normal) at the three beams. The central difference is exact to about 0.1 deg here; ranges
+  // rounded to 0.1 m bins (as detections are) move it by up to atan(0.1 / (2 r step)), under 10
+  // deg, which the 15 deg bands of the statistic absorb.
+  const double step_rad = 0.031415926535897934;
+  for (const double incidence_deg : {0.0, 10.0, 30.0, 50.0, 65.0}) {
+    const double normal_rad = incidence_deg * M_PI / 180.0;
+    const auto range_m = [&](double theta_rad, bool rounded) {
+      const double r = 10.0 / std::cos(theta_rad - normal_rad);
+      return rounded ? std::round(10.0 * r) / 10.0 : r;
+    };
+    for (const bool rounded : {false, true}) {
+      const double measured_deg = incidence_from_neighbours_deg(
+          range_m(-step_rad, rounded), range_m(0.0, rounded), range_m(step_rad, rounded), step_rad);
+      EXPECT_NEAR(measured_deg, incidence_deg, rounded ? 10.0 : 0.2) << incidence_deg;
+    }
+  }
+  EXPECT_TRUE(std::isnan(incidence_from_neighbours_deg(10.0, 20.0, 20.5, step_rad)));  // an edge
+  EXPECT_TRUE(std::isnan(incidence_from_neighbours_deg(20.0, 20.0, 23.5, step_rad)));
+  EXPECT_TRUE(std::isnan(incidence_from_neighbours_deg(0.0, 0.0, 0.0, step_rad)));
+}
+
+TEST(SonarStatistics, BandsTheRunLengthByIncidence) {
+  // Keyframe 1 of 4 beams: rows 0, 1, 2 see a wall at 20.0, 20.5, 21.0 m (incidence atan(1 /
+  // (20.5 x 2 x 0.05)) = 26 deg for row 1); row 1's nearest run is 10 bins long.
+  std::vector<io::DetectionRecord> rows = {row(1, 0, 0, 20.0)};
+  for (int k = 0; k < 10; ++k) rows.push_back(row(1, 1, 1, 20.5 + 0.1 * k));
+  rows.push_back(row(1, 1, 1, 30.0));  // a second run, not counted
+  rows.push_back(row(1, 2, 2, 21.0));
+  const std::vector<DetectedBeam> beams = group_detections(rows, "d.csv", 4, 4, 50.0);
+  const SonarStatistics s = sonar_statistics(beams, std::vector<double>(4, 0.0), 4, 0.1, 0.05);
+  ASSERT_EQ(s.run_length_by_incidence_m.size(), static_cast<std::size_t>(kIncidenceBands));
+  EXPECT_TRUE(s.run_length_by_incidence_m[0].empty());
+  ASSERT_EQ(s.run_length_by_incidence_m[1].size(), 1u);
+  EXPECT_NEAR(s.run_length_by_incidence_m[1][0], 1.0, 1e-12);
 }
 
 TEST(SonarStatistics, PairsAnglesOnlyInConsecutiveKeyframes) {
@@ -153,7 +202,7 @@ TEST(SonarStatistics, PairsAnglesOnlyInConsecutiveKeyframes) {
     }
   }
   const std::vector<DetectedBeam> beams = group_detections(rows, "d.csv", 12, 4, 50.0);
-  const SonarStatistics s = sonar_statistics(beams, std::vector<double>(12, 0.0), 4, 0.1);
+  const SonarStatistics s = sonar_statistics(beams, std::vector<double>(12, 0.0), 4, 0.1, 0.5);
   EXPECT_EQ(s.keyframes, 3);
   EXPECT_EQ(s.beams, 12u);
   EXPECT_EQ(s.empty_beams, 8u);

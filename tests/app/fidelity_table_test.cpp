@@ -34,6 +34,7 @@ SonarStatistics small_statistics(double shift_m) {
   s.beams_per_360 = {200.0};
   s.revolution_period_s = {13.8};
   s.readings_per_revolution = {2.0};
+  s.run_length_by_incidence_m = {{1.0 + shift_m, 2.0 + shift_m, 3.0 + shift_m}, {}, {}, {}, {5.0}};
   return s;
 }
 
@@ -64,6 +65,13 @@ TEST(SonarRows, ComputeEachStatisticFromTheSamples) {
   EXPECT_NO_THROW(find_row(table, "first_ranges_40_50_m_percent"));
   EXPECT_THROW(find_row(table, "first_ranges_50_60_m_percent"), std::runtime_error);
   EXPECT_DOUBLE_EQ(find_row(table, "points_per_scan_mean").real, 2.0);
+  const FidelityRow& normal = find_row(table, "first_run_length_incidence_0_15_deg_median_m");
+  EXPECT_DOUBLE_EQ(normal.real, 2.0);
+  EXPECT_DOUBLE_EQ(normal.sim, 3.0);
+  ASSERT_TRUE(normal.ks.has_value());
+  EXPECT_NEAR(*normal.ks, 1.0 / 3.0, 1e-12);  // {1, 2, 3} against {2, 3, 4}
+  EXPECT_TRUE(std::isnan(find_row(table, "first_run_length_incidence_15_30_deg_median_m").real));
+  EXPECT_DOUBLE_EQ(find_row(table, "first_run_length_incidence_60_75_deg_median_m").sim, 5.0);
   EXPECT_DOUBLE_EQ(find_row(table, "beams_per_revolution").real, 200.0);
   EXPECT_DOUBLE_EQ(find_row(table, "revolution_period_s").sim, 13.8);
 }

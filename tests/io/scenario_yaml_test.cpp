@@ -327,8 +327,10 @@ TEST(ScenarioYaml, SceneMaterialsAndGroups) {
                                         "  mesh: basin.obj\n"
                                         "  backscatter: 0.6\n"
                                         "  specular: 0.2\n"
+                                        "  incidence_exponent: 1.5\n"
                                         "  groups:\n"
-                                        "    walls: {backscatter: 0.9, specular: 0.1}\n"
+                                        "    walls: {backscatter: 0.9, specular: 0.1, "
+                                        "incidence_exponent: 0.5}\n"
                                         "    bottom: {backscatter: 0.4}\n"
                                         "  surface: {backscatter: 0.01, specular: 0.95}\n");
   const sim::Scenario s = read_scenario(write_text(dir.file("s.yaml"), text));
@@ -339,11 +341,15 @@ TEST(ScenarioYaml, SceneMaterialsAndGroups) {
   EXPECT_EQ(walls.name, "walls");
   EXPECT_EQ(walls.backscatter, 0.9f);
   EXPECT_EQ(walls.specular, 0.1f);
+  EXPECT_EQ(walls.incidence_exponent, 0.5f);
+  EXPECT_EQ(s.scene.default_material.incidence_exponent, 1.5f);
   // A group that sets one value keeps the scene's default for the other.
   const sim::Material& bottom = s.scene.group_materials.at("bottom");
   EXPECT_EQ(bottom.name, "bottom");
   EXPECT_EQ(bottom.backscatter, 0.4f);
   EXPECT_EQ(bottom.specular, 0.2f);
+  EXPECT_EQ(bottom.incidence_exponent, 1.5f);
+  EXPECT_EQ(s.scene.surface.incidence_exponent, 2.0f);  // Lambert unless set
   EXPECT_EQ(s.scene.surface.name, "water_surface");
   EXPECT_EQ(s.scene.surface.backscatter, 0.01f);
   EXPECT_EQ(s.scene.surface.specular, 0.95f);
@@ -455,6 +461,8 @@ TEST(ScenarioYaml, BadValues) {
   expect_bad(minimal_with(6, "  speed_mps: -0.5\n"), 6, "vehicle.speed_mps");
   expect_bad(minimal_with(5, "  depth_m: -1\n"), 5, "vehicle.depth_m");
   expect_bad(minimal_with(1, "seed: -1\n"), 1, "seed");
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  groups: {walls: {incidence_exponent: -1}}\n"), 4,
+             "scene.groups.walls.incidence_exponent");
   expect_bad(std::string(kMinimal) + "sonar:\n  bins: 0\n", 9, "sonar.bins");
   expect_bad(std::string(kMinimal) + "sonar:\n  display_min_db: 10\n  display_max_db: 10\n", 10,
              "sonar.display_max_db");

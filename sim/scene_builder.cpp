@@ -122,4 +122,19 @@ void add_prism(MeshBuilder& builder, const std::vector<Eigen::Vector2d>& ccw_foo
   }
 }
 
+BasinOutline channel_basin_outline(const ChannelBasin& geometry) {
+  const double h = geometry.basin_side_m / 2.0, w = geometry.channel_width_m / 2.0;
+  if (!(geometry.channel_width_m > 0.0 && geometry.channel_width_m < geometry.basin_side_m &&
+        geometry.channel_length_m > 0.0)) {
+    throw std::invalid_argument(
+        "channel basin: needs 0 < channel width < basin side and a positive channel length");
+  }
+  const double x_end = h + geometry.channel_length_m;
+  BasinOutline outline;
+  outline.ccw_polygon_m = {{-h, -h},   {h, -h}, {h, -w}, {x_end, -w},
+                           {x_end, w}, {h, w},  {h, h},  {-h, h}};
+  outline.wall_edge = {true, true, true, false, true, true, true, true};  // edge 3: the far end
+  return outline;
+}
+
 }  // namespace msislab::sim

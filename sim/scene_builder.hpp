@@ -52,6 +52,18 @@ std::vector<Eigen::Vector2d> wall_foot_polygon(const BasinOutline& outline, doub
 void add_basin(MeshBuilder& builder, const BasinOutline& outline, const BasinProfile& profile,
                std::uint32_t walls_group, std::uint32_t bottom_group);
 
+/// A square basin joined on its east side to a long straight channel, its far end open: the scene
+/// where scan matching along the channel is degenerate (docs/scenes.md, straight_channel).
+struct ChannelBasin {
+  double basin_side_m = 60.0;       ///< square basin centred on the origin, m
+  double channel_length_m = 160.0;  ///< from the basin's east wall eastwards, m
+  double channel_width_m = 16.0;    ///< centred on y = 0, m
+};
+
+/// The outline, counter-clockwise from the basin's south-west corner; every edge a wall but the
+/// channel's far end. Throws std::invalid_argument unless 0 < width < side and length > 0.
+BasinOutline channel_basin_outline(const ChannelBasin& geometry);
+
 /// A closed vertical prism over a convex counter-clockwise footprint from z_low_m to z_top_m,
 /// normals outward.
 void add_prism(MeshBuilder& builder, const std::vector<Eigen::Vector2d>& ccw_footprint_m,

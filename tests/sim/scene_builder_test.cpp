@@ -101,5 +101,44 @@ TEST(SceneBuilder, PrismIsClosedWithOutwardNormals) {
   EXPECT_NEAR(volume_m3, 4.0 * 2.0 * 3.5, 1e-4);
 }
 
+TEST(SceneBuilder, ChannelBasinIsASimpleBasinWithAnOpenFarEnd) {
+  const ChannelBasin geometry;  // 60 m basin, 160 m x 16 m channel
+  const BasinOutline outline = channel_basin_outline(geometry);
+  ASSERT_EQ(outline.ccw_polygon_m.size(), 8u);
+  ASSERT_EQ(outline.wall_edge.size(), 8u);
+  // Shoelace area: the basin plus the channel, counter-clockwise (positive).
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < 8; ++i) {
+    const Eigen::Vector2d& a = outline.ccw_polygon_m[i];
+    const Eigen::Vector2d& b = outline.ccw_polygon_m[(i + 1) % 8];
+    twice_area += a.x() * b.y() - b.x() * a.y();
+  }
+  EXPECT_NEAR(twice_area / 2.0, 60.0 * 60.0 + 160.0 * 16.0, 1e-9);
+  MeshBuilder builder;
+  const auto walls = builder.group("walls", 0.5f, 0.05f);
+  const auto bottom = builder.group("bottom", 0.003f, 0.3f);
+  add_basin(builder, outline, {1.0, -3.4, 0.0}, walls, bottom);
+  const TriangleMesh& mesh = builder.mesh();
+  double wall_length_m = 0.0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Eigen::Vector3d n = normal_of(mesh, t);
+    if (mesh.material_ids[t] == bottom) {
+      EXPECT_GT(n.z(), 0.0);
+      continue;
+    }
+    EXPECT_LT(centre_of(mesh, t).x(), 189.9) << "no wall across the channel's far end";
+    wall_length_m += n.norm() / 2.0 / 4.4;  // area over height: two triangles per wall edge
+    // Channel walls face the channel's axis.
+    const Eigen::Vector3d c = centre_of(mesh, t);
+    if (c.x() > 31.0) {
+      EXPECT_LT(n.y() * c.y(), 0.0);
+    }
+  }
+  // 60 + 22 + 160 (south), 160 + 22 + 60 (north) and 60 (west).
+  EXPECT_NEAR(wall_length_m, 60.0 + 22.0 + 160.0 + 160.0 + 22.0 + 60.0 + 60.0, 1e-3);
+  EXPECT_THROW(channel_basin_outline({60.0, 160.0, 60.0}), std::invalid_argument);
+  EXPECT_THROW(channel_basin_outline({60.0, 0.0, 16.0}), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace msislab::sim

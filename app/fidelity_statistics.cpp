@@ -91,10 +91,6 @@ void add_rotation(const std::vector<DetectedBeam>& beams, const std::vector<doub
   }
 }
 
-}  // namespace
-
-namespace {
-
 /// The nearest run's length of each beam whose neighbouring beam rows in its keyframe have
 /// detections, by the incidence their first ranges give.
 void add_run_lengths(const std::vector<DetectedBeam>& beams, double bin_m, double angle_step_rad,

@@ -64,6 +64,15 @@ void check_keyframe_span(const std::string& path, const std::vector<DetectedBeam
   }
 }
 
+/// Each range's bin, round(range / bin_m), in ascending order.
+std::vector<long> sorted_bins(const std::vector<double>& ranges_m, double bin_m) {
+  std::vector<long> bins;
+  bins.reserve(ranges_m.size());
+  for (const double r : ranges_m) bins.push_back(std::lround(r / bin_m));
+  std::sort(bins.begin(), bins.end());
+  return bins;
+}
+
 std::vector<double> with_zeros(std::vector<double> values, std::size_t size) {
   values.resize(std::max(size, values.size()), 0.0);
   return values;
@@ -92,21 +101,18 @@ void add_rotation(const std::vector<DetectedBeam>& beams, const std::vector<doub
 }
 
 /// The nearest run's length of each beam whose neighbouring beam rows in its keyframe have
-/// detections, by the incidence their first ranges give.
+/// detections, by the incidence their first ranges (stats.first_ranges_m, one per beam) give.
 void add_run_lengths(const std::vector<DetectedBeam>& beams, double bin_m, double angle_step_rad,
                      SonarStatistics& stats) {
-  stats.run_length_by_incidence_m.assign(kIncidenceBands, {});
-  const auto first_range = [](const DetectedBeam& b) {
-    return *std::min_element(b.ranges_m.begin(), b.ranges_m.end());
-  };
+  const std::vector<double>& first_m = stats.first_ranges_m;
   for (std::size_t i = 1; i + 1 < beams.size(); ++i) {
     const DetectedBeam &before = beams[i - 1], &beam = beams[i], &after = beams[i + 1];
     if (before.beam_row + 1 != beam.beam_row || beam.beam_row + 1 != after.beam_row ||
         before.keyframe != beam.keyframe || after.keyframe != beam.keyframe) {
       continue;
     }
-    const double incidence_deg = incidence_from_neighbours_deg(
-        first_range(before), first_range(beam), first_range(after), angle_step_rad);
+    const double incidence_deg =
+        incidence_from_neighbours_deg(first_m[i - 1], first_m[i], first_m[i + 1], angle_step_rad);
     if (!std::isfinite(incidence_deg)) continue;
     const auto band = static_cast<int>(incidence_deg / kIncidenceBand_deg);
     if (band >= kIncidenceBands) continue;
@@ -157,10 +163,7 @@ std::vector<double> band_shares(const std::vector<double>& values_m, double band
 }
 
 int count_runs(const std::vector<double>& ranges_m, double bin_m) {
-  std::vector<long> bins;
-  bins.reserve(ranges_m.size());
-  for (const double r : ranges_m) bins.push_back(std::lround(r / bin_m));
-  std::sort(bins.begin(), bins.end());
+  const std::vector<long> bins = sorted_bins(ranges_m, bin_m);
   int runs = bins.empty() ? 0 : 1;
   for (std::size_t i = 1; i < bins.size(); ++i) runs += bins[i] - bins[i - 1] >= 2;
   return runs;
@@ -168,10 +171,7 @@ int count_runs(const std::vector<double>& ranges_m, double bin_m) {
 
 double first_run_length_m(const std::vector<double>& ranges_m, double bin_m) {
   if (ranges_m.empty()) return 0.0;
-  std::vector<long> bins;
-  bins.reserve(ranges_m.size());
-  for (const double r : ranges_m) bins.push_back(std::lround(r / bin_m));
-  std::sort(bins.begin(), bins.end());
+  const std::vector<long> bins = sorted_bins(ranges_m, bin_m);
   std::size_t last = 0;
   while (last + 1 < bins.size() && bins[last + 1] - bins[last] <= 1) ++last;
   return static_cast<double>(bins[last] - bins[0] + 1) * bin_m;

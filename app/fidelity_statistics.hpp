@@ -83,7 +83,8 @@ struct SonarStatistics {
   /// The nearest run's length of every beam whose two neighbouring beam rows (same keyframe) have
   /// detections, by the incidence incidence_from_neighbours_deg gives it (kIncidenceBands bands
   /// of kIncidenceBand_deg; steeper beams are in none): how an echo smears over an oblique wall.
-  std::vector<std::vector<double>> run_length_by_incidence_m;
+  std::vector<std::vector<double>> run_length_by_incidence_m =
+      std::vector<std::vector<double>>(kIncidenceBands);
 };
 
 /// beam_times_s: the time of every beam row (*_IS_timestamps.log); beams from group_detections;

@@ -91,11 +91,8 @@ void add_run_lengths(FidelityTable& t, const SonarStatistics& real, const SonarS
     const auto band = static_cast<std::size_t>(k);
     const auto lo = static_cast<int>(k * kIncidenceBand_deg);
     const auto hi = static_cast<int>((k + 1) * kIncidenceBand_deg);
-    const auto samples = [&](const SonarStatistics& side) {
-      return band < side.run_length_by_incidence_m.size() ? side.run_length_by_incidence_m[band]
-                                                          : std::vector<double>{};
-    };
-    const std::vector<double> r = samples(real), m = samples(sim);
+    const std::vector<double>& r = real.run_length_by_incidence_m.at(band);
+    const std::vector<double>& m = sim.run_length_by_incidence_m.at(band);
     t.push_back({s,
                  "first_run_length_incidence_" + std::to_string(lo) + "_" + std::to_string(hi) +
                      "_deg_median_m",

@@ -163,6 +163,15 @@ RunOutcome run(const RunOptions& options) {
                                       {"scan_matches_valid", slam->totals.matched},
                                       {"scans_skipped", slam->totals.skipped},
                                       {"compass_accepted", slam->totals.compass_accepted}};
+      const MatchRejectionCounts& rejected = slam->totals.rejections;
+      for (const auto& [name, count] :
+           {std::pair<const char*, int>{"matches_rejected_invalid", rejected.invalid},
+            {"matches_rejected_low_overlap", rejected.low_overlap},
+            {"matches_rejected_ambiguous", rejected.ambiguous},
+            {"matches_rejected_innovation", rejected.innovation},
+            {"matches_direction_dropped", rejected.direction_dropped}}) {
+        outcome.metrics->diagnostics.emplace_back(name, count);
+      }
     }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {

@@ -148,6 +148,22 @@ void read_matching(YamlMap map, ScanMatchConfig& c) {
   map.finish();
 }
 
+void read_validation(YamlMap map, MatchValidationConfig& c) {
+  map.number("restart_offset_m", c.restart_offset_m);
+  if (c.restart_offset_m < 0.0) map.fail("restart_offset_m", "must be >= 0 (0: no restarts)");
+  map.number("max_kept_fraction", c.max_kept_fraction);
+  if (!(c.max_kept_fraction > 0.0 && c.max_kept_fraction < 1.0)) {
+    map.fail("max_kept_fraction", "must be in (0, 1)");
+  }
+  map.number("ambiguity_probability", c.ambiguity_probability);
+  if (!(c.ambiguity_probability > 0.0 && c.ambiguity_probability < 1.0)) {
+    map.fail("ambiguity_probability", "must be in (0, 1)");
+  }
+  map.number("min_overlap", c.min_overlap);
+  if (!(c.min_overlap >= 0.0 && c.min_overlap <= 1.0)) map.fail("min_overlap", "must be in [0, 1]");
+  map.finish();
+}
+
 void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.number("association_distance_m", c.association_distance_m);
   require_positive(map, "association_distance_m", c.association_distance_m);
@@ -161,6 +177,7 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   require_positive(map, "compass_gate_chi2", c.compass_gate_chi2);
   map.boolean("update_whole_state", c.update_whole_state);
   read_matching(map.map("matching"), c.matching);
+  read_validation(map.map("validation"), c.validation);
   map.finish();
 }
 

@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -16,6 +17,13 @@ struct Association {
   std::size_t reference = 0;
 };
 
+/// The largest eigenvalue of a symmetric 2 x 2 matrix.
+double largest_eigenvalue(const Eigen::Matrix2d& m) {
+  const double half_trace = 0.5 * (m(0, 0) + m(1, 1));
+  const double half_diff = 0.5 * (m(0, 0) - m(1, 1));
+  return half_trace + std::sqrt(half_diff * half_diff + m(0, 1) * m(1, 0));
+}
+
 /// E-step: each current point moved by the guess (covariance including the guess's) to its
 /// nearest reference point in Mahalanobis distance, when within the gate; when `reciprocal`, only
 /// the pairs whose current point is also the one nearest to their reference point.
@@ -25,16 +33,25 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
   std::vector<Association> pairs;
   std::vector<double> nearest_d2(reference.size(), std::numeric_limits<double>::infinity());
   std::vector<std::size_t> nearest_current(reference.size(), current.size());
+  // A pair's Mahalanobis distance is at least |d|^2 / lambda_max(S), and lambda_max(S) is at most
+  // lambda_max(C) + the largest lambda_max of the reference covariances: pairs further than that
+  // bound allows are outside the gate and skipped unevaluated (the result is the same).
+  double reference_lambda_max = 0.0;
+  for (const ScanPoint& r : reference) {
+    reference_lambda_max = std::max(reference_lambda_max, largest_eigenvalue(r.cov));
+  }
   for (std::size_t j = 0; j < current.size(); ++j) {
     Matrix23d J_q;
     Eigen::Matrix2d J_p;
     const Eigen::Vector2d moved = q.mean.transform(current[j].p_m, &J_q, &J_p);
     const Eigen::Matrix2d C =
         J_q * q.cov * J_q.transpose() + J_p * current[j].cov * J_p.transpose();
+    const double reach2 = gate_chi2 * (largest_eigenvalue(C) + reference_lambda_max);
     double best = gate_chi2;
     std::size_t best_i = reference.size();
     for (std::size_t i = 0; i < reference.size(); ++i) {
       const Eigen::Vector2d d = moved - reference[i].p_m;
+      if (d.squaredNorm() > reach2) continue;
       const Eigen::Matrix2d S = C + reference[i].cov;
       const double d2 = d.dot(S.inverse() * d);
       if (d2 < best) best = d2, best_i = i;

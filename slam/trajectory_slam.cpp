@@ -4,6 +4,8 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 
 namespace msislab {
 
@@ -23,7 +25,36 @@ std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
   return finite;
 }
 
+/// The innovation gate for d observed directions at the tail probability of the configured
+/// 3-DOF gate (chi-square, 99 % by default): 3 DOF keeps the configured value.
+double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
+  if (d == 3) return gate_3dof;
+  const double tail = std::erfc(std::sqrt(gate_3dof / 2.0)) +
+                      std::sqrt(2.0 * gate_3dof / M_PI) * std::exp(-gate_3dof / 2.0);
+  return chi2_quantile(1.0 - tail, static_cast<int>(d));
+}
+
 }  // namespace
+
+void MatchRejectionCounts::count(const ValidatedMatch& match) {
+  switch (match.rejection) {
+    case MatchRejection::kNone:
+      direction_dropped += match.direction_dropped;
+      break;
+    case MatchRejection::kInvalid:
+      ++invalid;
+      break;
+    case MatchRejection::kLowOverlap:
+      ++low_overlap;
+      break;
+    case MatchRejection::kAmbiguous:
+      ++ambiguous;
+      break;
+    case MatchRejection::kInnovation:
+      ++innovation;
+      break;
+  }
+}
 
 TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
     : config_(config), start_world_(start_world) {}
@@ -85,10 +116,18 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
     GaussianPose2 guess;
     guess.mean = relative_pose(j, k, &H);
     guess.cov = propagate(j + 1, H);
-    const ScanMatchResult match = match_scans(points_[j], points_[k], guess, config_.matching);
-    if (!match.valid) continue;
-    ++stats.matched;
-    if (update_match(j, k, match.estimate, stats.window_elements)) ++stats.accepted;
+    ValidatedMatch match =
+        match_and_validate(points_[j], points_[k], guess, config_.matching, config_.validation);
+    if (match.match.valid) ++stats.matched;
+    if (match.rejection == MatchRejection::kNone) {
+      if (update_match(j, k, match.match.estimate, match.observed, stats.window_elements)) {
+        ++stats.accepted;
+      } else {
+        match.rejection = MatchRejection::kInnovation;
+      }
+    }
+    stats.rejections.count(match);
+    totals_.rejections.count(match);
   }
   totals_.candidates += stats.candidates;
   totals_.matched += stats.matched;
@@ -148,12 +187,19 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
 }
 
 bool TrajectorySlam::update_match(std::size_t a, std::size_t b, const GaussianPose2& z,
-                                  int& window_elements) {
-  // z = spIC(scan_a, scan_b) observes h(X) = the pose of scan b in scan a (Eq. 5-8).
+                                  const Eigen::MatrixXd& observed, int& window_elements) {
+  // z = spIC(scan_a, scan_b) observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the
+  // directions A = `observed` validated: A (z - h(X)), Jacobian A H, covariance A R A^T.
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
-    return pose_difference(z.mean, relative_pose(a, b, H));
+    Eigen::MatrixXd H_full;
+    const Eigen::Vector3d r = pose_difference(z.mean, relative_pose(a, b, &H_full));
+    *H = observed * H_full;
+    return observed * r;
   };
-  return update(a + 1, b, residual, z.cov, config_.innovation_gate_chi2, window_elements);
+  const Eigen::MatrixXd R = observed * z.cov * observed.transpose();
+  return update(a + 1, b, residual, R,
+                gate_for_dimensions(config_.innovation_gate_chi2, observed.rows()),
+                window_elements);
 }
 
 bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double sigma_rad,

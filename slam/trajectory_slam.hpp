@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
+#include "slam/match_validation.hpp"
 #include "slam/scan_builder.hpp"
 #include "slam/scan_matching.hpp"
 
@@ -40,13 +41,27 @@ struct TrajectorySlamConfig {
   /// checks and timing).
   bool update_whole_state = false;
   ScanMatchConfig matching;
+  MatchValidationConfig validation;  ///< checks a match passes before the update (Sec. below)
+};
+
+/// Matches that did not reach the state, by reason, and those that reached it with a direction
+/// left out (match_validation.hpp).
+struct MatchRejectionCounts {
+  int invalid = 0;
+  int low_overlap = 0;
+  int ambiguous = 0;
+  int innovation = 0;
+  int direction_dropped = 0;  ///< accepted, observing 2 of the 3 directions
+
+  void count(const ValidatedMatch& match);
 };
 
 /// What one step did.
 struct SlamStepStats {
   int candidates = 0;
   int matched = 0;   ///< spIC valid
-  int accepted = 0;  ///< passed the innovation gate and updated the state
+  int accepted = 0;  ///< passed the validation and the innovation gate and updated the state
+  MatchRejectionCounts rejections;
   /// The scan could not be matched (too few finite points) or its motion was not finite; the step
   /// only predicted.
   bool skipped = false;
@@ -62,6 +77,7 @@ struct SlamTotals {
   int matched = 0;
   int accepted = 0;
   int compass_accepted = 0;
+  MatchRejectionCounts rejections;
 };
 
 class TrajectorySlam {
@@ -114,7 +130,9 @@ class TrajectorySlam {
   template <class Residual>
   bool update(std::size_t first, std::size_t b, const Residual& residual, const Eigen::MatrixXd& R,
               double gate_chi2, int& window_elements);
-  bool update_match(std::size_t a, std::size_t b, const GaussianPose2& z, int& window_elements);
+  /// z observes h(X) in the directions whose rows `observed` holds (A z ~ A h(X), A R A^T).
+  bool update_match(std::size_t a, std::size_t b, const GaussianPose2& z,
+                    const Eigen::MatrixXd& observed, int& window_elements);
   bool update_compass(std::size_t b, double yaw_world_rad, double sigma_rad, int& window_elements);
 
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group

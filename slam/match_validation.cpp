@@ -1,0 +1,127 @@
+#include "slam/match_validation.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <algorithm>
+#include <cmath>
+
+#include "slam/line_normals.hpp"
+
+namespace msislab {
+
+std::string rejection_name(MatchRejection rejection) {
+  switch (rejection) {
+    case MatchRejection::kNone:
+      return "none";
+    case MatchRejection::kInvalid:
+      return "invalid";
+    case MatchRejection::kLowOverlap:
+      return "low_overlap";
+    case MatchRejection::kAmbiguous:
+      return "ambiguous";
+    case MatchRejection::kInnovation:
+      return "innovation";
+  }
+  return "none";
+}
+
+ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
+                                  const std::vector<ScanPoint>& current, const GaussianPose2& guess,
+                                  const ScanMatchConfig& matching,
+                                  const MatchValidationConfig& validation) {
+  ValidatedMatch out;
+  out.match = match_scans(reference, current, guess, matching);
+  if (!out.match.valid) {
+    out.rejection = MatchRejection::kInvalid;
+    return out;
+  }
+  const double smaller = static_cast<double>(std::min(reference.size(), current.size()));
+  if (validation.min_overlap > 0.0 && out.match.inliers < validation.min_overlap * smaller) {
+    out.rejection = MatchRejection::kLowOverlap;
+    return out;
+  }
+  if (validation.restart_offset_m <= 0.0) return out;
+
+  // u: the translation direction the reference's walls constrain least (the normals' scatter
+  // sum n n^T is smallest along a corridor's axis); v across it. With too few wall-like points to
+  // tell, u and v are the axes of the match's covariance and both are tested.
+  const GaussianPose2& q = out.match.estimate;
+  Eigen::Matrix2d normal_scatter = Eigen::Matrix2d::Zero();
+  int walls = 0;
+  for (const Eigen::Vector2d& n : line_normals(reference, matching.line)) {
+    if (n.squaredNorm() > 0.0) normal_scatter += n * n.transpose(), ++walls;
+  }
+  const bool from_walls = walls >= matching.min_inliers;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(
+      from_walls ? normal_scatter : Eigen::Matrix2d(q.cov.topLeftCorner<2, 2>()));
+  const Eigen::Vector2d u = eigen.eigenvectors().col(from_walls ? 0 : 1);
+  // Rows of the frame (u, v, yaw) in which the restarts are compared.
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Zero();
+  frame.block<1, 2>(0, 0) = u.transpose();
+  frame.block<1, 2>(1, 0) = Eigen::Vector2d(-u.y(), u.x()).transpose();
+  frame(2, 2) = 1.0;
+
+  // Each restart's end against the solution, in the frame.
+  const Eigen::Matrix3d C = frame * q.cov * frame.transpose();
+  std::vector<Eigen::Vector3d> ends;
+  bool slid[2] = {false, false};
+  for (int axis = 0; axis < (from_walls ? 1 : 2); ++axis) {
+    const double offset_m = std::max(validation.restart_offset_m, 3.0 * std::sqrt(C(axis, axis)));
+    for (const double side : {1.0, -1.0}) {
+      // From the solution moved by the offset, the guess's covariance widened along the axis so
+      // the offset is two standard deviations there: the association gate reaches the true
+      // counterparts from the restart.
+      const Eigen::Vector3d step = offset_m * frame.row(axis).transpose();
+      GaussianPose2 start = guess;
+      start.mean = Pose2(q.mean.vector() + side * step);
+      start.cov += 0.25 * step * step.transpose();
+      const ScanMatchResult restart = match_scans(reference, current, start, matching);
+      ++out.restarts;
+      if (!restart.valid) continue;  // no minimum from there: no evidence either way
+      const Eigen::Vector3d d = frame * pose_difference(restart.estimate.mean, q.mean);
+      if (std::abs(d(axis)) > validation.max_kept_fraction * offset_m) slid[axis] = true;
+      ends.push_back(d);
+    }
+  }
+  // The directions observed: yaw, and each axis no restart slid along.
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index axis = 0; axis < 2; ++axis) {
+    if (!slid[axis]) kept.push_back(axis);
+  }
+  kept.push_back(2);
+  // In those directions every restart must end where the solution is.
+  const double gate =
+      chi2_quantile(validation.ambiguity_probability, static_cast<int>(kept.size()));
+  const Eigen::MatrixXd C_kept = C(kept, kept);
+  for (const Eigen::Vector3d& end : ends) {
+    const Eigen::VectorXd d = end(kept);
+    if (d.dot(C_kept.ldlt().solve(d)) > gate) {
+      out.rejection = MatchRejection::kAmbiguous;
+      return out;
+    }
+  }
+  if (kept.size() < 3) {
+    out.observed = frame(kept, Eigen::all);
+    out.direction_dropped = true;
+  }
+  return out;
+}
+
+double chi2_quantile(double p, int dof) {
+  // The survival function of chi-square with 1, 2 or 3 degrees of freedom in closed form,
+  // decreasing in x: bisection for Q(x) = 1 - p.
+  const auto survival = [dof](double x) {
+    const double erfc_term = std::erfc(std::sqrt(x / 2.0));
+    if (dof == 1) return erfc_term;
+    if (dof == 2) return std::exp(-x / 2.0);
+    return erfc_term + std::sqrt(2.0 * x / M_PI) * std::exp(-x / 2.0);
+  };
+  double lo = 0.0, hi = 200.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (survival(mid) > 1.0 - p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace msislab

@@ -1,0 +1,193 @@
+// Match validation: chi-square quantiles; a corridor match keeps only the directions the walls
+// fix, and a corridor match started metres off along the axis does not move the filter there; a
+// match in rich geometry keeps all three; bad matches are rejected with their reason.
+#include "slam/match_validation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+#include <cmath>
+#include <random>
+
+#include "slam/robocentric_slam.hpp"
+
+namespace msislab {
+namespace {
+
+std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, double sigma_m,
+                             std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, sigma_m);
+  std::vector<ScanPoint> out;
+  for (const auto& p : points) {
+    ScanPoint sp;
+    sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
+    sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
+    sp.cov_reading = sp.cov;
+    out.push_back(sp);
+  }
+  return out;
+}
+
+/// A straight corridor with smooth walls at y = +-8 m in the frame of a sensor at x0 along it,
+/// sampled at bearings every 2 deg out to 30 m (so the sampling moves with the sensor, as a
+/// sonar's does), seen from a sensor at (x0, 0) with heading yaw.
+std::vector<Eigen::Vector2d> corridor_seen_from(const Pose2& sensor_world) {
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i < 180; ++i) {
+    const double bearing = (2.0 * i + 1.0) * M_PI / 180.0;  // world-frame bearing
+    const double s = std::sin(bearing);
+    if (std::abs(s) < 0.27) continue;  // beyond 30 m along the walls
+    const double range_m =
+        (s > 0.0 ? 8.0 - sensor_world.y() : 8.0 + sensor_world.y()) / std::abs(s);
+    const Eigen::Vector2d p_world =
+        sensor_world.translation() + range_m * Eigen::Vector2d(std::cos(bearing), s);
+    points.push_back(sensor_world.inverse().transform(p_world));
+  }
+  return points;
+}
+
+/// A harbour-like corner: three walls sampled every 0.5 m.
+std::vector<Eigen::Vector2d> corner_walls() {
+  std::vector<Eigen::Vector2d> points;
+  for (double s = -10.0; s <= 15.0; s += 0.5) points.emplace_back(s, 12.0);
+  for (double s = -8.0; s <= 12.0; s += 0.5) points.emplace_back(15.0, s);
+  for (double s = 0.0; s <= 6.0; s += 0.5) points.emplace_back(-4.0 + s, -8.0 + s);
+  return points;
+}
+
+GaussianPose2 guess_at(const Pose2& mean, double sigma_m, double sigma_rad) {
+  GaussianPose2 g;
+  g.mean = mean;
+  g.cov = Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad).asDiagonal();
+  return g;
+}
+
+TEST(MatchValidation, ChiSquareQuantilesMatchTheTables) {
+  EXPECT_NEAR(chi2_quantile(0.99, 1), 6.635, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.99, 2), 9.210, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.99, 3), 11.345, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.95, 3), 7.815, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.95, 1), 3.841, 1e-3);
+}
+
+TEST(MatchValidation, ACorridorMatchKeepsOnlyTheDirectionsTheWallsFix) {
+  std::mt19937 rng(5);
+  const Pose2 reference_world(0.0, 0.5, 0.0), current_world(3.0, -0.5, 0.03);
+  const Pose2 q_true = reference_world.inverse().compose(current_world);
+  const auto reference = noisy(corridor_seen_from(reference_world), 0.05, rng);
+  const auto current = noisy(corridor_seen_from(current_world), 0.05, rng);
+  // Started 3 m short along the axis (a prediction that is wrong there).
+  const GaussianPose2 guess =
+      guess_at(Pose2(q_true.x() - 3.0, q_true.y(), q_true.yaw()), 0.6, 0.02);
+
+  // Without validation spIC "confirms" the wrong start: it stays metres off along the axis and
+  // reports a covariance that excludes the truth there.
+  MatchValidationConfig off;
+  off.restart_offset_m = 0.0;
+  const ValidatedMatch plain = match_and_validate(reference, current, guess, {}, off);
+  ASSERT_EQ(plain.rejection, MatchRejection::kNone);
+  const double error_x_m = plain.match.estimate.mean.x() - q_true.x();
+  EXPECT_GT(std::abs(error_x_m), 1.0);
+  EXPECT_GT(error_x_m * error_x_m / plain.match.estimate.cov(0, 0), 6.63);
+  EXPECT_FALSE(plain.direction_dropped);
+
+  const ValidatedMatch checked = match_and_validate(reference, current, guess, {}, {});
+  ASSERT_EQ(checked.rejection, MatchRejection::kNone);
+  ASSERT_TRUE(checked.direction_dropped);
+  ASSERT_EQ(checked.observed.rows(), 2);
+  EXPECT_EQ(checked.restarts, 2);  // the walls tell the axis: one direction tested
+  // The rows kept are across the corridor and the heading: nothing along x.
+  EXPECT_LT(checked.observed.col(0).norm(), 0.1);
+  // And in those directions the match is right.
+  const Eigen::Vector2d e = checked.observed * pose_difference(checked.match.estimate.mean, q_true);
+  const Eigen::Matrix2d S =
+      checked.observed * checked.match.estimate.cov * checked.observed.transpose();
+  EXPECT_LT(e.dot(S.inverse() * e), 9.21);
+}
+
+TEST(MatchValidation, ARichSceneKeepsEveryDirection) {
+  std::mt19937 rng(3);
+  const Pose2 q_true(1.2, -0.6, 0.15);
+  const auto world = corner_walls();
+  std::vector<Eigen::Vector2d> seen_from_current;
+  for (const auto& p : world) seen_from_current.push_back(q_true.inverse().transform(p));
+  for (int trial = 0; trial < 10; ++trial) {
+    const auto reference = noisy(world, 0.05, rng);
+    const auto current = noisy(seen_from_current, 0.05, rng);
+    const GaussianPose2 guess =
+        guess_at(Pose2(q_true.x() + 0.3, q_true.y() - 0.2, q_true.yaw() + 0.03), 0.4, 0.08);
+    const ValidatedMatch m = match_and_validate(reference, current, guess, {}, {});
+    ASSERT_EQ(m.rejection, MatchRejection::kNone) << "trial " << trial;
+    EXPECT_FALSE(m.direction_dropped) << "trial " << trial;
+    EXPECT_TRUE(m.observed.isApprox(Eigen::Matrix3d::Identity())) << "trial " << trial;
+    EXPECT_GE(m.restarts, 2);
+  }
+}
+
+TEST(MatchValidation, RejectionsCarryTheirReason) {
+  std::mt19937 rng(1);
+  const auto reference = noisy(corner_walls(), 0.05, rng);
+  const GaussianPose2 guess = guess_at(Pose2(), 0.1, 0.01);
+  // Nothing in common: too few associations.
+  std::vector<Eigen::Vector2d> far_away;
+  for (const auto& p : corner_walls()) far_away.push_back(p + Eigen::Vector2d(200.0, 0.0));
+  EXPECT_EQ(match_and_validate(reference, noisy(far_away, 0.05, rng), guess, {}, {}).rejection,
+            MatchRejection::kInvalid);
+  // The current scan sees only the west part of the corner, and a wall the reference does not:
+  // about a third of the smaller scan is associated.
+  std::vector<Eigen::Vector2d> partial;
+  for (const auto& p : corner_walls()) {
+    if (p.x() < 2.0) partial.push_back(p);
+  }
+  for (double s = -60.0; s <= -20.0; s += 0.5) partial.emplace_back(s, -30.0 + 0.3 * s);
+  const auto current = noisy(partial, 0.05, rng);
+  MatchValidationConfig overlap;
+  overlap.min_overlap = 0.9;
+  const ValidatedMatch low = match_and_validate(reference, current, guess, {}, overlap);
+  EXPECT_EQ(low.rejection, MatchRejection::kLowOverlap);
+  EXPECT_LT(low.match.inliers, 0.5 * static_cast<double>(reference.size()));
+  EXPECT_NE(match_and_validate(reference, current, guess, {}, {}).rejection,
+            MatchRejection::kLowOverlap);
+  EXPECT_EQ(rejection_name(MatchRejection::kLowOverlap), "low_overlap");
+  EXPECT_EQ(rejection_name(MatchRejection::kAmbiguous), "ambiguous");
+}
+
+/// Two scans in the corridor, the dead-reckoning motion between them 3 m short: the filter's
+/// along-axis estimate must stay with dead reckoning (not be "confirmed" by the match), while the
+/// walls correct the cross-axis position.
+TEST(MatchValidation, AWrongCorridorMatchDoesNotMoveTheFilterAlongTheAxis) {
+  std::mt19937 rng(7);
+  const Pose2 first_world(0.0, 0.5, 0.0), second_world(5.0, -0.5, 0.0);
+  Scan first, second;
+  first.points = noisy(corridor_seen_from(first_world), 0.05, rng);
+  first.motion = guess_at(Pose2(), 1e-3, 1e-4);
+  second.points = noisy(corridor_seen_from(second_world), 0.05, rng);
+  const Pose2 true_motion = first_world.inverse().compose(second_world);
+  // Dead reckoning: 3 m short and 0.8 m off across, with a 1 m standard deviation per axis.
+  second.motion = guess_at(Pose2(true_motion.x() - 3.0, true_motion.y() + 0.8, 0.0), 1.0, 0.01);
+  for (const bool validate : {false, true}) {
+    TrajectorySlamConfig config;
+    config.compass_updates = false;
+    if (!validate) config.validation.restart_offset_m = 0.0;
+    RoboCentricSlam slam(config, GaussianPose2{first_world, first.motion.cov});
+    slam.add_scan(first);
+    const SlamStepStats stats = slam.add_scan(second);
+    ASSERT_EQ(stats.accepted, 1) << "validate " << validate;
+    const GaussianPose2 estimate = slam.scan_pose_world(1);
+    const double along_m = estimate.mean.x() - second_world.x();
+    const double across_m = estimate.mean.y() - second_world.y();
+    if (validate) {
+      EXPECT_EQ(stats.rejections.direction_dropped, 1);
+      EXPECT_NEAR(along_m, -3.0, 0.2);                 // dead reckoning's value, untouched
+      EXPECT_GT(std::sqrt(estimate.cov(0, 0)), 0.95);  // and its uncertainty
+      EXPECT_LT(std::abs(across_m), 0.3);              // the walls fix y
+      EXPECT_LT(along_m * along_m / estimate.cov(0, 0), 11.34);  // consistent
+    } else {
+      // Without validation the match shrinks the along-axis variance around the wrong value.
+      EXPECT_GT(along_m * along_m / estimate.cov(0, 0), 11.34);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace msislab

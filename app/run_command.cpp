@@ -163,15 +163,14 @@ RunOutcome run(const RunOptions& options) {
                                       {"scan_matches_valid", slam->totals.matched},
                                       {"scans_skipped", slam->totals.skipped},
                                       {"compass_accepted", slam->totals.compass_accepted}};
-      const MatchRejectionCounts& rejected = slam->totals.rejections;
-      for (const auto& [name, count] :
-           {std::pair<const char*, int>{"matches_rejected_invalid", rejected.invalid},
-            {"matches_rejected_low_overlap", rejected.low_overlap},
-            {"matches_rejected_ambiguous", rejected.ambiguous},
-            {"matches_rejected_innovation", rejected.innovation},
-            {"matches_direction_dropped", rejected.direction_dropped}}) {
-        outcome.metrics->diagnostics.emplace_back(name, count);
+      const MatchRejectionCounts& counts = slam->totals.rejections;
+      for (int reason = 1; reason < kMatchRejectionReasons; ++reason) {
+        outcome.metrics->diagnostics.emplace_back(
+            "matches_rejected_" + rejection_name(static_cast<MatchRejection>(reason)),
+            counts.rejected[static_cast<std::size_t>(reason)]);
       }
+      outcome.metrics->diagnostics.emplace_back("matches_direction_dropped",
+                                                counts.direction_dropped);
     }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {

@@ -1,5 +1,6 @@
 #include "slam/match_validation.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <algorithm>
@@ -92,10 +93,10 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
   // In those directions every restart must end where the solution is.
   const double gate =
       chi2_quantile(validation.ambiguity_probability, static_cast<int>(kept.size()));
-  const Eigen::MatrixXd C_kept = C(kept, kept);
+  const Eigen::LDLT<Eigen::MatrixXd> C_kept(C(kept, kept));
   for (const Eigen::Vector3d& end : ends) {
     const Eigen::VectorXd d = end(kept);
-    if (d.dot(C_kept.ldlt().solve(d)) > gate) {
+    if (d.dot(C_kept.solve(d)) > gate) {
       out.rejection = MatchRejection::kAmbiguous;
       return out;
     }
@@ -107,19 +108,19 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
   return out;
 }
 
+double chi2_survival(double x, int dof) {
+  const double erfc_term = std::erfc(std::sqrt(x / 2.0));
+  if (dof == 1) return erfc_term;
+  if (dof == 2) return std::exp(-x / 2.0);
+  return erfc_term + std::sqrt(2.0 * x / M_PI) * std::exp(-x / 2.0);
+}
+
 double chi2_quantile(double p, int dof) {
-  // The survival function of chi-square with 1, 2 or 3 degrees of freedom in closed form,
-  // decreasing in x: bisection for Q(x) = 1 - p.
-  const auto survival = [dof](double x) {
-    const double erfc_term = std::erfc(std::sqrt(x / 2.0));
-    if (dof == 1) return erfc_term;
-    if (dof == 2) return std::exp(-x / 2.0);
-    return erfc_term + std::sqrt(2.0 * x / M_PI) * std::exp(-x / 2.0);
-  };
+  // The survival function decreases in x: bisection for Q(x) = 1 - p.
   double lo = 0.0, hi = 200.0;
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
-    (survival(mid) > 1.0 - p ? lo : hi) = mid;
+    (chi2_survival(mid, dof) > 1.0 - p ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
 }

@@ -53,6 +53,7 @@ enum class MatchRejection {
   kAmbiguous,   ///< restarts from either side end at minima the covariance does not allow
   kInnovation,  ///< the filter's innovation gate: the match disagrees with the prediction
 };
+constexpr int kMatchRejectionReasons = 5;  ///< the values of MatchRejection, kNone included
 
 /// "invalid", "low_overlap", "ambiguous", "innovation" (diagnostics key suffixes).
 std::string rejection_name(MatchRejection rejection);
@@ -72,6 +73,9 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
                                   const std::vector<ScanPoint>& current, const GaussianPose2& guess,
                                   const ScanMatchConfig& matching,
                                   const MatchValidationConfig& validation);
+
+/// P(X > x) for X chi-square with dof = 1, 2 or 3 degrees of freedom (closed forms).
+double chi2_survival(double x, int dof);
 
 /// The p-quantile of the chi-square distribution with dof = 1, 2 or 3 degrees of freedom.
 double chi2_quantile(double p, int dof);

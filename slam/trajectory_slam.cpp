@@ -29,30 +29,16 @@ std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
 /// 3-DOF gate (chi-square, 99 % by default): 3 DOF keeps the configured value.
 double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
   if (d == 3) return gate_3dof;
-  const double tail = std::erfc(std::sqrt(gate_3dof / 2.0)) +
-                      std::sqrt(2.0 * gate_3dof / M_PI) * std::exp(-gate_3dof / 2.0);
-  return chi2_quantile(1.0 - tail, static_cast<int>(d));
+  return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<int>(d));
 }
 
 }  // namespace
 
 void MatchRejectionCounts::count(const ValidatedMatch& match) {
-  switch (match.rejection) {
-    case MatchRejection::kNone:
-      direction_dropped += match.direction_dropped;
-      break;
-    case MatchRejection::kInvalid:
-      ++invalid;
-      break;
-    case MatchRejection::kLowOverlap:
-      ++low_overlap;
-      break;
-    case MatchRejection::kAmbiguous:
-      ++ambiguous;
-      break;
-    case MatchRejection::kInnovation:
-      ++innovation;
-      break;
+  if (match.rejection == MatchRejection::kNone) {
+    direction_dropped += match.direction_dropped;
+  } else {
+    ++rejected[static_cast<std::size_t>(match.rejection)];
   }
 }
 

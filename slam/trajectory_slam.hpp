@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -47,10 +48,7 @@ struct TrajectorySlamConfig {
 /// Matches that did not reach the state, by reason, and those that reached it with a direction
 /// left out (match_validation.hpp).
 struct MatchRejectionCounts {
-  int invalid = 0;
-  int low_overlap = 0;
-  int ambiguous = 0;
-  int innovation = 0;
+  std::array<int, kMatchRejectionReasons> rejected{};  ///< by MatchRejection (kNone stays 0)
   int direction_dropped = 0;  ///< accepted, observing 2 of the 3 directions
 
   void count(const ValidatedMatch& match);

@@ -9,24 +9,15 @@
 #include <cmath>
 #include <random>
 
+#include "scan_fixtures.hpp"
+
 #include "slam/robocentric_slam.hpp"
 
 namespace msislab {
 namespace {
 
-std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, double sigma_m,
-                             std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, sigma_m);
-  std::vector<ScanPoint> out;
-  for (const auto& p : points) {
-    ScanPoint sp;
-    sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
-    sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
-    sp.cov_reading = sp.cov;
-    out.push_back(sp);
-  }
-  return out;
-}
+using testing_scans::corner_walls;
+using testing_scans::noisy;
 
 /// A straight corridor with smooth walls at y = +-8 m in the frame of a sensor at x0 along it,
 /// sampled at bearings every 2 deg out to 30 m (so the sampling moves with the sensor, as a
@@ -43,15 +34,6 @@ std::vector<Eigen::Vector2d> corridor_seen_from(const Pose2& sensor_world) {
         sensor_world.translation() + range_m * Eigen::Vector2d(std::cos(bearing), s);
     points.push_back(sensor_world.inverse().transform(p_world));
   }
-  return points;
-}
-
-/// A harbour-like corner: three walls sampled every 0.5 m.
-std::vector<Eigen::Vector2d> corner_walls() {
-  std::vector<Eigen::Vector2d> points;
-  for (double s = -10.0; s <= 15.0; s += 0.5) points.emplace_back(s, 12.0);
-  for (double s = -8.0; s <= 12.0; s += 0.5) points.emplace_back(15.0, s);
-  for (double s = 0.0; s <= 6.0; s += 0.5) points.emplace_back(-4.0 + s, -8.0 + s);
   return points;
 }
 

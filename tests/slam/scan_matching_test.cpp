@@ -10,31 +10,13 @@
 #include <iostream>
 #include <random>
 
+#include "scan_fixtures.hpp"
+
 namespace msislab {
 namespace {
 
-/// A harbour-like corner: three walls sampled every 0.5 m, in the reference frame.
-std::vector<Eigen::Vector2d> corner_walls() {
-  std::vector<Eigen::Vector2d> points;
-  for (double s = -10.0; s <= 15.0; s += 0.5) points.emplace_back(s, 12.0);          // north wall
-  for (double s = -8.0; s <= 12.0; s += 0.5) points.emplace_back(15.0, s);           // east wall
-  for (double s = 0.0; s <= 6.0; s += 0.5) points.emplace_back(-4.0 + s, -8.0 + s);  // a mole
-  return points;
-}
-
-std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, double sigma_m,
-                             std::mt19937& rng) {
-  std::normal_distribution<double> n(0.0, sigma_m);
-  std::vector<ScanPoint> out;
-  for (const auto& p : points) {
-    ScanPoint sp;
-    sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
-    sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
-    sp.cov_reading = sp.cov;  // all of it is the point's own noise
-    out.push_back(sp);
-  }
-  return out;
-}
+using testing_scans::corner_walls;
+using testing_scans::noisy;
 
 TEST(ScanMatching, AverageChiSquareBoundsMatchTheTables) {
   // ../shared/docs/field-notes.md: N=25 [2.12, 4.03], N=50 [2.36, 3.72], N=100 [2.54, 3.50].

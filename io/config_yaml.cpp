@@ -175,6 +175,8 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.boolean("compass_updates", c.compass_updates);
   map.number("compass_gate_chi2", c.compass_gate_chi2);
   require_positive(map, "compass_gate_chi2", c.compass_gate_chi2);
+  map.boolean("joint_update", c.joint_update);
+  map.boolean("match_cross_covariance", c.match_cross_covariance);
   map.boolean("update_whole_state", c.update_whole_state);
   read_matching(map.map("matching"), c.matching);
   read_validation(map.map("validation"), c.validation);

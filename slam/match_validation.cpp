@@ -109,15 +109,20 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
 }
 
 double chi2_survival(double x, int dof) {
-  const double erfc_term = std::erfc(std::sqrt(x / 2.0));
-  if (dof == 1) return erfc_term;
-  if (dof == 2) return std::exp(-x / 2.0);
-  return erfc_term + std::sqrt(2.0 * x / M_PI) * std::exp(-x / 2.0);
+  // Q(x; 1) = erfc(sqrt(x / 2)), Q(x; 2) = exp(-x / 2), and
+  // Q(x; k + 2) = Q(x; k) + (x / 2)^(k / 2) exp(-x / 2) / Gamma(k / 2 + 1).
+  const int first = dof % 2 == 1 ? 1 : 2;
+  double q = first == 1 ? std::erfc(std::sqrt(x / 2.0)) : std::exp(-x / 2.0);
+  for (int k = first; k + 2 <= dof; k += 2) {
+    q += std::exp(0.5 * k * std::log(x / 2.0) - x / 2.0 - std::lgamma(0.5 * k + 1.0));
+  }
+  return q;
 }
 
 double chi2_quantile(double p, int dof) {
   // The survival function decreases in x: bisection for Q(x) = 1 - p.
-  double lo = 0.0, hi = 200.0;
+  double lo = 0.0, hi = 2.0 * dof + 50.0;
+  while (chi2_survival(hi, dof) > 1.0 - p) hi *= 2.0;
   for (int i = 0; i < 200; ++i) {
     const double mid = 0.5 * (lo + hi);
     (chi2_survival(mid, dof) > 1.0 - p ? lo : hi) = mid;

@@ -74,10 +74,11 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
                                   const ScanMatchConfig& matching,
                                   const MatchValidationConfig& validation);
 
-/// P(X > x) for X chi-square with dof = 1, 2 or 3 degrees of freedom (closed forms).
+/// P(X > x) for X chi-square with dof >= 1 degrees of freedom (closed forms: erfc or exp, then
+/// the recurrence in dof).
 double chi2_survival(double x, int dof);
 
-/// The p-quantile of the chi-square distribution with dof = 1, 2 or 3 degrees of freedom.
+/// The p-quantile of the chi-square distribution with dof >= 1 degrees of freedom.
 double chi2_quantile(double p, int dof);
 
 }  // namespace msislab

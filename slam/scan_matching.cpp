@@ -160,6 +160,29 @@ Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
   return 0.5 * (cov + cov.transpose());
 }
 
+/// The loading of dq = -H^-1 sum_j G_j de_j on the current scan's errors (shared_error_covariance
+/// above): -H^-1 G_j J_p on point j's noise, -H^-1 sum G_j J_p D_j on its half's xi, times `scale`.
+CurrentScanLoading current_scan_loading(const std::vector<ScanPoint>& reference,
+                                        const ReferenceGeometry& geometry,
+                                        const std::vector<ScanPoint>& current, const Pose2& q,
+                                        const std::vector<Association>& pairs,
+                                        const Eigen::Matrix3d& H_inverse, bool shared_point_errors,
+                                        double scale) {
+  CurrentScanLoading loading;
+  loading.whole_point_covariance = !shared_point_errors;
+  loading.point.assign(current.size(), Eigen::Matrix<double, 3, 2>::Zero());
+  const Eigen::Matrix3d minus_H_inverse = -scale * H_inverse;
+  for (const Association& a : pairs) {
+    const ScanPoint& p = current[a.current];
+    const PairResidual pr = pair_residual(reference[a.reference], p, geometry.sampling[a.reference],
+                                          geometry.normals[a.reference], q);
+    const Eigen::Matrix<double, 3, 2> G_J_p = pr.J_q.transpose() * pr.Omega * pr.J_p;
+    loading.point[a.current] = minus_H_inverse * G_J_p;
+    if (shared_point_errors) loading.half[p.side == 1] += minus_H_inverse * G_J_p * p.distortion;
+  }
+  return loading;
+}
+
 /// The sampling error of point-to-point residuals: a surface sampled every d metres has the true
 /// counterpart of a point anywhere within +-d/2 along it, a variance of d^2/12 along the direction
 /// u to the nearest neighbour: (d^2 / 12) u u^T per reference point.
@@ -225,11 +248,35 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
                                                   result.estimate.cov);
   }
   const double dof = eq.residuals - 3.0;
+  double variance_factor = 1.0;
   if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
-    result.estimate.cov *= eq.chi2 / dof;
+    variance_factor = eq.chi2 / dof;
+    result.estimate.cov *= variance_factor;
   }
+  result.current_loading =
+      current_scan_loading(reference, for_covariance, current, q.mean, pairs, eq.H.inverse(),
+                           config.shared_point_errors, std::sqrt(variance_factor));
   result.valid = true;
   return result;
+}
+
+Eigen::Matrix3d shared_current_covariance(const ScanMatchResult& a, const ScanMatchResult& b,
+                                          const std::vector<ScanPoint>& current) {
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  const CurrentScanLoading& la = a.current_loading;
+  const CurrentScanLoading& lb = b.current_loading;
+  if (la.point.size() != current.size() || lb.point.size() != current.size()) return cov;
+  // Each match takes a point's error as the model it was built with: when one of them holds the
+  // points independent, the whole covariance is its noise, and no half-scan term is shared.
+  const bool whole = la.whole_point_covariance || lb.whole_point_covariance;
+  for (std::size_t j = 0; j < current.size(); ++j) {
+    cov +=
+        la.point[j] * (whole ? current[j].cov : current[j].cov_reading) * lb.point[j].transpose();
+  }
+  if (!whole) {
+    for (int side = 0; side < 2; ++side) cov += la.half[side] * lb.half[side].transpose();
+  }
+  return cov;
 }
 
 std::pair<double, double> average_chi2_bounds(int n, int dof, double alpha) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -50,6 +51,17 @@ struct ScanMatchConfig {
   bool reciprocal_association = true;
 };
 
+/// How a match's error loads on the current scan's own errors, to first order at the solution and
+/// with the covariance's residual scale: dq = sum_j point[j] e_j + sum_side half[side] xi_side +
+/// (terms in the reference scan's errors), e_j the current point j's noise of covariance
+/// `cov_reading` (`cov` when the point errors are taken as independent) and xi_side ~ N(0, I) the
+/// half-scan's shared motion error. Two matches of one current scan share these errors.
+struct CurrentScanLoading {
+  std::vector<Eigen::Matrix<double, 3, 2>> point;  ///< per current point (zero: not associated)
+  std::array<Eigen::Matrix3d, 2> half{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
+  bool whole_point_covariance = false;  ///< e_j has the point's `cov`, not `cov_reading`
+};
+
 struct ScanMatchResult {
   GaussianPose2 estimate;  ///< q: the current scan's frame in the reference's frame
   Eigen::Matrix3d information = Eigen::Matrix3d::Zero();  ///< H = sum J^T W^-1 J at the end
@@ -57,13 +69,21 @@ struct ScanMatchResult {
   bool converged = false;
   int iterations = 0;
   int inliers = 0;
-  double chi2 = 0.0;  ///< sum e^T W^-1 e at the end
+  double chi2 = 0.0;                   ///< sum e^T W^-1 e at the end
+  CurrentScanLoading current_loading;  ///< set when valid
 };
 
 /// Matches `current` against `reference` from the guess (its covariance gates the association).
 ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
                             const std::vector<ScanPoint>& current, const GaussianPose2& guess,
                             const ScanMatchConfig& config);
+
+/// The cross-covariance E[dq_a dq_b^T] of two valid matches of the same current scan (against
+/// different references, whose errors are independent): the errors of the current scan they
+/// share, through each match's loading (docs/trajectory_slam.md, "Joint update"). For a match
+/// with itself it is the part of its covariance that the current scan causes.
+Eigen::Matrix3d shared_current_covariance(const ScanMatchResult& a, const ScanMatchResult& b,
+                                          const std::vector<ScanPoint>& current);
 
 /// Two-sided (1 - alpha) bounds of the average of n chi-square variables with dof degrees of
 /// freedom each (Wilson-Hilferty), as used for NEES tests: [lower, upper].

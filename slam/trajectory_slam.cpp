@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
 namespace msislab {
 
@@ -96,24 +97,12 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   }
   stats.candidates = static_cast<int>(candidates.size());
 
-  // Observe and update, one match at a time.
-  for (const auto& [distance_m, j] : candidates) {
-    Eigen::MatrixXd H;
-    GaussianPose2 guess;
-    guess.mean = relative_pose(j, k, &H);
-    guess.cov = propagate(j + 1, H);
-    ValidatedMatch match =
-        match_and_validate(points_[j], points_[k], guess, config_.matching, config_.validation);
-    if (match.match.valid) ++stats.matched;
-    if (match.rejection == MatchRejection::kNone) {
-      if (update_match(j, k, match.match.estimate, match.observed, stats.window_elements)) {
-        ++stats.accepted;
-      } else {
-        match.rejection = MatchRejection::kInnovation;
-      }
-    }
-    stats.rejections.count(match);
-    totals_.rejections.count(match);
+  std::vector<std::size_t> references;
+  for (const auto& candidate : candidates) references.push_back(candidate.second);
+  if (config_.joint_update) {
+    update_jointly(k, references, stats);
+  } else {
+    update_sequentially(k, references, stats);
   }
   totals_.candidates += stats.candidates;
   totals_.matched += stats.matched;
@@ -158,7 +147,7 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
     if (iteration == 0 && innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
       return false;  // the observation disagrees with the prediction: leave the state as it was
     }
-    K.noalias() = PHt * S.inverse();
+    K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
     const Eigen::VectorXd x_new = x_prior + K * innovation;
     for (std::size_t j = 0; j < count; ++j) {
       elements_[first + j] = Pose2(x_new.segment<3>(static_cast<Eigen::Index>(3 * j)));
@@ -172,19 +161,177 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   return true;
 }
 
-bool TrajectorySlam::update_match(std::size_t a, std::size_t b, const GaussianPose2& z,
-                                  const Eigen::MatrixXd& observed, int& window_elements) {
-  // z = spIC(scan_a, scan_b) observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the
-  // directions A = `observed` validated: A (z - h(X)), Jacobian A H, covariance A R A^T.
-  const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
-    Eigen::MatrixXd H_full;
-    const Eigen::Vector3d r = pose_difference(z.mean, relative_pose(a, b, &H_full));
-    *H = observed * H_full;
-    return observed * r;
+ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k) const {
+  Eigen::MatrixXd H;
+  GaussianPose2 guess;
+  guess.mean = relative_pose(j, k, &H);
+  guess.cov = propagate(j + 1, H);
+  return match_and_validate(points_[j], points_[k], guess, config_.matching, config_.validation);
+}
+
+void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
+                                         SlamStepStats& stats) {
+  for (const std::size_t j : candidates) {
+    ValidatedMatch m = match(j, k);  // from the state the previous update left
+    if (m.match.valid) ++stats.matched;
+    if (m.rejection == MatchRejection::kNone) {
+      const Eigen::MatrixXd R = m.observed * m.match.estimate.cov * m.observed.transpose();
+      if (update_relative_poses(k, {{j, m.match.estimate.mean, m.observed}}, R,
+                                stats.window_elements)) {
+        ++stats.accepted;
+      } else {
+        m.rejection = MatchRejection::kInnovation;
+      }
+    }
+    stats.rejections.count(m);
+    totals_.rejections.count(m);
+  }
+}
+
+void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t>& candidates,
+                                    SlamStepStats& stats) {
+  // Every match from the prediction: Eq. 8 stacks them before any update.
+  std::vector<ValidatedMatch> matches;
+  std::vector<RelativePoseObservation> observations;
+  for (const std::size_t j : candidates) {
+    ValidatedMatch m = match(j, k);
+    if (m.match.valid) ++stats.matched;
+    if (m.rejection == MatchRejection::kNone) {
+      observations.push_back({j, m.match.estimate.mean, m.observed});
+    }
+    matches.push_back(std::move(m));
+  }
+  std::vector<std::size_t> used;  // indices into matches of the observations
+  for (std::size_t i = 0; i < matches.size(); ++i) {
+    if (matches[i].rejection == MatchRejection::kNone) used.push_back(i);
+  }
+  // The stacked covariance: A_i cov(z_i, z_j) A_j^T, cov(z_i, z_i) spIC's own, and between two
+  // matches the errors of the newest scan they share (docs/trajectory_slam.md, "Joint update").
+  const std::size_t n = used.size();
+  std::vector<Eigen::Index> offset(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) offset[i + 1] = offset[i] + observations[i].observed.rows();
+  Eigen::MatrixXd R_all = Eigen::MatrixXd::Zero(offset[n], offset[n]);
+  for (std::size_t i = 0; i < n; ++i) {
+    const ValidatedMatch& mi = matches[used[i]];
+    for (std::size_t j = i; j < n; ++j) {
+      const ValidatedMatch& mj = matches[used[j]];
+      Eigen::Matrix3d C = mi.match.estimate.cov;
+      if (j != i) {
+        C = config_.match_cross_covariance
+                ? shared_current_covariance(mi.match, mj.match, points_[k])
+                : Eigen::Matrix3d::Zero();
+      }
+      const Eigen::MatrixXd block = mi.observed * C * mj.observed.transpose();
+      R_all.block(offset[i], offset[j], block.rows(), block.cols()) = block;
+      R_all.block(offset[j], offset[i], block.cols(), block.rows()) = block.transpose();
+    }
+  }
+  // Joint compatibility (JCBB-style): the largest set of matches whose stack agrees with the
+  // prediction at the gate's probability, the lowest NIS among sets of that size. Up to
+  // kExhaustive matches every subset is tried; beyond, the match of largest NIS of its own
+  // leaves until the rest agree.
+  std::vector<RelativePoseObservation> z;
+  Eigen::MatrixXd R;
+  const auto compatible = [&](const std::vector<std::size_t>& set, double* nis) {
+    z.clear();
+    std::vector<Eigen::Index> rows;
+    for (const std::size_t i : set) {
+      z.push_back(observations[i]);
+      for (Eigen::Index r = offset[i]; r < offset[i + 1]; ++r) rows.push_back(r);
+    }
+    R = R_all(rows, rows);
+    *nis = innovation_nis(k, z, R);
+    return *nis <= gate_for_dimensions(config_.innovation_gate_chi2, R.rows());
   };
-  const Eigen::MatrixXd R = observed * z.cov * observed.transpose();
-  return update(a + 1, b, residual, R,
-                gate_for_dimensions(config_.innovation_gate_chi2, observed.rows()),
+  constexpr std::size_t kExhaustive = 8;
+  std::vector<std::size_t> chosen;
+  if (n <= kExhaustive) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::uint32_t mask = 1; mask < (1u << n); ++mask) {
+      std::vector<std::size_t> set;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (mask >> i & 1u) set.push_back(i);
+      }
+      double nis = 0.0;
+      if (set.size() < chosen.size() || !compatible(set, &nis)) continue;
+      if (set.size() > chosen.size() || nis < best) chosen = set, best = nis;
+    }
+  } else {
+    std::vector<double> own(n);
+    for (std::size_t i = 0; i < n; ++i) compatible({i}, &own[i]);
+    std::vector<std::size_t> set(n);
+    for (std::size_t i = 0; i < n; ++i) set[i] = i;
+    double nis = 0.0;
+    while (!set.empty() && !compatible(set, &nis)) {
+      set.erase(std::max_element(set.begin(), set.end(),
+                                 [&](std::size_t a, std::size_t b) { return own[a] < own[b]; }));
+    }
+    chosen = set;
+  }
+  std::vector<bool> accepted(n, false);
+  if (!chosen.empty()) {
+    double nis = 0.0;
+    compatible(chosen, &nis);
+    if (update_relative_poses(k, z, R, stats.window_elements)) {
+      for (const std::size_t i : chosen) accepted[i] = true;
+      stats.accepted += static_cast<int>(chosen.size());
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!accepted[i]) matches[used[i]].rejection = MatchRejection::kInnovation;
+  }
+  for (const ValidatedMatch& m : matches) {
+    stats.rejections.count(m);
+    totals_.rejections.count(m);
+  }
+}
+
+Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
+                                                 const std::vector<RelativePoseObservation>& z,
+                                                 Eigen::MatrixXd* H) const {
+  std::size_t first = b;
+  Eigen::Index rows = 0;
+  for (const RelativePoseObservation& o : z) {
+    first = std::min(first, o.reference + 1);
+    rows += o.observed.rows();
+  }
+  Eigen::VectorXd r(rows);
+  if (H) H->setZero(rows, static_cast<Eigen::Index>(3 * (b + 1 - first)));
+  Eigen::Index row = 0;
+  for (const RelativePoseObservation& o : z) {
+    // z observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the directions A = observed:
+    // A (z - h(X)) with Jacobian A H on the elements a+1..b.
+    Eigen::MatrixXd H_o;
+    const Eigen::Vector3d r_o =
+        pose_difference(o.z, relative_pose(o.reference, b, H ? &H_o : nullptr));
+    const Eigen::Index d = o.observed.rows();
+    r.segment(row, d) = o.observed * r_o;
+    if (H) {
+      H->block(row, static_cast<Eigen::Index>(3 * (o.reference + 1 - first)), d, H_o.cols()) =
+          o.observed * H_o;
+    }
+    row += d;
+  }
+  return r;
+}
+
+double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
+                                      const Eigen::MatrixXd& R) const {
+  Eigen::MatrixXd H;
+  const Eigen::VectorXd r = stacked_residual(b, z, &H);
+  const Eigen::Index first = static_cast<Eigen::Index>(3 * b + 3) - H.cols();
+  const Eigen::MatrixXd S = H * P_.block(first, first, H.cols(), H.cols()) * H.transpose() + R;
+  return r.dot(S.ldlt().solve(r));
+}
+
+bool TrajectorySlam::update_relative_poses(std::size_t b,
+                                           const std::vector<RelativePoseObservation>& z,
+                                           const Eigen::MatrixXd& R, int& window_elements) {
+  if (z.empty()) return false;
+  std::size_t first = b;
+  for (const RelativePoseObservation& o : z) first = std::min(first, o.reference + 1);
+  const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
+  return update(first, b, residual, R, gate_for_dimensions(config_.innovation_gate_chi2, R.rows()),
                 window_elements);
 }
 

@@ -38,6 +38,13 @@ struct TrajectorySlamConfig {
   /// that the compass bounds the heading error; docs/trajectory_slam.md).
   bool compass_updates = true;
   double compass_gate_chi2 = 6.63;  ///< 1 DOF, 99%
+  /// Update a step's matches together (paper Eq. 8): stacked, with the cross-covariances of
+  /// matches that share the newest scan, all linearised at the step's prediction. Off: one match
+  /// after the other, each as if independent and from the state the previous one left.
+  bool joint_update = false;
+  /// The joint update's cross-covariances between a step's matches (spIC's loadings on the newest
+  /// scan's errors, shared_current_covariance). Off: taken as zero (for checks and studies).
+  bool match_cross_covariance = true;
   /// Update every element instead of the loop's window (the same result at a higher cost; for
   /// checks and timing).
   bool update_whole_state = false;
@@ -78,6 +85,14 @@ struct SlamTotals {
   MatchRejectionCounts rejections;
 };
 
+/// An observation z of the pose of the newest scan in the frame of scan `reference`, in the
+/// directions whose rows `observed` holds (3 x 3 identity: all; 2 x 3: a direction left out).
+struct RelativePoseObservation {
+  std::size_t reference = 0;
+  Pose2 z;
+  Eigen::MatrixXd observed = Eigen::MatrixXd::Identity(3, 3);
+};
+
 class TrajectorySlam {
  public:
   TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world);
@@ -101,6 +116,14 @@ class TrajectorySlam {
   /// The pose of scan b in the start frame (h(X) of an absolute measurement); with H, its
   /// Jacobian with respect to the elements 0..b (3 x 3(b+1)).
   virtual Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const = 0;
+
+  /// The measurement update add_scan applies (public for front ends of their own and checks):
+  /// the observations z_i of scan b's pose in scan reference_i's frame (reference_i < b), stacked
+  /// as A_i z_i ~ A_i h_i(X) with the stacked covariance R (blocks A_i cov(z_i, z_j) A_j^T), in one
+  /// iterated EKF update (paper Eq. 8-10), gated on the stacked NIS at the configured gate's
+  /// probability. Returns whether the state was updated.
+  bool update_relative_poses(std::size_t b, const std::vector<RelativePoseObservation>& z,
+                             const Eigen::MatrixXd& R, int& window_elements);
 
   /// The state elements as stored (see the derived classes) and their covariance.
   const std::vector<Pose2>& elements() const { return elements_; }
@@ -128,9 +151,21 @@ class TrajectorySlam {
   template <class Residual>
   bool update(std::size_t first, std::size_t b, const Residual& residual, const Eigen::MatrixXd& R,
               double gate_chi2, int& window_elements);
-  /// z observes h(X) in the directions whose rows `observed` holds (A z ~ A h(X), A R A^T).
-  bool update_match(std::size_t a, std::size_t b, const GaussianPose2& z,
-                    const Eigen::MatrixXd& observed, int& window_elements);
+  /// The step's validated matches of scan k against the candidates, one update after the other.
+  void update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
+                           SlamStepStats& stats);
+  /// The same matches, all from the prediction and in one update (paper Eq. 8).
+  void update_jointly(std::size_t k, const std::vector<std::size_t>& candidates,
+                      SlamStepStats& stats);
+  /// spIC of scan k against scan j from the state's prediction, then its validation.
+  ValidatedMatch match(std::size_t j, std::size_t k) const;
+  /// The stacked A_i (z_i - h_i(X)) of observations of scan b and, with H, its Jacobian with
+  /// respect to the elements first..b, first = the smallest reference + 1.
+  Eigen::VectorXd stacked_residual(std::size_t b, const std::vector<RelativePoseObservation>& z,
+                                   Eigen::MatrixXd* H) const;
+  /// The NIS of observations of scan b against the state: r^T (H P H^T + R)^-1 r.
+  double innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
+                        const Eigen::MatrixXd& R) const;
   bool update_compass(std::size_t b, double yaw_world_rad, double sigma_rad, int& window_elements);
 
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group

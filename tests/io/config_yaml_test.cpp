@@ -238,6 +238,21 @@ TEST(SlamConfigYaml, DeadReckoningKeysOverride) {
   EXPECT_EQ(c.dead_reckoning.dvl_gate_chi2, 13.82);
 }
 
+TEST(SlamConfigYaml, JointUpdateKeys) {
+  const TempDir dir;
+  const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
+  EXPECT_FALSE(defaults.trajectory_slam.joint_update);
+  EXPECT_TRUE(defaults.trajectory_slam.match_cross_covariance);
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "trajectory_slam:\n"
+                                                   "  joint_update: true\n"
+                                                   "  match_cross_covariance: false\n"));
+  EXPECT_TRUE(c.trajectory_slam.joint_update);
+  EXPECT_FALSE(c.trajectory_slam.match_cross_covariance);
+  expect_bad_slam_config("trajectory_slam:\n  joint_update: 3\n", 2,
+                         "trajectory_slam.joint_update");
+}
+
 TEST(SlamConfigYaml, HeadingSigmaDegreesBecomeRadians) {
   const TempDir dir;
   for (const double deg : {0.5, 1.0, 10.0, 180.0}) {

@@ -50,6 +50,11 @@ TEST(MatchValidation, ChiSquareQuantilesMatchTheTables) {
   EXPECT_NEAR(chi2_quantile(0.99, 3), 11.345, 1e-3);
   EXPECT_NEAR(chi2_quantile(0.95, 3), 7.815, 1e-3);
   EXPECT_NEAR(chi2_quantile(0.95, 1), 3.841, 1e-3);
+  // Higher dof through the recurrence (tables: 6 DOF 99 % 16.812, 9 DOF 99 % 21.666, 30 DOF
+  // 95 % 43.773).
+  EXPECT_NEAR(chi2_quantile(0.99, 6), 16.812, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.99, 9), 21.666, 1e-3);
+  EXPECT_NEAR(chi2_quantile(0.95, 30), 43.773, 1e-3);
 }
 
 TEST(MatchValidation, ACorridorMatchKeepsOnlyTheDirectionsTheWallsFix) {

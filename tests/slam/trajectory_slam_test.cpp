@@ -178,6 +178,92 @@ TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
   }
 }
 
+TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
+  // With the headings known exactly (zero yaw variance in every motion) the relative poses are
+  // linear in the translations, so stacking two independent observations in one update (Eq. 8)
+  // must give what updating with one and then the other gives, to rounding.
+  TrajectorySlamConfig config;
+  config.compass_updates = false;
+  config.innovation_gate_chi2 = 1e9;
+  const auto sequential = make_slam(GetParam(), config), joint = make_slam(GetParam(), config);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (int k = 0; k < 5; ++k) {
+    Scan blind;  // no points: the step only predicts
+    blind.motion.mean = Pose2(4.0 + 0.3 * n01(rng), 0.5 * n01(rng), 0.3 * n01(rng));
+    blind.motion.cov = Eigen::Vector3d(0.04, 0.09, 0.0).asDiagonal();
+    blind.motion.cov(0, 1) = blind.motion.cov(1, 0) = 0.01;
+    sequential->add_scan(blind);
+    joint->add_scan(blind);
+  }
+  const std::size_t b = 4;
+  std::vector<RelativePoseObservation> z;
+  std::vector<Eigen::Matrix3d> R;
+  for (const std::size_t a : {std::size_t{0}, std::size_t{2}}) {
+    const Pose2 h = sequential->relative_pose(a, b, nullptr);
+    z.push_back({a, Pose2(h.vector() + Eigen::Vector3d(0.5 * n01(rng), 0.5 * n01(rng), 0.01)),
+                 Eigen::MatrixXd::Identity(3, 3)});
+    Eigen::Matrix3d cov = Eigen::Vector3d(0.02, 0.03, 1e-4).asDiagonal();
+    cov(0, 2) = cov(2, 0) = 5e-4;
+    R.push_back(cov);
+  }
+  // The second observes two directions only (a direction left out by the validation).
+  z[1].observed = Eigen::MatrixXd::Identity(3, 3).topRows(2);
+  const Eigen::MatrixXd R1 = z[1].observed * R[1] * z[1].observed.transpose();
+  const double prior_trace = sequential->covariance().trace();
+  int window = 0;
+  ASSERT_TRUE(sequential->update_relative_poses(b, {z[0]}, R[0], window));
+  ASSERT_TRUE(sequential->update_relative_poses(b, {z[1]}, R1, window));
+  Eigen::MatrixXd R_stacked = Eigen::MatrixXd::Zero(5, 5);
+  R_stacked.topLeftCorner<3, 3>() = R[0];
+  R_stacked.bottomRightCorner<2, 2>() = R1;
+  ASSERT_TRUE(joint->update_relative_poses(b, z, R_stacked, window));
+  EXPECT_LT((sequential->covariance() - joint->covariance()).cwiseAbs().maxCoeff(), 1e-9);
+  for (std::size_t i = 0; i <= b; ++i) {
+    EXPECT_LT(pose_difference(sequential->elements()[i], joint->elements()[i]).norm(), 1e-9);
+  }
+  // The updates did change the state: the check is not of two untouched filters.
+  EXPECT_LT(joint->covariance().trace(), 0.8 * prior_trace);
+}
+
+TEST_P(BothMethods, CorrelatedMatchesMoveTheStateLessThanIndependentOnes) {
+  // Two observations that share part of their errors carry less information than two
+  // independent ones and more than one alone: the posterior covariance of the joint update lies
+  // between the two.
+  TrajectorySlamConfig config;
+  config.compass_updates = false;
+  config.innovation_gate_chi2 = 1e9;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  std::vector<Scan> blind(4);
+  for (Scan& scan : blind) {
+    scan.motion.mean = Pose2(3.0 + 0.3 * n01(rng), 0.4 * n01(rng), 0.05 * n01(rng));
+    scan.motion.cov = Eigen::Vector3d(0.04, 0.09, 1e-3).asDiagonal();
+  }
+  const Eigen::Matrix3d C = Eigen::Vector3d(0.05, 0.05, 4e-4).asDiagonal();
+  double trace[3];
+  for (int variant = 0; variant < 3; ++variant) {
+    const auto slam = make_slam(GetParam(), config);
+    for (const Scan& scan : blind) slam->add_scan(scan);
+    const Pose2 h = slam->relative_pose(1, 3, nullptr);
+    std::vector<RelativePoseObservation> z(2, {1, h, Eigen::MatrixXd::Identity(3, 3)});
+    Eigen::MatrixXd R = Eigen::MatrixXd::Zero(6, 6);
+    R.topLeftCorner<3, 3>() = C;
+    R.bottomRightCorner<3, 3>() = C;
+    if (variant == 1) R.topRightCorner<3, 3>() = R.bottomLeftCorner<3, 3>() = 0.5 * C;
+    int window = 0;
+    if (variant == 2) {
+      ASSERT_TRUE(slam->update_relative_poses(3, {z[0]}, C, window));
+    } else {
+      ASSERT_TRUE(slam->update_relative_poses(3, z, R, window));
+    }
+    trace[variant] = slam->covariance().trace();
+  }
+  // Independent < half-correlated < one observation.
+  EXPECT_LT(trace[0], trace[1]);
+  EXPECT_LT(trace[1], trace[2]);
+}
+
 TEST(TrajectorySlam, FiltersAgreeInTheLinearLimit) {
   // With noise 1e-4 of the usual, linearisation errors vanish and the two parameterisations of
   // the same Gaussian give the same world poses and covariances.

@@ -4,6 +4,7 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -97,6 +98,7 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   }
   stats.candidates = static_cast<int>(candidates.size());
 
+  // Observe and update (Eq. 5-10): one match after the other, or all together (Eq. 8).
   std::vector<std::size_t> references;
   for (const auto& candidate : candidates) references.push_back(candidate.second);
   if (config_.joint_update) {
@@ -327,9 +329,12 @@ double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativeP
 bool TrajectorySlam::update_relative_poses(std::size_t b,
                                            const std::vector<RelativePoseObservation>& z,
                                            const Eigen::MatrixXd& R, int& window_elements) {
-  if (z.empty()) return false;
+  if (z.empty() || b >= elements_.size()) return false;
   std::size_t first = b;
-  for (const RelativePoseObservation& o : z) first = std::min(first, o.reference + 1);
+  for (const RelativePoseObservation& o : z) {
+    if (o.reference >= b) return false;  // h is the pose of b in an earlier scan's frame
+    first = std::min(first, o.reference + 1);
+  }
   const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
   return update(first, b, residual, R, gate_for_dimensions(config_.innovation_gate_chi2, R.rows()),
                 window_elements);

@@ -121,7 +121,8 @@ class TrajectorySlam {
   /// the observations z_i of scan b's pose in scan reference_i's frame (reference_i < b), stacked
   /// as A_i z_i ~ A_i h_i(X) with the stacked covariance R (blocks A_i cov(z_i, z_j) A_j^T), in one
   /// iterated EKF update (paper Eq. 8-10), gated on the stacked NIS at the configured gate's
-  /// probability. Returns whether the state was updated.
+  /// probability. Returns whether the state was updated (false also when b is not a scan or a
+  /// reference is not before it).
   bool update_relative_poses(std::size_t b, const std::vector<RelativePoseObservation>& z,
                              const Eigen::MatrixXd& R, int& window_elements);
 

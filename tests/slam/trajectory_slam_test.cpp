@@ -222,6 +222,10 @@ TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   for (std::size_t i = 0; i <= b; ++i) {
     EXPECT_LT(pose_difference(sequential->elements()[i], joint->elements()[i]).norm(), 1e-9);
   }
+  // An observation must be of b in an earlier scan's frame.
+  EXPECT_FALSE(joint->update_relative_poses(b, {{b, Pose2(), Eigen::MatrixXd::Identity(3, 3)}},
+                                            R[0], window));
+  EXPECT_FALSE(joint->update_relative_poses(b + 1, {z[0]}, R[0], window));
   // The updates did change the state: the check is not of two untouched filters.
   EXPECT_LT(joint->covariance().trace(), 0.8 * prior_trace);
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "slam/line_normals.hpp"
 
@@ -122,18 +123,33 @@ NormalEquations normal_equations(const std::vector<ScanPoint>& reference,
   return eq;
 }
 
-/// The covariance of the estimate as a function of every point's error (first order, at the
-/// solution): dq = -H^-1 sum_j G_j de_j with G_j = J_q^T Omega_j, de_j = J_p dp_j - da_i + ds_j,
-/// so cov(q) = H^-1 A H^-1 with A summing, over the joint covariance of all de_j,
+/// The estimate's covariance and its loading on the current scan's own errors.
+struct ErrorPropagation {
+  Eigen::Matrix3d cov;
+  CurrentScanLoading current_loading;
+};
+
+/// The estimate as a function of every point's error (first order, at the solution):
+/// dq = -H^-1 sum_j G_j de_j with G_j = J_q^T Omega_j, de_j = J_p dp_j - da_i + ds_j.
+/// With `shared_point_errors`, cov(q) = H^-1 A H^-1 with A summing, over the joint covariance of
+/// all de_j,
 ///   the current points' reading noise (own to each), the sampling error (own to each pair),
 ///   each reference point's reading noise times (sum of the G_j associated with it) on both sides,
-///   and each half-scan's shared motion error (distortion * xi_side) summed over its points.
+///   and each half-scan's shared motion error (distortion * xi_side) summed over its points;
+/// without, every residual is taken as independent and cov(q) = H^-1.
+/// The loading on the current scan: -H^-1 G_j J_p on point j's noise (its reading noise, or its
+/// whole covariance without shared errors) and -H^-1 sum G_j J_p D_j on its half's xi.
 /// A point-to-line pair's Omega = n n^T / w keeps only the error along the normal.
-Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
+ErrorPropagation propagate_point_errors(const std::vector<ScanPoint>& reference,
                                         const ReferenceGeometry& geometry,
                                         const std::vector<ScanPoint>& current, const Pose2& q,
                                         const std::vector<Association>& pairs,
-                                        const Eigen::Matrix3d& H_inverse) {
+                                        const Eigen::Matrix3d& H_inverse,
+                                        bool shared_point_errors) {
+  ErrorPropagation out;
+  CurrentScanLoading& loading = out.current_loading;
+  loading.whole_point_covariance = !shared_point_errors;
+  loading.point.assign(current.size(), Eigen::Matrix<double, 3, 2>::Zero());
   Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
   std::vector<Eigen::Matrix<double, 3, 2>> U(reference.size(), Eigen::Matrix<double, 3, 2>::Zero());
   Eigen::Matrix3d B_current[2] = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
@@ -144,10 +160,16 @@ Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
     const Eigen::Matrix2d& S = geometry.sampling[a.reference];
     const PairResidual pr = pair_residual(r, p, S, geometry.normals[a.reference], q);
     const Eigen::Matrix<double, 3, 2> G = pr.J_q.transpose() * pr.Omega;
+    loading.point[a.current] = -H_inverse * G * pr.J_p;
+    if (!shared_point_errors) continue;
     A += G * (pr.J_p * p.cov_reading * pr.J_p.transpose() + S) * G.transpose();
     U[a.reference] += G;
     B_current[p.side == 1] += G * pr.J_p * p.distortion;
     B_reference[r.side == 1] -= G * r.distortion;
+  }
+  if (!shared_point_errors) {
+    out.cov = H_inverse;
+    return out;
   }
   for (std::size_t i = 0; i < reference.size(); ++i) {
     A += U[i] * reference[i].cov_reading * U[i].transpose();
@@ -155,32 +177,11 @@ Eigen::Matrix3d shared_error_covariance(const std::vector<ScanPoint>& reference,
   for (int side = 0; side < 2; ++side) {
     A += B_current[side] * B_current[side].transpose() +
          B_reference[side] * B_reference[side].transpose();
+    loading.half[side] = -H_inverse * B_current[side];
   }
   const Eigen::Matrix3d cov = H_inverse * A * H_inverse;
-  return 0.5 * (cov + cov.transpose());
-}
-
-/// The loading of dq = -H^-1 sum_j G_j de_j on the current scan's errors (shared_error_covariance
-/// above): -H^-1 G_j J_p on point j's noise, -H^-1 sum G_j J_p D_j on its half's xi, times `scale`.
-CurrentScanLoading current_scan_loading(const std::vector<ScanPoint>& reference,
-                                        const ReferenceGeometry& geometry,
-                                        const std::vector<ScanPoint>& current, const Pose2& q,
-                                        const std::vector<Association>& pairs,
-                                        const Eigen::Matrix3d& H_inverse, bool shared_point_errors,
-                                        double scale) {
-  CurrentScanLoading loading;
-  loading.whole_point_covariance = !shared_point_errors;
-  loading.point.assign(current.size(), Eigen::Matrix<double, 3, 2>::Zero());
-  const Eigen::Matrix3d minus_H_inverse = -scale * H_inverse;
-  for (const Association& a : pairs) {
-    const ScanPoint& p = current[a.current];
-    const PairResidual pr = pair_residual(reference[a.reference], p, geometry.sampling[a.reference],
-                                          geometry.normals[a.reference], q);
-    const Eigen::Matrix<double, 3, 2> G_J_p = pr.J_q.transpose() * pr.Omega * pr.J_p;
-    loading.point[a.current] = minus_H_inverse * G_J_p;
-    if (shared_point_errors) loading.half[p.side == 1] += minus_H_inverse * G_J_p * p.distortion;
-  }
-  return loading;
+  out.cov = 0.5 * (cov + cov.transpose());
+  return out;
 }
 
 /// The sampling error of point-to-point residuals: a surface sampled every d metres has the true
@@ -242,20 +243,20 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
   result.chi2 = eq.chi2;
   if (std::abs(eq.H.determinant()) < 1e-12) return result;
   result.estimate.mean = q.mean;
-  result.estimate.cov = eq.H.inverse();
-  if (config.shared_point_errors) {
-    result.estimate.cov = shared_error_covariance(reference, for_covariance, current, q.mean, pairs,
-                                                  result.estimate.cov);
-  }
+  ErrorPropagation errors =
+      propagate_point_errors(reference, for_covariance, current, q.mean, pairs, eq.H.inverse(),
+                             config.shared_point_errors);
+  result.estimate.cov = errors.cov;
+  result.current_loading = std::move(errors.current_loading);
   const double dof = eq.residuals - 3.0;
-  double variance_factor = 1.0;
   if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
-    variance_factor = eq.chi2 / dof;
+    const double variance_factor = eq.chi2 / dof;
     result.estimate.cov *= variance_factor;
+    // The loadings carry the same scale: their products make covariances.
+    const double scale = std::sqrt(variance_factor);
+    for (auto& L : result.current_loading.point) L *= scale;
+    for (auto& M : result.current_loading.half) M *= scale;
   }
-  result.current_loading =
-      current_scan_loading(reference, for_covariance, current, q.mean, pairs, eq.H.inverse(),
-                           config.shared_point_errors, std::sqrt(variance_factor));
   result.valid = true;
   return result;
 }

@@ -34,6 +34,13 @@ double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
   return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<int>(d));
 }
 
+/// The first state element observations of scan b involve: the smallest reference + 1.
+std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservation>& z) {
+  std::size_t first = b;
+  for (const RelativePoseObservation& o : z) first = std::min(first, o.reference + 1);
+  return first;
+}
+
 }  // namespace
 
 void MatchRejectionCounts::count(const ValidatedMatch& match) {
@@ -234,7 +241,7 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   // leaves until the rest agree.
   std::vector<RelativePoseObservation> z;
   Eigen::MatrixXd R;
-  const auto compatible = [&](const std::vector<std::size_t>& set, double* nis) {
+  const auto select = [&](const std::vector<std::size_t>& set) {  // z and R of a set
     z.clear();
     std::vector<Eigen::Index> rows;
     for (const std::size_t i : set) {
@@ -242,6 +249,9 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
       for (Eigen::Index r = offset[i]; r < offset[i + 1]; ++r) rows.push_back(r);
     }
     R = R_all(rows, rows);
+  };
+  const auto compatible = [&](const std::vector<std::size_t>& set, double* nis) {
+    select(set);
     *nis = innovation_nis(k, z, R);
     return *nis <= gate_for_dimensions(config_.innovation_gate_chi2, R.rows());
   };
@@ -272,8 +282,7 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   }
   std::vector<bool> accepted(n, false);
   if (!chosen.empty()) {
-    double nis = 0.0;
-    compatible(chosen, &nis);
+    select(chosen);
     if (update_relative_poses(k, z, R, stats.window_elements)) {
       for (const std::size_t i : chosen) accepted[i] = true;
       stats.accepted += static_cast<int>(chosen.size());
@@ -291,12 +300,9 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
 Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
                                                  const std::vector<RelativePoseObservation>& z,
                                                  Eigen::MatrixXd* H) const {
-  std::size_t first = b;
+  const std::size_t first = first_involved(b, z);
   Eigen::Index rows = 0;
-  for (const RelativePoseObservation& o : z) {
-    first = std::min(first, o.reference + 1);
-    rows += o.observed.rows();
-  }
+  for (const RelativePoseObservation& o : z) rows += o.observed.rows();
   Eigen::VectorXd r(rows);
   if (H) H->setZero(rows, static_cast<Eigen::Index>(3 * (b + 1 - first)));
   Eigen::Index row = 0;
@@ -321,7 +327,7 @@ double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativeP
                                       const Eigen::MatrixXd& R) const {
   Eigen::MatrixXd H;
   const Eigen::VectorXd r = stacked_residual(b, z, &H);
-  const Eigen::Index first = static_cast<Eigen::Index>(3 * b + 3) - H.cols();
+  const Eigen::Index first = static_cast<Eigen::Index>(3 * first_involved(b, z));
   const Eigen::MatrixXd S = H * P_.block(first, first, H.cols(), H.cols()) * H.transpose() + R;
   return r.dot(S.ldlt().solve(r));
 }
@@ -330,14 +336,12 @@ bool TrajectorySlam::update_relative_poses(std::size_t b,
                                            const std::vector<RelativePoseObservation>& z,
                                            const Eigen::MatrixXd& R, int& window_elements) {
   if (z.empty() || b >= elements_.size()) return false;
-  std::size_t first = b;
   for (const RelativePoseObservation& o : z) {
     if (o.reference >= b) return false;  // h is the pose of b in an earlier scan's frame
-    first = std::min(first, o.reference + 1);
   }
   const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
-  return update(first, b, residual, R, gate_for_dimensions(config_.innovation_gate_chi2, R.rows()),
-                window_elements);
+  return update(first_involved(b, z), b, residual, R,
+                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), window_elements);
 }
 
 bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double sigma_rad,

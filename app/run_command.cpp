@@ -1,8 +1,10 @@
 #include "app/run_command.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <iterator>
 #include <memory>
 
 #include "app/eval_command.hpp"
@@ -43,7 +45,7 @@ namespace {
 void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
   io::create_output_dir(out_dir);
   std::error_code ec;
-  for (const char* stale : {"scans.csv", "map.ply", "nees.csv"}) {
+  for (const char* stale : {"scans.csv", "matches.csv", "map.ply", "nees.csv"}) {
     fs::remove(fs::path(out_dir) / stale, ec);
   }
   if (!writes_metrics) fs::remove(fs::path(out_dir) / "metrics.json", ec);
@@ -60,6 +62,7 @@ struct SlamRun {
   std::vector<PlacedScan> scans;  ///< with their corrected world poses
   std::vector<StampedPose> trajectory;
   SlamTotals totals;
+  std::vector<MatchRecord> matches;  ///< every candidate match of every step
 };
 
 /// The dataset's revolutions as motion-compensated scans placed by dead reckoning.
@@ -83,7 +86,11 @@ SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, 
   } else {
     slam = std::make_unique<WorldCentricSlam>(in.config.trajectory_slam, in.start.pose);
   }
-  for (const PlacedScan& placed : run.scans) slam->add_scan(placed.scan);
+  for (const PlacedScan& placed : run.scans) {
+    SlamStepStats step = slam->add_scan(placed.scan);
+    run.matches.insert(run.matches.end(), std::make_move_iterator(step.matches.begin()),
+                       std::make_move_iterator(step.matches.end()));
+  }
   run.totals = slam->totals();
   std::vector<StampedPose> dr_at_scans;
   std::vector<GaussianPose2> corrected;
@@ -101,6 +108,29 @@ std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
   std::vector<StampedPose> poses;
   for (const PlacedScan& s : scans) poses.push_back({s.scan.t_s, s.centre_world.pose});
   return poses;
+}
+
+/// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
+/// pose and the match's NEES in its observed directions.
+std::vector<io::MatchRow> match_rows(const SlamRun& slam, const Truth& truth) {
+  std::vector<io::MatchRow> rows;
+  rows.reserve(slam.matches.size());
+  for (const MatchRecord& m : slam.matches) {
+    io::MatchRow row;
+    row.t_s = slam.scans[m.scan].scan.t_s;
+    row.t_reference_s = slam.scans[m.reference].scan.t_s;
+    row.record = m;
+    if (!truth.poses.empty()) {
+      row.has_truth = true;
+      row.truth = interpolate_pose(truth.poses, row.t_reference_s)
+                      .between(interpolate_pose(truth.poses, row.t_s));
+      const Eigen::VectorXd e = m.observed * pose_difference(m.z.mean, row.truth);
+      const Eigen::MatrixXd R = m.observed * m.z.cov * m.observed.transpose();
+      row.nees = e.dot(R.ldlt().solve(e));
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
 }
 
 }  // namespace
@@ -190,6 +220,7 @@ RunOutcome run(const RunOptions& options) {
     io::write_scans_csv((out / "scans.csv").string(), *scans);
     io::write_points_ply((out / "map.ply").string(), world_points(*scans));
   }
+  if (slam) io::write_matches_csv((out / "matches.csv").string(), match_rows(*slam, truth));
   if (outcome.metrics) {
     write_scores(options.out_dir, *outcome.metrics, nees,
                  fs::absolute(options.dataset_dir).lexically_normal().string());

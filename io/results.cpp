@@ -115,6 +115,46 @@ void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& sca
   });
 }
 
+void write_matches_csv(const std::string& path, const std::vector<MatchRow>& rows) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text =
+        "t_s,scan,reference,t_reference_s,distance_m,outcome,observed,restarts,nis,z_x_m,z_y_m,"
+        "z_yaw_rad,z_cov_xx,z_cov_xy,z_cov_xyaw,z_cov_yy,z_cov_yyaw,z_cov_yawyaw,pred_x_m,"
+        "pred_y_m,pred_yaw_rad,pred_cov_xx,pred_cov_xy,pred_cov_xyaw,pred_cov_yy,pred_cov_yyaw,"
+        "pred_cov_yawyaw,true_x_m,true_y_m,true_yaw_rad,nees\n";
+    const auto field = [&text](double value, char end = ',') {
+      if (std::isfinite(value)) append_number(text, value);
+      text += end;
+    };
+    const auto gaussian = [&field](const GaussianPose2& g) {
+      const Eigen::Matrix3d& P = g.cov;
+      for (const double v : {g.mean.x(), g.mean.y(), g.mean.yaw(), P(0, 0), P(0, 1), P(0, 2),
+                             P(1, 1), P(1, 2), P(2, 2)}) {
+        field(v);
+      }
+    };
+    for (const MatchRow& row : rows) {
+      const MatchRecord& m = row.record;
+      field(row.t_s);
+      text += std::to_string(m.scan) + ',' + std::to_string(m.reference) + ',';
+      field(row.t_reference_s);
+      field(m.distance_m);
+      text += (m.rejection == MatchRejection::kNone ? std::string("accepted")
+                                                    : rejection_name(m.rejection)) +
+              ',' + std::to_string(m.observed.rows()) + ',' + std::to_string(m.restarts) + ',';
+      field(m.nis);
+      gaussian(m.z);
+      gaussian(m.predicted);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      field(row.has_truth ? row.truth.x() : nan);
+      field(row.has_truth ? row.truth.y() : nan);
+      field(row.has_truth ? row.truth.yaw() : nan);
+      field(row.has_truth && m.valid ? row.nees : nan, '\n');
+    }
+    out << text;
+  });
+}
+
 namespace {
 
 double number_or_nan(const JsonObject& object, const std::string& key) {

@@ -1,5 +1,5 @@
 // The files of a result directory (docs/formats.md): trajectory.tum, metrics.json, scans.csv,
-// nees.csv and map.ply.
+// matches.csv, nees.csv and map.ply.
 #pragma once
 
 #include <string>
@@ -7,6 +7,7 @@
 
 #include "slam/evaluation.hpp"
 #include "slam/scan_sequence.hpp"
+#include "slam/trajectory_slam.hpp"
 
 namespace msislab::io {
 
@@ -32,6 +33,25 @@ void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& sca
 
 /// scans.csv read back: each scan's time and world pose with its covariance.
 std::vector<StampedPose> read_scans_csv(const std::string& path);
+
+/// One row of matches.csv: a candidate match of a trajectory SLAM step, the times of its two
+/// scans and, when the dataset has pose truth, the true pose of the newest scan in the reference
+/// scan's frame and the match's NEES against it in its observed directions.
+struct MatchRow {
+  double t_s = 0.0;            ///< the newest scan's time
+  double t_reference_s = 0.0;  ///< the reference scan's time
+  MatchRecord record;
+  bool has_truth = false;
+  Pose2 truth;
+  double nees = 0.0;  ///< A (z - truth) against A cov(z) A^T, when has_truth and the match is valid
+};
+/// matches.csv: one row per candidate match in the order they were made, atomically. Header:
+/// "t_s,scan,reference,t_reference_s,distance_m,outcome,observed,restarts,nis,z_x_m,z_y_m,
+/// z_yaw_rad,z_cov_xx,z_cov_xy,z_cov_xyaw,z_cov_yy,z_cov_yyaw,z_cov_yawyaw,pred_x_m,pred_y_m,
+/// pred_yaw_rad,pred_cov_xx,pred_cov_xy,pred_cov_xyaw,pred_cov_yy,pred_cov_yyaw,pred_cov_yawyaw,
+/// true_x_m,true_y_m,true_yaw_rad,nees"; outcome is "accepted" or the rejection's name; a value
+/// that does not exist (nis when the gate was not reached, truth) is an empty field.
+void write_matches_csv(const std::string& path, const std::vector<MatchRow>& rows);
 
 /// One row of nees.csv: the NEES of scan `scan` (0-based) at time t_s.
 struct NeesSample {

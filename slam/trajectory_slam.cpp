@@ -41,6 +41,21 @@ std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservat
   return first;
 }
 
+MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
+                      const GaussianPose2& predicted, double nis) {
+  MatchRecord record;
+  record.scan = k;
+  record.reference = j;
+  record.valid = m.match.valid;
+  record.rejection = m.rejection;
+  record.observed = m.observed;
+  record.restarts = m.restarts;
+  record.z = m.match.estimate;
+  record.predicted = predicted;
+  record.nis = nis;
+  return record;
+}
+
 }  // namespace
 
 void MatchRejectionCounts::count(const ValidatedMatch& match) {
@@ -113,6 +128,9 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   } else {
     update_sequentially(k, references, stats);
   }
+  for (std::size_t c = 0; c < stats.matches.size(); ++c) {
+    stats.matches[c].distance_m = candidates[c].first;
+  }
   totals_.candidates += stats.candidates;
   totals_.matched += stats.matched;
   totals_.accepted += stats.accepted;
@@ -170,28 +188,32 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   return true;
 }
 
-ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k) const {
+ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2& predicted) const {
   Eigen::MatrixXd H;
-  GaussianPose2 guess;
-  guess.mean = relative_pose(j, k, &H);
-  guess.cov = propagate(j + 1, H);
-  return match_and_validate(points_[j], points_[k], guess, config_.matching, config_.validation);
+  predicted.mean = relative_pose(j, k, &H);
+  predicted.cov = propagate(j + 1, H);
+  return match_and_validate(points_[j], points_[k], predicted, config_.matching,
+                            config_.validation);
 }
 
 void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
                                          SlamStepStats& stats) {
   for (const std::size_t j : candidates) {
-    ValidatedMatch m = match(j, k);  // from the state the previous update left
+    GaussianPose2 predicted;
+    ValidatedMatch m = match(j, k, predicted);  // from the state the previous update left
     if (m.match.valid) ++stats.matched;
+    double nis = std::numeric_limits<double>::quiet_NaN();
     if (m.rejection == MatchRejection::kNone) {
       const Eigen::MatrixXd R = m.observed * m.match.estimate.cov * m.observed.transpose();
-      if (update_relative_poses(k, {{j, m.match.estimate.mean, m.observed}}, R,
-                                stats.window_elements)) {
+      const std::vector<RelativePoseObservation> z = {{j, m.match.estimate.mean, m.observed}};
+      nis = innovation_nis(k, z, R);
+      if (update_relative_poses(k, z, R, stats.window_elements)) {
         ++stats.accepted;
       } else {
         m.rejection = MatchRejection::kInnovation;
       }
     }
+    stats.matches.push_back(record_of(j, k, m, predicted, nis));
     stats.rejections.count(m);
     totals_.rejections.count(m);
   }
@@ -201,12 +223,13 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
                                     SlamStepStats& stats) {
   // Every match from the prediction: Eq. 8 stacks them before any update.
   std::vector<ValidatedMatch> matches;
+  std::vector<GaussianPose2> predictions(candidates.size());
   std::vector<RelativePoseObservation> observations;
-  for (const std::size_t j : candidates) {
-    ValidatedMatch m = match(j, k);
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    ValidatedMatch m = match(candidates[c], k, predictions[c]);
     if (m.match.valid) ++stats.matched;
     if (m.rejection == MatchRejection::kNone) {
-      observations.push_back({j, m.match.estimate.mean, m.observed});
+      observations.push_back({candidates[c], m.match.estimate.mean, m.observed});
     }
     matches.push_back(std::move(m));
   }
@@ -288,12 +311,22 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
       stats.accepted += static_cast<int>(chosen.size());
     }
   }
+  std::vector<double> own_nis(matches.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
     if (!accepted[i]) matches[used[i]].rejection = MatchRejection::kInnovation;
+    // Each match's own NIS against the prediction; the state is the posterior by now, so from
+    // the predictions' residuals and covariances kept above.
+    const ValidatedMatch& m = matches[used[i]];
+    const Eigen::VectorXd r =
+        m.observed * pose_difference(m.match.estimate.mean, predictions[used[i]].mean);
+    const Eigen::MatrixXd S =
+        m.observed * (predictions[used[i]].cov + m.match.estimate.cov) * m.observed.transpose();
+    own_nis[used[i]] = r.dot(S.ldlt().solve(r));
   }
-  for (const ValidatedMatch& m : matches) {
-    stats.rejections.count(m);
-    totals_.rejections.count(m);
+  for (std::size_t c = 0; c < matches.size(); ++c) {
+    stats.matches.push_back(record_of(candidates[c], k, matches[c], predictions[c], own_nis[c]));
+    stats.rejections.count(matches[c]);
+    totals_.rejections.count(matches[c]);
   }
 }
 

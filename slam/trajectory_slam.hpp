@@ -19,6 +19,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -61,6 +62,27 @@ struct MatchRejectionCounts {
   void count(const ValidatedMatch& match);
 };
 
+/// One candidate match of a step as the filter saw it (a run's matches.csv): where it came from,
+/// what spIC returned, what the state predicted, and what became of it.
+struct MatchRecord {
+  std::size_t scan = 0;       ///< k, the newest scan
+  std::size_t reference = 0;  ///< j < k, the past scan matched against
+  double distance_m = 0.0;    ///< the estimated distance between the two scans' centres
+  bool valid = false;         ///< spIC converged with enough associations
+  MatchRejection rejection = MatchRejection::kNone;  ///< kNone: it updated the state
+  /// The observed directions as orthonormal rows (ValidatedMatch::observed): 3 x 3, or 2 x 3
+  /// with a direction left out.
+  Eigen::MatrixXd observed;
+  int restarts = 0;  ///< spIC restarts the validation ran
+  GaussianPose2 z;   ///< spIC's estimate of scan k in scan j's frame, and its covariance
+  /// h(X) and H P H^T from the state the match was made from (the step's prediction, or for a
+  /// later match of a sequential step the state the earlier ones left).
+  GaussianPose2 predicted;
+  /// The NIS of this match alone against that state, in its observed directions (NaN when it did
+  /// not reach the gate). The joint update gates sets of matches; this is each one's own share.
+  double nis = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// What one step did.
 struct SlamStepStats {
   int candidates = 0;
@@ -72,6 +94,7 @@ struct SlamStepStats {
   bool skipped = false;
   int window_elements = 0;  ///< state elements touched by the largest update of the step
   bool compass_accepted = false;
+  std::vector<MatchRecord> matches;  ///< every candidate, in the order they were matched
 };
 
 /// The totals over a run.
@@ -158,8 +181,9 @@ class TrajectorySlam {
   /// The same matches, all from the prediction and in one update (paper Eq. 8).
   void update_jointly(std::size_t k, const std::vector<std::size_t>& candidates,
                       SlamStepStats& stats);
-  /// spIC of scan k against scan j from the state's prediction, then its validation.
-  ValidatedMatch match(std::size_t j, std::size_t k) const;
+  /// spIC of scan k against scan j from the state's prediction, then its validation; the
+  /// prediction (h(X), H P H^T) in `predicted`.
+  ValidatedMatch match(std::size_t j, std::size_t k, GaussianPose2& predicted) const;
   /// The stacked A_i (z_i - h_i(X)) of observations of scan b and, with H, its Jacobian with
   /// respect to the elements first..b, first = the smallest reference + 1.
   Eigen::VectorXd stacked_residual(std::size_t b, const std::vector<RelativePoseObservation>& z,

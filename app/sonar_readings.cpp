@@ -25,10 +25,10 @@ SonarInput from_is_log(const std::string& path, const io::SonarSetup& setup,
   input.source = "IS log";
   for (const io::SonarBeamRecord& beam : io::read_is_log(path)) {
     const double bearing = sonar_bearing_in_vehicle(beam.transducer_angle_rad, mount);
+    const double t_s = beam.t_log_s + mount.time_offset_s;  // on the navigation clock
     input.beams.push_back(
-        {beam.t_log_s,
-         readings_of(beam.t_log_s, segment_profile(beam.intensity, setup.bin_m, config), bearing,
-                     config)});
+        {t_s,
+         readings_of(t_s, segment_profile(beam.intensity, setup.bin_m, config), bearing, config)});
   }
   return input;
 }
@@ -52,7 +52,10 @@ SonarInput readings_from_detections(const io::DatasetFiles& files,
                                     const SegmentationConfig& config) {
   SonarInput input;
   input.source = "detections";
-  for (const io::BeamTimeRecord& t : times) input.beams.push_back({t.t_log_s, {}});
+  // Beam times on the navigation clock.
+  for (const io::BeamTimeRecord& t : times) {
+    input.beams.push_back({t.t_log_s + mount.time_offset_s, {}});
+  }
   std::size_t i = 0;
   while (i < rows.size()) {
     const io::DetectionRecord& first = rows[i];

@@ -49,6 +49,9 @@ void read_sonar_mount(YamlMap& map, SonarMount& mount) {
   if (map.number("bearing_sign", mount.bearing_sign) && std::abs(mount.bearing_sign) != 1.0) {
     map.fail("bearing_sign", "must be 1 or -1");
   }
+  if (map.number("time_offset_s", mount.time_offset_s) && std::abs(mount.time_offset_s) > 60.0) {
+    map.fail("time_offset_s", "must be within [-60, 60] s");
+  }
 }
 
 void read_local_frame(YamlMap& map, LocalFrame& frame) {
@@ -231,7 +234,8 @@ void write_calibration(const std::string& path, const Calibration& c) {
         << "\n  y_m: " << c.dvl.y_m << "\n"
         << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
         << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
-        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m << "\n"
+        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m
+        << "\n  time_offset_s: " << c.sonar.time_offset_s << "\n"
         << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
         << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
   });

@@ -71,13 +71,16 @@ std::vector<GpsRecord> gps_records(const std::vector<sim::GpsFix>& fixes, const 
   return rows;
 }
 
-std::vector<SonarBeamRecord> beam_records(const std::vector<sim::RenderedBeam>& beams) {
+std::vector<SonarBeamRecord> beam_records(const std::vector<sim::RenderedBeam>& beams,
+                                          const SonarMount& mount) {
   std::vector<SonarBeamRecord> rows;
   rows.reserve(beams.size());
   for (const sim::RenderedBeam& b : beams) {
-    // The head's own millisecond clock, counted from the first beam.
+    // The head's own millisecond clock, counted from the first beam; the log time runs
+    // time_offset_s behind the navigation clock, as the St. Pere sonar's does.
     const double sensor_ms = std::round((b.slot.t_s - beams.front().slot.t_s) * 1000.0);
-    rows.push_back({b.slot.t_s, sensor_ms, b.slot.transducer_angle_rad, b.intensity});
+    rows.push_back(
+        {b.slot.t_s - mount.time_offset_s, sensor_ms, b.slot.transducer_angle_rad, b.intensity});
   }
   return rows;
 }
@@ -154,7 +157,7 @@ void write_segments(const std::string& path, const std::vector<TimeSegment>& seg
 void write_files(const fs::path& dir, const sim::Scenario& scenario,
                  const sim::SimulationResult& result, const std::string& scenario_text) {
   const std::string base = (dir / prefix_of(scenario.name)).string();
-  const std::vector<SonarBeamRecord> beams = beam_records(result.beams);
+  const std::vector<SonarBeamRecord> beams = beam_records(result.beams, scenario.sonar.mount);
   write_is_log(base + "_IS.log", beams);
   write_beam_times_log(base + "_IS_timestamps.log", beam_time_records(beams));
   write_detections(base + "_detections.csv.gz", detection_records(beams, scenario));

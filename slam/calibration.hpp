@@ -26,6 +26,10 @@ struct SonarMount {
   double z_m = 0.0;                  ///< head height above the vehicle origin, m
   double bearing_offset_rad = M_PI;  ///< vehicle bearing of transducer angle 0, rad
   double bearing_sign = -1.0;        ///< +1 or -1 (the St. Pere head is mounted reversed)
+  /// Added to the sonar log's beam times to put them on the navigation logs' clock, s. St. Pere:
+  /// the beams' yaw, as scan matching sees it between consecutive scans, lags the MTi's by this
+  /// much (estimated from the sensors alone, docs/simulator.md "Sonar clock offset").
+  double time_offset_s = 0.66;
 };
 
 /// The local world frame: x East, y North in metres of UTM (zone from the origin's longitude),

@@ -78,7 +78,7 @@ std::vector<msislab::sim::TraceBeam> project_beams(const msislab::io::DatasetFil
     const auto found = nearest.find(static_cast<std::int64_t>(row));
     angle_rad = found != nearest.end() ? found->second.angle_rad : angle_rad - step_rad;
     if (found != nearest.end()) revolution = found->second.keyframe;
-    const double t_s = times[row].t_log_s;
+    const double t_s = times[row].t_log_s + calibration.sonar.time_offset_s;  // navigation clock
     if (t_s < track.front().t_s || t_s > track.back().t_s) continue;
     const Eigen::Vector2d p_m = msislab::interpolate_pose(track, t_s).translation();
     const Pose2 T_world_vehicle(p_m.x(), p_m.y(),

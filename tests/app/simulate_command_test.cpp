@@ -253,7 +253,11 @@ TEST(SimulateCommand, WritesEveryFileAndTheReadersReadThemBack) {
                 -2.0 * kPi / 200.0, 1e-9)
         << "beam " << i;
   }
-  EXPECT_EQ(beams.front().t_log_s, kStartTime_s);
+  // The log's times run the mount's clock offset (St. Pere's, 0.66 s) behind the navigation
+  // clock; calibration.yaml carries it (checked below).
+  const double offset_s = sim::calibration_of(io::read_scenario(box.scenario)).sonar.time_offset_s;
+  EXPECT_EQ(offset_s, 0.66);
+  EXPECT_NEAR(beams.front().t_log_s, kStartTime_s - offset_s, 1e-9);
   EXPECT_NEAR(rate_hz(beams) * 13.8, 200.0, 1.0);
   const auto in_first_revolution = std::count_if(beams.begin(), beams.end(), [&](const auto& b) {
     return b.t_log_s < beams.front().t_log_s + 13.8 - 1e-6;
@@ -303,16 +307,17 @@ TEST(SimulateCommand, WritesEveryFileAndTheReadersReadThemBack) {
   EXPECT_EQ(c.sonar.z_m, expected.sonar.z_m);
   EXPECT_NEAR(c.sonar.bearing_offset_rad, expected.sonar.bearing_offset_rad, 1e-12);
   EXPECT_EQ(c.sonar.bearing_sign, expected.sonar.bearing_sign);
+  EXPECT_EQ(c.sonar.time_offset_s, expected.sonar.time_offset_s);
   EXPECT_EQ(c.frame.origin_latitude_deg, expected.frame.origin_latitude_deg);
   EXPECT_EQ(c.frame.origin_longitude_deg, expected.frame.origin_longitude_deg);
 
   EXPECT_EQ(read_text((box.dir / "scenario.yaml").string()), kScenario);
 
-  // beams.csv: one row per beam, at the beams' times.
+  // beams.csv: one row per beam, at the beams' times on the navigation clock.
   const std::vector<BeamRow> rows = read_beams_csv((box.dir / "truth" / "beams.csv").string());
   ASSERT_EQ(rows.size(), beams.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    ASSERT_NEAR(rows[i].t_s, beams[i].t_log_s, 1e-6) << "beam " << i;
+    ASSERT_NEAR(rows[i].t_s, beams[i].t_log_s + c.sonar.time_offset_s, 1e-6) << "beam " << i;
   }
 }
 

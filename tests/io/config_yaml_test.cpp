@@ -60,6 +60,7 @@ void expect_stpere_calibration(const Calibration& c) {
   EXPECT_EQ(c.sonar.y_m, 0.0);
   EXPECT_NEAR(c.sonar.bearing_offset_rad, kPi, kAngleTolerance_rad);
   EXPECT_EQ(c.sonar.bearing_sign, -1.0);
+  EXPECT_EQ(c.sonar.time_offset_s, 0.66);
   EXPECT_EQ(c.frame.origin_latitude_deg, 42.0 + 12.225 / 60.0);
   EXPECT_EQ(c.frame.origin_longitude_deg, 3.0 + 6.2832 / 60.0);
 }
@@ -106,6 +107,7 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   c.sonar.y_m = -0.05;
   c.sonar.bearing_offset_rad = 2.9876543210987654;
   c.sonar.bearing_sign = 1.0;
+  c.sonar.time_offset_s = -0.12345678901234567;
   c.frame.origin_latitude_deg = -12.345678901234567;
   c.frame.origin_longitude_deg = 179.99999999999997;
   const std::string path = dir.file("calibration.yaml");
@@ -120,6 +122,7 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   // Written in degrees, read back in radians: one conversion each way.
   EXPECT_NEAR(back.sonar.bearing_offset_rad, c.sonar.bearing_offset_rad, kAngleTolerance_rad);
   EXPECT_EQ(back.sonar.bearing_sign, c.sonar.bearing_sign);
+  EXPECT_EQ(back.sonar.time_offset_s, c.sonar.time_offset_s);
   EXPECT_EQ(back.frame.origin_latitude_deg, c.frame.origin_latitude_deg);
   EXPECT_EQ(back.frame.origin_longitude_deg, c.frame.origin_longitude_deg);
   // Atomic write: no temporary left beside the file.
@@ -157,6 +160,7 @@ TEST(CalibrationYaml, NonFiniteNumbers) {
 TEST(CalibrationYaml, BadValues) {
   expect_bad_calibration("sonar:\n  bearing_sign: 2\n", 2, "sonar.bearing_sign");
   expect_bad_calibration("sonar:\n  bearing_sign: 0\n", 2, "sonar.bearing_sign");
+  expect_bad_calibration("sonar:\n  time_offset_s: 61\n", 2, "sonar.time_offset_s");
   expect_bad_calibration("frame:\n  origin_latitude_deg: 95\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2, "frame.origin_longitude_deg");

@@ -147,9 +147,12 @@ TEST(TrajectorySlamRun, RealStPere) {
   const RunOutcome rc = run({testing::stpere_dir(), "robocentric", tmp.file("rc"), config});
   ASSERT_TRUE(dr.metrics && wc.metrics && rc.metrics);
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("St. Pere", *r->metrics);
-  // Measured: robocentric 2.94 m (loop 1.57, canal 4.98), world-centric 2.94 m (1.57, 5.00),
-  // dead reckoning 3.56 m (3.17, 4.13); the paper: 1.15 m and 2.05 m. The canal is still worse
-  // than dead reckoning (docs/trajectory_slam.md). One-way association gave 3.99 m (1.37, 7.89).
+  // Measured: robocentric 2.84 m (loop 1.74, canal 4.47), 520 of 601 matches accepted, dead
+  // reckoning 3.56 m (3.17, 4.13); the paper: 1.15 m and 2.05 m. The canal is still worse than
+  // dead reckoning (docs/trajectory_slam.md). Before the sonar clock offset (0.66 s, estimated
+  // from the sensors, docs/simulator.md) 2.95 m (loop 1.53, canal 5.07), 420 of 599 accepted;
+  // the loop's ratio to dead reckoning is 0.55 now (0.49 then) against the bound 0.6. One-way
+  // association gave 3.99 m (1.37, 7.89).
   // GPS gives no pose truth: matches.csv has a row per candidate and empty truth columns.
   const MatchesCsv matches = read_matches_csv(fs::path(tmp.file("rc")) / "matches.csv");
   EXPECT_EQ(static_cast<double>(matches.rows), rc.metrics->diagnostics.at(0).second);  // candidates
@@ -158,8 +161,8 @@ TEST(TrajectorySlamRun, RealStPere) {
   for (const RunOutcome* slam : {&wc, &rc}) {
     const RunMetrics& m = *slam->metrics;
     EXPECT_GT(m.scans, 200);
-    EXPECT_LT(segment(m, "loop"), 0.6 * segment(*dr.metrics, "loop")) << m.method;  // 0.49
-    EXPECT_LT(m.errors.mean_m, 0.95 * dr.metrics->errors.mean_m) << m.method;       // 0.83
+    EXPECT_LT(segment(m, "loop"), 0.6 * segment(*dr.metrics, "loop")) << m.method;  // 0.55
+    EXPECT_LT(m.errors.mean_m, 0.95 * dr.metrics->errors.mean_m) << m.method;       // 0.80
   }
 }
 

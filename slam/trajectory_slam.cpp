@@ -278,6 +278,10 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
     *nis = innovation_nis(k, z, R);
     return *nis <= gate_for_dimensions(config_.innovation_gate_chi2, R.rows());
   };
+  // Each match's own NIS against the prediction: the greedy search below drops the largest first,
+  // and matches.csv reports it.
+  std::vector<double> own(n);
+  for (std::size_t i = 0; i < n; ++i) compatible({i}, &own[i]);
   constexpr std::size_t kExhaustive = 8;
   std::vector<std::size_t> chosen;
   if (n <= kExhaustive) {
@@ -292,8 +296,6 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
       if (set.size() > chosen.size() || nis < best) chosen = set, best = nis;
     }
   } else {
-    std::vector<double> own(n);
-    for (std::size_t i = 0; i < n; ++i) compatible({i}, &own[i]);
     std::vector<std::size_t> set(n);
     for (std::size_t i = 0; i < n; ++i) set[i] = i;
     double nis = 0.0;
@@ -314,14 +316,7 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   std::vector<double> own_nis(matches.size(), std::numeric_limits<double>::quiet_NaN());
   for (std::size_t i = 0; i < n; ++i) {
     if (!accepted[i]) matches[used[i]].rejection = MatchRejection::kInnovation;
-    // Each match's own NIS against the prediction; the state is the posterior by now, so from
-    // the predictions' residuals and covariances kept above.
-    const ValidatedMatch& m = matches[used[i]];
-    const Eigen::VectorXd r =
-        m.observed * pose_difference(m.match.estimate.mean, predictions[used[i]].mean);
-    const Eigen::MatrixXd S =
-        m.observed * (predictions[used[i]].cov + m.match.estimate.cov) * m.observed.transpose();
-    own_nis[used[i]] = r.dot(S.ldlt().solve(r));
+    own_nis[used[i]] = own[i];
   }
   for (std::size_t c = 0; c < matches.size(); ++c) {
     stats.matches.push_back(record_of(candidates[c], k, matches[c], predictions[c], own_nis[c]));

@@ -62,7 +62,8 @@ struct SlamRun {
   std::vector<PlacedScan> scans;  ///< with their corrected world poses
   std::vector<StampedPose> trajectory;
   SlamTotals totals;
-  std::vector<MatchRecord> matches;  ///< every candidate match of every step
+  std::vector<MatchRecord> matches;                  ///< every candidate match of every step
+  std::vector<StampedPose> dead_reckoning_at_scans;  ///< the scans' poses before the SLAM
 };
 
 /// The dataset's revolutions as motion-compensated scans placed by dead reckoning.
@@ -100,6 +101,7 @@ SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, 
     run.scans[i].centre_world.pose = corrected.back();
   }
   run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
+  run.dead_reckoning_at_scans = std::move(dr_at_scans);
   return run;
 }
 
@@ -131,6 +133,28 @@ std::vector<io::MatchRow> match_rows(const SlamRun& slam, const Truth& truth) {
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+/// The accepted matches between consecutive scans (k, k - 1), for the scale statistic: the
+/// spIC translation, and the dead reckoning's (the first thing a consecutive match is measured
+/// against).
+std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecutive_translations(
+    const SlamRun& slam) {
+  std::vector<MatchTranslation> matched, dead_reckoning;
+  for (const MatchRecord& m : slam.matches) {
+    if (m.rejection != MatchRejection::kNone || m.scan != m.reference + 1) continue;
+    MatchTranslation t;
+    t.t_reference_s = slam.scans[m.reference].scan.t_s;
+    t.t_s = slam.scans[m.scan].scan.t_s;
+    t.yaw_reference_rad = slam.scans[m.reference].centre_world.pose.mean.yaw();
+    t.t_reference_m = m.z.mean.translation();
+    matched.push_back(t);
+    const Pose2 motion = slam.dead_reckoning_at_scans[m.reference].pose.mean.between(
+        slam.dead_reckoning_at_scans[m.scan].pose.mean);
+    t.t_reference_m = motion.translation();
+    dead_reckoning.push_back(t);
+  }
+  return {matched, dead_reckoning};
 }
 
 }  // namespace
@@ -201,6 +225,16 @@ RunOutcome run(const RunOptions& options) {
       }
       outcome.metrics->diagnostics.emplace_back("matches_direction_dropped",
                                                 counts.direction_dropped);
+      // How long the consecutive matches make the motion, against the truth (docs/formats.md).
+      const auto [matched, dead_reckoning] = consecutive_translations(*slam);
+      for (const auto& [name, translations] :
+           {std::pair{"consecutive_match_scale", &matched},
+            std::pair{"consecutive_dead_reckoning_scale", &dead_reckoning}}) {
+        if (const std::optional<double> scale =
+                match_translation_scale(*translations, truth.positions)) {
+          outcome.metrics->diagnostics.emplace_back(name, *scale);
+        }
+      }
     }
     if (options.method == "deadreckoning") {
       outcome.metrics->diagnostics = {

@@ -35,6 +35,46 @@ std::vector<ErrorSample> position_errors(const std::vector<StampedPose>& estimat
   return errors;
 }
 
+namespace {
+/// The truth position at t_s, interpolated; nullopt outside the fixes or across a gap.
+std::optional<Eigen::Vector2d> position_at(const std::vector<PositionFix>& truth, double t_s,
+                                           double max_fix_gap_s) {
+  auto after = std::lower_bound(truth.begin(), truth.end(), t_s,
+                                [](const PositionFix& f, double t) { return f.t_s < t; });
+  if (after == truth.end()) return std::nullopt;
+  if (after->t_s == t_s) return after->p_world_m;
+  if (after == truth.begin()) return std::nullopt;
+  const PositionFix& a = *std::prev(after);
+  const double span_s = after->t_s - a.t_s;
+  if (span_s > max_fix_gap_s) return std::nullopt;
+  const double w = (t_s - a.t_s) / span_s;
+  return ((1.0 - w) * a.p_world_m + w * after->p_world_m).eval();
+}
+}  // namespace
+
+std::optional<double> match_translation_scale(const std::vector<MatchTranslation>& matches,
+                                              const std::vector<PositionFix>& truth,
+                                              double min_displacement_m, double max_fix_gap_s) {
+  double along_m = 0.0, true_m = 0.0;
+  for (const MatchTranslation& m : matches) {
+    const std::optional<Eigen::Vector2d> p_reference_world_m =
+        position_at(truth, m.t_reference_s, max_fix_gap_s);
+    const std::optional<Eigen::Vector2d> p_world_m = position_at(truth, m.t_s, max_fix_gap_s);
+    if (!p_reference_world_m || !p_world_m) continue;
+    const Eigen::Vector2d d_world_m = *p_world_m - *p_reference_world_m;
+    const double length_m = d_world_m.norm();
+    if (!(length_m >= min_displacement_m)) continue;
+    // d in the reference scan's frame: R(yaw)^T d.
+    const double c = std::cos(m.yaw_reference_rad), s = std::sin(m.yaw_reference_rad);
+    const Eigen::Vector2d d_reference_m(c * d_world_m.x() + s * d_world_m.y(),
+                                        -s * d_world_m.x() + c * d_world_m.y());
+    along_m += m.t_reference_m.dot(d_reference_m) / length_m;
+    true_m += length_m;
+  }
+  if (true_m <= 0.0) return std::nullopt;
+  return along_m / true_m;
+}
+
 std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors) {
   if (errors.empty()) return std::nullopt;
   ErrorStats stats;

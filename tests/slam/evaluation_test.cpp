@@ -80,5 +80,43 @@ TEST(Evaluation, MeanOfValues) {
   EXPECT_DOUBLE_EQ(*mean_of({1.0, 2.0, 6.0}), 3.0);
 }
 
+TEST(Evaluation, MatchTranslationScaleProjectsOnTheTrueDisplacementInTheReferenceFrame) {
+  // Truth: a vehicle heading north-east at 1 m/s; fixes every 2 s with one 10 s gap (t 40..50).
+  const double heading_rad = M_PI / 4.0;
+  const Eigen::Vector2d direction(std::cos(heading_rad), std::sin(heading_rad));
+  std::vector<PositionFix> truth;
+  for (double t = 0.0; t <= 40.0; t += 2.0) truth.push_back({t, t * direction});
+  for (double t = 50.0; t <= 80.0; t += 2.0) truth.push_back({t, t * direction});
+  // Matches 3 s apart (3 m), the scan's translation 0.9 of it along the vehicle's x, plus a
+  // sideways error that the projection must ignore.
+  std::vector<MatchTranslation> matches;
+  for (double t = 1.0; t + 3.0 <= 38.0; t += 3.0) {
+    matches.push_back({t, t + 3.0, heading_rad, Eigen::Vector2d(2.7, t < 20.0 ? 0.5 : -0.5)});
+  }
+  const std::optional<double> scale = match_translation_scale(matches, truth);
+  ASSERT_TRUE(scale.has_value());
+  EXPECT_NEAR(*scale, 0.9, 1e-12);
+
+  // A match across the fix gap, one shorter than the minimum and one outside the truth are left
+  // out: the figure is unchanged.
+  std::vector<MatchTranslation> with_skipped = matches;
+  with_skipped.push_back({39.0, 42.0, heading_rad, Eigen::Vector2d(30.0, 0.0)});
+  with_skipped.push_back({60.0, 60.5, heading_rad, Eigen::Vector2d(30.0, 0.0)});
+  with_skipped.push_back({79.0, 82.0, heading_rad, Eigen::Vector2d(30.0, 0.0)});
+  EXPECT_NEAR(*match_translation_scale(with_skipped, truth), 0.9, 1e-12);
+
+  // The reference yaw matters: the same translation read with a yaw 90 deg off is orthogonal to
+  // the true displacement.
+  std::vector<MatchTranslation> turned = matches;
+  for (MatchTranslation& m : turned) {
+    m.yaw_reference_rad += M_PI / 2.0;
+    m.t_reference_m.y() = 0.0;
+  }
+  EXPECT_NEAR(*match_translation_scale(turned, truth), 0.0, 1e-12);
+
+  EXPECT_FALSE(match_translation_scale({}, truth).has_value());
+  EXPECT_FALSE(match_translation_scale({{60.0, 60.5, 0.0, Eigen::Vector2d(1, 0)}}, truth));
+}
+
 }  // namespace
 }  // namespace msislab

@@ -147,11 +147,11 @@ std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecut
     t.t_reference_s = slam.scans[m.reference].scan.t_s;
     t.t_s = slam.scans[m.scan].scan.t_s;
     t.yaw_reference_rad = slam.scans[m.reference].centre_world.pose.mean.yaw();
-    t.t_reference_m = m.z.mean.translation();
+    t.translation_reference_m = m.z.mean.translation();
     matched.push_back(t);
     const Pose2 motion = slam.dead_reckoning_at_scans[m.reference].pose.mean.between(
         slam.dead_reckoning_at_scans[m.scan].pose.mean);
-    t.t_reference_m = motion.translation();
+    t.translation_reference_m = motion.translation();
     dead_reckoning.push_back(t);
   }
   return {matched, dead_reckoning};

@@ -68,7 +68,7 @@ std::optional<double> match_translation_scale(const std::vector<MatchTranslation
     const double c = std::cos(m.yaw_reference_rad), s = std::sin(m.yaw_reference_rad);
     const Eigen::Vector2d d_reference_m(c * d_world_m.x() + s * d_world_m.y(),
                                         -s * d_world_m.x() + c * d_world_m.y());
-    along_m += m.t_reference_m.dot(d_reference_m) / length_m;
+    along_m += m.translation_reference_m.dot(d_reference_m) / length_m;
     true_m += length_m;
   }
   if (true_m <= 0.0) return std::nullopt;

@@ -70,7 +70,8 @@ struct MatchTranslation {
   double t_reference_s = 0.0;
   double t_s = 0.0;
   double yaw_reference_rad = 0.0;
-  Eigen::Vector2d t_reference_m = Eigen::Vector2d::Zero();  ///< scan in the reference's frame
+  Eigen::Vector2d translation_reference_m =
+      Eigen::Vector2d::Zero();  ///< scan in the reference's frame
 };
 
 /// The scale of scan-match translations against the truth positions (docs/formats.md,

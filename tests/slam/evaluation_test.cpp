@@ -110,7 +110,7 @@ TEST(Evaluation, MatchTranslationScaleProjectsOnTheTrueDisplacementInTheReferenc
   std::vector<MatchTranslation> turned = matches;
   for (MatchTranslation& m : turned) {
     m.yaw_reference_rad += M_PI / 2.0;
-    m.t_reference_m.y() = 0.0;
+    m.translation_reference_m.y() = 0.0;
   }
   EXPECT_NEAR(*match_translation_scale(turned, truth), 0.0, 1e-12);
 

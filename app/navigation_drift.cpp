@@ -7,6 +7,7 @@
 
 #include "app/navigation_statistics.hpp"
 #include "sim/navigation_sensors.hpp"
+#include "slam/evaluation.hpp"
 #include "slam/se2.hpp"
 
 namespace msislab::app {
@@ -65,17 +66,6 @@ double quantile(std::vector<double> values, double p) {
   return values[std::max<std::size_t>(rank, 1) - 1];
 }
 
-/// Position at t_s interpolated on a time-ordered track (t_s inside its span).
-Eigen::Vector2d position_at(const std::vector<PositionFix>& track, double t_s) {
-  auto after = std::lower_bound(track.begin(), track.end(), t_s,
-                                [](const PositionFix& p, double t) { return p.t_s < t; });
-  if (after == track.begin()) return after->p_world_m;
-  if (after == track.end()) return track.back().p_world_m;
-  const PositionFix& a = *std::prev(after);
-  const double w = (t_s - a.t_s) / (after->t_s - a.t_s);
-  return a.p_world_m + w * (after->p_world_m - a.p_world_m);
-}
-
 /// Rms per axis of GPS(t) - track(t - shift_s) after removing each window's mean offset.
 double windowed_residual(const std::vector<PositionFix>& gps, const std::vector<PositionFix>& track,
                          double shift_s, double window_s) {
@@ -87,7 +77,7 @@ double windowed_residual(const std::vector<PositionFix>& gps, const std::vector<
     for (; j < gps.size() && gps[j].t_s < gps[i].t_s + window_s; ++j) {
       const double t = gps[j].t_s - shift_s;
       if (t < track.front().t_s || t > track.back().t_s) continue;
-      e.push_back(gps[j].p_world_m - position_at(track, t));
+      e.push_back(gps[j].p_world_m - interpolate_position(track, t));
     }
     i = j;
     if (e.size() < 2) continue;
@@ -240,8 +230,8 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
       while (j < gps.size() && gps[j].t_s < gps[i].t_s + lag_s - 0.25 / stats.rate_hz) ++j;
       if (j >= gps.size() || gps[j].t_s > gps[i].t_s + lag_s + 0.25 / stats.rate_hz) continue;
       if (gps[j].t_s > buoy.back().t_s) break;
-      const Eigen::Vector2d e_i = gps[i].p_world_m - position_at(buoy, gps[i].t_s);
-      const Eigen::Vector2d e_j = gps[j].p_world_m - position_at(buoy, gps[j].t_s);
+      const Eigen::Vector2d e_i = gps[i].p_world_m - interpolate_position(buoy, gps[i].t_s);
+      const Eigen::Vector2d e_j = gps[j].p_world_m - interpolate_position(buoy, gps[j].t_s);
       sum += 0.25 * (e_j - e_i).squaredNorm();
       ++count;
     }

@@ -22,6 +22,17 @@ Pose2 interpolate_pose(const std::vector<StampedPose>& trajectory, double t_s) {
   return Pose2(a.vector() + w * d);
 }
 
+Eigen::Vector2d interpolate_position(const std::vector<PositionFix>& track, double t_s) {
+  assert(!track.empty());
+  auto after = std::lower_bound(track.begin(), track.end(), t_s,
+                                [](const PositionFix& p, double t) { return p.t_s < t; });
+  if (after == track.begin()) return after->p_world_m;
+  if (after == track.end()) return track.back().p_world_m;
+  const PositionFix& a = *std::prev(after);
+  const double w = (t_s - a.t_s) / (after->t_s - a.t_s);
+  return a.p_world_m + w * (after->p_world_m - a.p_world_m);
+}
+
 std::vector<ErrorSample> position_errors(const std::vector<StampedPose>& estimate,
                                          const std::vector<PositionFix>& truth) {
   std::vector<ErrorSample> errors;
@@ -36,19 +47,18 @@ std::vector<ErrorSample> position_errors(const std::vector<StampedPose>& estimat
 }
 
 namespace {
-/// The truth position at t_s, interpolated; nullopt outside the fixes or across a gap.
+/// The truth position at t_s; nullopt outside the fixes or between fixes more than max_fix_gap_s
+/// apart.
 std::optional<Eigen::Vector2d> position_at(const std::vector<PositionFix>& truth, double t_s,
                                            double max_fix_gap_s) {
   auto after = std::lower_bound(truth.begin(), truth.end(), t_s,
                                 [](const PositionFix& f, double t) { return f.t_s < t; });
   if (after == truth.end()) return std::nullopt;
-  if (after->t_s == t_s) return after->p_world_m;
-  if (after == truth.begin()) return std::nullopt;
-  const PositionFix& a = *std::prev(after);
-  const double span_s = after->t_s - a.t_s;
-  if (span_s > max_fix_gap_s) return std::nullopt;
-  const double w = (t_s - a.t_s) / span_s;
-  return ((1.0 - w) * a.p_world_m + w * after->p_world_m).eval();
+  if (after->t_s != t_s &&
+      (after == truth.begin() || after->t_s - std::prev(after)->t_s > max_fix_gap_s)) {
+    return std::nullopt;
+  }
+  return interpolate_position(truth, t_s);
 }
 }  // namespace
 

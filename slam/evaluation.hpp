@@ -22,6 +22,10 @@ struct PositionFix {
 /// arc). Requires a non-empty trajectory with t_s inside its time span.
 Pose2 interpolate_pose(const std::vector<StampedPose>& trajectory, double t_s);
 
+/// The position at t_s, interpolated linearly between the neighbouring fixes; the first or last
+/// fix outside the track's time span. Requires a non-empty, time-ordered track.
+Eigen::Vector2d interpolate_position(const std::vector<PositionFix>& track, double t_s);
+
 struct ErrorSample {
   double t_s = 0.0;
   double error_m = 0.0;

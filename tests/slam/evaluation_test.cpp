@@ -80,6 +80,13 @@ TEST(Evaluation, MeanOfValues) {
   EXPECT_DOUBLE_EQ(*mean_of({1.0, 2.0, 6.0}), 3.0);
 }
 
+TEST(Evaluation, InterpolatesPositionsAndHoldsTheEndsOutsideTheTrack) {
+  const std::vector<PositionFix> track = {{0.0, {0.0, 0.0}}, {2.0, {4.0, -2.0}}};
+  EXPECT_TRUE(interpolate_position(track, 0.5).isApprox(Eigen::Vector2d(1.0, -0.5)));
+  EXPECT_EQ(interpolate_position(track, -1.0), track.front().p_world_m);
+  EXPECT_EQ(interpolate_position(track, 3.0), track.back().p_world_m);
+}
+
 TEST(Evaluation, MatchTranslationScaleProjectsOnTheTrueDisplacementInTheReferenceFrame) {
   // Truth: a vehicle heading north-east at 1 m/s; fixes every 2 s with one 10 s gap (t 40..50).
   const double heading_rad = M_PI / 4.0;

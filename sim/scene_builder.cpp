@@ -1,9 +1,12 @@
 #include "sim/scene_builder.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "sim/polygon_triangulation.hpp"
+#include "sim/random.hpp"
 
 namespace msislab::sim {
 
@@ -135,6 +138,52 @@ BasinOutline channel_basin_outline(const ChannelBasin& geometry) {
                            {x_end, w}, {h, w},  {h, h},  {-h, h}};
   outline.wall_edge = {true, true, true, false, true, true, true, true};  // edge 3: the far end
   return outline;
+}
+
+BasinOutline open_area_outline(const OpenArea& geometry) {
+  const Eigen::Vector2d extent_m(geometry.extent_x_m, geometry.extent_y_m);
+  if (!(extent_m.minCoeff() > 0.0 && (geometry.field_min_m.array() >= 0.0).all() &&
+        (geometry.field_min_m.array() < geometry.field_max_m.array()).all() &&
+        (geometry.field_max_m.array() <= extent_m.array()).all())) {
+    throw std::invalid_argument(
+        "open area: needs positive extents and a pilings' field inside them");
+  }
+  BasinOutline outline;
+  outline.ccw_polygon_m = {{0.0, 0.0}, {extent_m.x(), 0.0}, extent_m, {0.0, extent_m.y()}};
+  outline.wall_edge = {true, false, false, true};  // the south and west quays
+  return outline;
+}
+
+std::vector<Eigen::Vector2d> open_area_pilings(const OpenArea& geometry) {
+  Rng rng(geometry.seed);
+  const auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
+  const Eigen::Vector2d size_m = geometry.field_max_m - geometry.field_min_m;
+  std::vector<Eigen::Vector2d> centres_m;
+  for (int dart = 0; dart < 100000 && static_cast<int>(centres_m.size()) < geometry.pilings;
+       ++dart) {
+    const Eigen::Vector2d c_m =
+        geometry.field_min_m + Eigen::Vector2d(uniform() * size_m.x(), uniform() * size_m.y());
+    const bool clear = std::none_of(centres_m.begin(), centres_m.end(), [&](const auto& other) {
+      return (other - c_m).norm() < geometry.min_spacing_m;
+    });
+    if (clear) centres_m.push_back(c_m);
+  }
+  if (static_cast<int>(centres_m.size()) < geometry.pilings) {
+    throw std::invalid_argument("open area: " + std::to_string(geometry.pilings) +
+                                " pilings do not fit in the field at the minimum spacing");
+  }
+  return centres_m;
+}
+
+std::vector<Eigen::Vector2d> circle_footprint(const Eigen::Vector2d& centre_m, double radius_m,
+                                              int sides) {
+  std::vector<Eigen::Vector2d> footprint_m;
+  for (int k = 0; k < sides; ++k) {
+    const double angle_rad = 2.0 * M_PI * k / sides;
+    footprint_m.push_back(centre_m +
+                          radius_m * Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad)));
+  }
+  return footprint_m;
 }
 
 }  // namespace msislab::sim

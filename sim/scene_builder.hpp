@@ -64,6 +64,32 @@ struct ChannelBasin {
 /// channel's far end. Throws std::invalid_argument unless 0 < width < side and length > 0.
 BasinOutline channel_basin_outline(const ChannelBasin& geometry);
 
+/// Open water off the corner of two quay walls: the scene where the scans hold only a few sparse
+/// returns (docs/scenes.md, open_area). The corner is the origin; one quay runs east along y = 0,
+/// the other north along x = 0; the far sides are open. Pilings stand in a field away from both.
+struct OpenArea {
+  double extent_x_m = 240.0;  ///< the south quay's length and the bottom's extent east, m
+  double extent_y_m = 160.0;  ///< the west quay's length and the bottom's extent north, m
+  Eigen::Vector2d field_min_m{30.0, 30.0};    ///< the pilings' field, south-west corner, m
+  Eigen::Vector2d field_max_m{200.0, 140.0};  ///< the pilings' field, north-east corner, m
+  int pilings = 24;
+  double min_spacing_m = 15.0;  ///< between two piling centres, m
+  std::uint64_t seed = 7;       ///< the pilings' layout
+};
+
+/// The outline, counter-clockwise from the corner: walls on the south and west edges only.
+/// Throws std::invalid_argument unless both extents are positive and the field lies inside them.
+BasinOutline open_area_outline(const OpenArea& geometry);
+
+/// The piling centres: uniform darts in the field (xoshiro256** from the seed), each kept when
+/// no earlier one is closer than min_spacing_m, so the same options give the same layout. Throws
+/// std::invalid_argument when the pilings do not fit (100000 darts without filling the count).
+std::vector<Eigen::Vector2d> open_area_pilings(const OpenArea& geometry);
+
+/// A regular polygon of `sides` vertices on a circle, counter-clockwise: a piling's footprint.
+std::vector<Eigen::Vector2d> circle_footprint(const Eigen::Vector2d& centre_m, double radius_m,
+                                              int sides);
+
 /// A closed vertical prism over a convex counter-clockwise footprint from z_low_m to z_top_m,
 /// normals outward.
 void add_prism(MeshBuilder& builder, const std::vector<Eigen::Vector2d>& ccw_footprint_m,

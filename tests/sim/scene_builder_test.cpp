@@ -140,5 +140,46 @@ TEST(SceneBuilder, ChannelBasinIsASimpleBasinWithAnOpenFarEnd) {
   EXPECT_THROW(channel_basin_outline({60.0, 0.0, 16.0}), std::invalid_argument);
 }
 
+TEST(SceneBuilder, OpenAreaHasTwoQuaysAndASparsePilingField) {
+  const OpenArea geometry;  // 240 x 160 m, 24 pilings 15 m apart in x 30-200, y 30-140 m
+  const BasinOutline outline = open_area_outline(geometry);
+  ASSERT_EQ(outline.ccw_polygon_m.size(), 4u);
+  EXPECT_EQ(outline.wall_edge, (std::vector<bool>{true, false, false, true}));
+  EXPECT_TRUE(outline.ccw_polygon_m[2].isApprox(Eigen::Vector2d(240.0, 160.0)));
+
+  const std::vector<Eigen::Vector2d> centres_m = open_area_pilings(geometry);
+  ASSERT_EQ(centres_m.size(), 24u);
+  for (std::size_t i = 0; i < centres_m.size(); ++i) {
+    EXPECT_TRUE((centres_m[i].array() >= geometry.field_min_m.array()).all()) << i;
+    EXPECT_TRUE((centres_m[i].array() <= geometry.field_max_m.array()).all()) << i;
+    for (std::size_t j = 0; j < i; ++j) {
+      EXPECT_GE((centres_m[i] - centres_m[j]).norm(), geometry.min_spacing_m) << i << " " << j;
+    }
+  }
+  EXPECT_EQ(open_area_pilings(geometry), centres_m) << "the same seed, the same layout";
+  OpenArea other = geometry;
+  other.seed = 8;
+  EXPECT_NE(open_area_pilings(other), centres_m);
+
+  OpenArea crowded = geometry;
+  crowded.pilings = 500;  // 500 x 15 m discs do not fit in 170 x 110 m
+  EXPECT_THROW(open_area_pilings(crowded), std::invalid_argument);
+  OpenArea outside = geometry;
+  outside.field_max_m = {250.0, 140.0};
+  EXPECT_THROW(open_area_outline(outside), std::invalid_argument);
+
+  // A piling's footprint: counter-clockwise on its circle.
+  const std::vector<Eigen::Vector2d> footprint_m = circle_footprint({5.0, 6.0}, 1.0, 12);
+  ASSERT_EQ(footprint_m.size(), 12u);
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_NEAR((footprint_m[i] - Eigen::Vector2d(5.0, 6.0)).norm(), 1.0, 1e-12);
+    const Eigen::Vector2d& a = footprint_m[i];
+    const Eigen::Vector2d& b = footprint_m[(i + 1) % 12];
+    twice_area += a.x() * b.y() - b.x() * a.y();
+  }
+  EXPECT_NEAR(twice_area / 2.0, 3.0, 1e-12);  // a regular 12-gon of unit radius: 3
+}
+
 }  // namespace
 }  // namespace msislab::sim

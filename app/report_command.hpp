@@ -1,7 +1,8 @@
-// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR]`: the results page
+// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR ...]`: the results page
 // (docs/results.md, written by tools/results.sh) from result folders that `msislab run` and
-// `msislab plot` filled and a Monte Carlo directory: the paper's Table I on simulated and real
-// data, the Monte Carlo consistency table and the figures, copied beside the page (docs/cli.md).
+// `msislab plot` filled and Monte Carlo directories: the paper's Table I on simulated and real
+// data, a Monte Carlo consistency table per directory and the figures, copied beside the page
+// (docs/cli.md).
 #pragma once
 
 #include <optional>
@@ -16,10 +17,12 @@
 namespace msislab::app {
 
 struct ReportOptions {
-  std::string out_path;        ///< the Markdown page; its figures go to <stem>/ beside it
-  std::string sim_dir;         ///< a folder of results on a simulated dataset (may be empty)
-  std::string real_dir;        ///< a folder of results on the real dataset (may be empty)
-  std::string montecarlo_dir;  ///< a Monte Carlo directory (may be empty)
+  std::string out_path;  ///< the Markdown page; its figures go to <stem>/ beside it
+  std::string sim_dir;   ///< a folder of results on a simulated dataset (may be empty)
+  std::string real_dir;  ///< a folder of results on the real dataset (may be empty)
+  /// Monte Carlo directories (may be none): the first is the consistency test of the page, each
+  /// further one (another scenario: the failure cases) gets a section of its own.
+  std::vector<std::string> montecarlo_dirs;
 };
 
 /// One folder of results: each method's metrics and the figures `msislab plot` drew.
@@ -33,6 +36,7 @@ struct ResultFolder {
 };
 
 struct MonteCarloFolder {
+  std::string label;  ///< prefix of its copied figures: "montecarlo", then "montecarlo_<scenario>"
   std::string dir;
   io::MonteCarloManifest manifest;
   std::vector<io::StoredSummary> methods;
@@ -42,14 +46,15 @@ struct MonteCarloFolder {
 struct ResultsReport {
   std::optional<ResultFolder> sim;
   std::optional<ResultFolder> real;
-  std::optional<MonteCarloFolder> montecarlo;
-  std::string figures_dir_name;  ///< where the page links its figures, relative to it
+  std::vector<MonteCarloFolder> montecarlo;  ///< in the order given
+  std::string figures_dir_name;              ///< where the page links its figures, relative to it
 };
 
 /// Reads a result folder: every subdirectory with a metrics.json, and DIR/figures/*.png (which
 /// must exist: `msislab plot DIR` draws them). Throws io::InputError.
 ResultFolder read_result_folder(const std::string& dir, const std::string& label);
-/// Reads summary.json, montecarlo.json and DIR/figures/*.png. Throws io::InputError.
+/// Reads summary.json, montecarlo.json and DIR/figures/*.png; labels it "montecarlo" (the
+/// caller renames further folders). Throws io::InputError.
 MonteCarloFolder read_montecarlo_folder(const std::string& dir);
 
 /// The page, Markdown (figures linked as <figures_dir_name>/<label>_<file>).

@@ -75,7 +75,9 @@ void add_report_command(CLI::App& app, msislab::app::ReportOptions& options) {
                      "Folder of result directories on a simulated dataset, plotted");
   report->add_option("--real", options.real_dir,
                      "Folder of result directories on the real dataset, plotted");
-  report->add_option("--montecarlo", options.montecarlo_dir, "Monte Carlo directory, plotted");
+  report->add_option("--montecarlo", options.montecarlo_dirs,
+                     "Monte Carlo directory, plotted; repeat for further scenarios, the page's "
+                     "consistency test first");
 }
 
 void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,

@@ -5,8 +5,10 @@
 #  2. the Monte Carlo consistency test: N seeded runs (default 50) of scenarios/stpere_replica.yaml
 #     with robocentric and world-centric SLAM and dead reckoning (resumable: an interrupted sweep
 #     keeps its finished runs when this is run again), and its NEES figure;
-#  3. msislab report: writes the page from those folders and copies the figures beside it.
-# Usage: tools/results.sh [--runs N] [--jobs J]     (about 10 minutes on 2 cores with 50 runs)
+#  3. the failure scenarios of issue 12 with the default config: 20 runs of
+#     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
+#  4. msislab report: writes the page from those folders and copies the figures beside it.
+# Usage: tools/results.sh [--runs N] [--jobs J]     (about 12 minutes on 2 cores with 50 runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,7 +18,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -24,29 +26,37 @@ done
 tools/main.sh
 msislab=build/release/tools/msislab
 
-mc="out/montecarlo/stpere_replica_${runs}runs"
-echo "== Monte Carlo: $runs runs of scenarios/stpere_replica.yaml into $mc"
+# montecarlo SCENARIO RUNS DIR [--config FILE]: a resumable sweep with every method and its
+# nees.png; one made by an earlier build is stale for this page, so it starts again.
 montecarlo() {
-  # The replica's config, as the main job's: its sonar read from detections like the real data.
-  "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" --jobs "$jobs" \
-    --methods robocentric,worldcentric,deadreckoning --config config/stpere_replica.yaml \
-    --out "$mc"   # it draws its nees.png
-}
-# An interrupted sweep resumes; one made by an earlier build is stale for this page: start again.
-mkdir -p "$(dirname "$mc")"
-if ! montecarlo 2> >(tee "$mc.stderr" >&2); then
-  wait $! || true  # the tee: its file is complete before it is read
-  if grep -q "made by another msislab build" "$mc.stderr"; then
-    echo "== $mc was made by another build: running it again from scratch"
-    rm -rf "$mc"
-    montecarlo
-  else
-    exit 2
+  local scenario="$1" n="$2" dir="$3"
+  shift 3
+  echo "== Monte Carlo: $n runs of $scenario into $dir"
+  local sweep=("$msislab" montecarlo "$scenario" --runs "$n" --jobs "$jobs"
+    --methods robocentric,worldcentric,deadreckoning --out "$dir" "$@")
+  mkdir -p "$(dirname "$dir")"
+  if ! "${sweep[@]}" 2> >(tee "$dir.stderr" >&2); then
+    wait $! || true  # the tee: its file is complete before it is read
+    if grep -q "made by another msislab build" "$dir.stderr"; then
+      echo "== $dir was made by another build: running it again from scratch"
+      rm -rf "$dir"
+      "${sweep[@]}"
+    else
+      exit 2
+    fi
   fi
-fi
-rm -f "$mc.stderr"
+  rm -f "$dir.stderr"
+}
+# The replica's config, as the main job's: its sonar read from detections like the real data.
+mc="out/montecarlo/stpere_replica_${runs}runs"
+montecarlo scenarios/stpere_replica.yaml "$runs" "$mc" --config config/stpere_replica.yaml
+# The failure scenarios, with the default config they were made for.
+channel=out/montecarlo/straight_channel_20runs
+open_area=out/montecarlo/open_area_10runs
+montecarlo scenarios/straight_channel.yaml 20 "$channel"
+montecarlo scenarios/open_area.yaml 10 "$open_area"
 
-report=(--sim out/sim --montecarlo "$mc")
+report=(--sim out/sim --montecarlo "$mc" --montecarlo "$channel" --montecarlo "$open_area")
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
 if [ -f "$stpere/_040825_1735_DVL.log" ]; then report+=(--real out/stpere); fi
 "$msislab" report docs/results.md "${report[@]}"

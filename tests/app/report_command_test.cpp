@@ -57,10 +57,11 @@ fs::path result_folder(const fs::path& dir, const std::vector<RunMetrics>& resul
 }
 
 fs::path montecarlo_folder(const fs::path& dir, double rc_anees, double wc_anees,
-                           double rc_fraction = 0.5) {
+                           double rc_fraction = 0.5,
+                           const std::string& scenario = "stpere_replica.yaml") {
   fs::create_directories(dir / "figures");
   io::MonteCarloManifest manifest;
-  manifest.scenario_source = "/src/scenarios/stpere_replica.yaml";
+  manifest.scenario_source = "/src/scenarios/" + scenario;
   manifest.first_seed = 42;
   manifest.runs = 50;
   manifest.methods = {"robocentric", "worldcentric"};
@@ -98,7 +99,7 @@ struct Inputs {
     mc = montecarlo_folder(tmp.path() / "mc", 5.0, 18.68);
   }
   ReportOptions options() const {
-    return {tmp.file("docs/results.md"), sim.string(), real.string(), mc.string()};
+    return {tmp.file("docs/results.md"), sim.string(), real.string(), {mc.string()}};
   }
 };
 
@@ -169,13 +170,45 @@ TEST(ReportCommand, VerdictFollowsTheFigures) {
             std::string::npos);
 }
 
+TEST(ReportCommand, FurtherMonteCarloFoldersGetSectionsOfTheirOwn) {
+  const Inputs in;
+  const fs::path channel =
+      montecarlo_folder(in.tmp.path() / "channel", 2.86, 2.86, 0.906, "straight_channel.yaml");
+  ReportOptions options = in.options();
+  options.montecarlo_dirs.push_back(channel.string());
+  const ReportOutcome outcome = write_report(options);
+  const std::string page = read_text(in.tmp.file("docs/results.md"));
+  const std::size_t first = position(page,
+                                     "## Monte Carlo consistency\n\n50 seeded runs of the "
+                                     "scenario `stpere_replica.yaml`");
+  const std::size_t second =
+      position(page,
+               "## Monte Carlo consistency: `straight_channel.yaml`\n\n50 seeded runs of "
+               "the scenario `straight_channel.yaml`");
+  EXPECT_LT(first, second);
+  EXPECT_LT(position(page, "](results/montecarlo_nees.png)"), second);
+  EXPECT_GT(position(page, "](results/montecarlo_straight_channel_nees.png)"), second);
+  EXPECT_EQ(outcome.figures.size(), 7u);
+  EXPECT_TRUE(fs::exists(in.tmp.path() / "docs/results/montecarlo_straight_channel_nees.png"));
+
+  options.montecarlo_dirs.push_back(channel.string());  // the same scenario twice
+  fs::remove_all(in.tmp.path() / "docs");
+  try {
+    write_report(options);
+    ADD_FAILURE() << "no InputError for a scenario given twice";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a second Monte Carlo of"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results.md"));
+}
+
 TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs" / "results");
   write_text(in.tmp.file("docs/results/sim_stale.png"), "old");
   ReportOptions only_real = in.options();
   only_real.sim_dir.clear();
-  only_real.montecarlo_dir.clear();
+  only_real.montecarlo_dirs.clear();
   write_report(only_real);
   EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results" / "sim_stale.png"));
   EXPECT_TRUE(fs::exists(in.tmp.path() / "docs" / "results" / "real_errors.png"));
@@ -208,9 +241,9 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   fs::remove(in.mc / "summary.json");
   expect_error(options, "summary.json: missing");
   write_text((in.sim / "robocentric" / "metrics.json").string(), "{\"method\": 3}\n");
-  options.montecarlo_dir.clear();
+  options.montecarlo_dirs.clear();
   expect_error(options, "metrics.json");
-  expect_error(ReportOptions{page, "", "", ""}, "nothing to report");
+  expect_error(ReportOptions{page, "", "", {}}, "nothing to report");
 }
 
 TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {

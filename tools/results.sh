@@ -35,8 +35,8 @@ montecarlo() {
   local sweep=("$msislab" montecarlo "$scenario" --runs "$n" --jobs "$jobs"
     --methods robocentric,worldcentric,deadreckoning --out "$dir" "$@")
   mkdir -p "$(dirname "$dir")"
-  if ! "${sweep[@]}" 2> >(tee "$dir.stderr" >&2); then
-    wait $! || true  # the tee: its file is complete before it is read
+  # stderr shown and kept (pipefail: the pipeline fails when the sweep does; tee has finished)
+  if ! { "${sweep[@]}" 2>&1 1>&3 | tee "$dir.stderr" >&2; } 3>&1; then
     if grep -q "made by another msislab build" "$dir.stderr"; then
       echo "== $dir was made by another build: running it again from scratch"
       rm -rf "$dir"

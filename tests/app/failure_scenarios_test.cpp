@@ -18,6 +18,7 @@
 #include <string>
 
 #include "app/montecarlo_command.hpp"
+#include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -25,19 +26,9 @@ namespace {
 
 constexpr int kRuns = 4;
 
-const MethodSummary& find(const MonteCarloOutcome& outcome, const std::string& method) {
-  for (const MethodSummary& s : outcome.summary) {
-    if (s.method == method) return s;
-  }
-  throw std::runtime_error("no summary for " + method);
-}
+using testing_lookup::find;
 
-double segment(const MethodSummary& s, const std::string& name) {
-  for (const auto& [segment_name, value] : s.segments) {
-    if (segment_name == name) return value.value_or(NAN);
-  }
-  return NAN;
-}
+using testing_lookup::segment;
 
 /// The scans outside their NEES bounds, for a failure message.
 std::string scans_outside(const MethodSummary& s) {

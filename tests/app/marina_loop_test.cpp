@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/montecarlo_command.hpp"
+#include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -22,12 +23,7 @@ namespace {
 
 constexpr int kRuns = 5;
 
-const MethodSummary& find(const MonteCarloOutcome& outcome, const std::string& method) {
-  for (const MethodSummary& s : outcome.summary) {
-    if (s.method == method) return s;
-  }
-  throw std::runtime_error("no summary for " + method);
-}
+using testing_lookup::find;
 
 void expect_errors(const MonteCarloOutcome& outcome) {
   const double robocentric_m = find(outcome, "robocentric").mean_error_m.value_or(NAN);

@@ -1,0 +1,28 @@
+// Looking up a Monte Carlo outcome's figures in the end-to-end tests.
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "app/montecarlo_command.hpp"
+
+namespace msislab::app::testing_lookup {
+
+/// The summary of `method`; throws when the outcome has none.
+inline const MethodSummary& find(const MonteCarloOutcome& outcome, const std::string& method) {
+  for (const MethodSummary& s : outcome.summary) {
+    if (s.method == method) return s;
+  }
+  throw std::runtime_error("no summary for " + method);
+}
+
+/// The mean error over the runs in segment `name`, m; NaN when it has none.
+inline double segment(const MethodSummary& s, const std::string& name) {
+  for (const auto& [segment_name, value] : s.segments) {
+    if (segment_name == name) return value.value_or(NAN);
+  }
+  return NAN;
+}
+
+}  // namespace msislab::app::testing_lookup

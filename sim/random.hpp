@@ -20,6 +20,11 @@ inline std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
+/// A double uniform in [0, 1) from the top 53 bits of a 64-bit random word.
+inline double unit_interval(std::uint64_t bits) {
+  return static_cast<double>(bits >> 11) * 0x1.0p-53;
+}
+
 /// xoshiro256** (Blackman and Vigna): a small, fast generator with a 2^256 period whose state is
 /// seeded by splitmix64, so a generator per beam costs four multiplications to create. Meets the
 /// UniformRandomBitGenerator requirements, so the <random> distributions take it.

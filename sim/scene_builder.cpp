@@ -156,13 +156,13 @@ BasinOutline open_area_outline(const OpenArea& geometry) {
 
 std::vector<Eigen::Vector2d> open_area_pilings(const OpenArea& geometry) {
   Rng rng(geometry.seed);
-  const auto uniform = [&rng] { return static_cast<double>(rng() >> 11) * 0x1.0p-53; };
   const Eigen::Vector2d size_m = geometry.field_max_m - geometry.field_min_m;
   std::vector<Eigen::Vector2d> centres_m;
   for (int dart = 0; dart < 100000 && static_cast<int>(centres_m.size()) < geometry.pilings;
        ++dart) {
     const Eigen::Vector2d c_m =
-        geometry.field_min_m + Eigen::Vector2d(uniform() * size_m.x(), uniform() * size_m.y());
+        geometry.field_min_m +
+        Eigen::Vector2d(unit_interval(rng()) * size_m.x(), unit_interval(rng()) * size_m.y());
     const bool clear = std::none_of(centres_m.begin(), centres_m.end(), [&](const auto& other) {
       return (other - c_m).norm() < geometry.min_spacing_m;
     });

@@ -76,7 +76,7 @@ double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
                       static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull;
     const std::uint64_t a = splitmix64(h), b = splitmix64(a);
     const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = static_cast<double>(b >> 11) * 0x1.0p-53;
+    const double u2 = unit_interval(b);
     return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
   };
   const Eigen::Vector3d q = p_m.cast<double>() / length_m;

@@ -56,27 +56,6 @@ void add_basin(MeshBuilder& builder, const Options& options) {
   builder.quad(low[0], low[1], low[2], low[3], bottom);
 }
 
-/// A closed vertical cylinder with outward normals.
-void add_cylinder(MeshBuilder& builder, const Eigen::Vector2d& centre_m, double radius_m,
-                  double z_low_m, double z_top_m, int sides, std::uint32_t group) {
-  std::vector<int> top, low;
-  for (int k = 0; k < sides; ++k) {
-    const double angle_rad = 2.0 * M_PI * k / sides;
-    const Eigen::Vector2d p =
-        centre_m + radius_m * Eigen::Vector2d(std::cos(angle_rad), std::sin(angle_rad));
-    top.push_back(builder.vertex({p.x(), p.y(), z_top_m}));
-    low.push_back(builder.vertex({p.x(), p.y(), z_low_m}));
-  }
-  for (int k = 0; k < sides; ++k) {
-    const int next = (k + 1) % sides;
-    builder.quad(low[k], low[next], top[next], top[k], group);  // the outside is right of k -> next
-  }
-  for (int k = 1; k + 1 < sides; ++k) {
-    builder.triangle(top[0], top[k], top[k + 1], group);
-    builder.triangle(low[0], low[k + 1], low[k], group);
-  }
-}
-
 void add_pier_pilings(MeshBuilder& builder, const Options& options) {
   const std::uint32_t pilings = builder.group("pilings", 0.7f, 0.2f);
   const double north_wall_y_m = options.basin_y_m / 2.0;
@@ -84,8 +63,10 @@ void add_pier_pilings(MeshBuilder& builder, const Options& options) {
     for (int k = 0; k < options.pilings_per_row; ++k) {
       const Eigen::Vector2d centre(options.pier_x_m + side * options.pier_width_m,
                                    north_wall_y_m - 2.0 - k * options.piling_spacing_m);
-      add_cylinder(builder, centre, options.piling_diameter_m / 2.0, -options.depth_m,
-                   options.wall_top_m, options.piling_sides, pilings);
+      msislab::sim::add_prism(builder,
+                              msislab::sim::circle_footprint(
+                                  centre, options.piling_diameter_m / 2.0, options.piling_sides),
+                              -options.depth_m, options.wall_top_m, pilings);
     }
   }
 }

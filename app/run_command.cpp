@@ -157,11 +157,40 @@ std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecut
   return {matched, dead_reckoning};
 }
 
+/// The SLAM's counters for metrics.json (docs/formats.md); sets matches_accepted.
+std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam,
+                                                             const Truth& truth,
+                                                             int& matches_accepted) {
+  matches_accepted = slam.totals.accepted;
+  std::vector<std::pair<std::string, double>> diagnostics = {
+      {"scan_candidates", slam.totals.candidates},
+      {"scan_matches_valid", slam.totals.matched},
+      {"scans_skipped", slam.totals.skipped},
+      {"compass_accepted", slam.totals.compass_accepted}};
+  const MatchRejectionCounts& counts = slam.totals.rejections;
+  for (int reason = 1; reason < kMatchRejectionReasons; ++reason) {
+    diagnostics.emplace_back(
+        "matches_rejected_" + rejection_name(static_cast<MatchRejection>(reason)),
+        counts.rejected[static_cast<std::size_t>(reason)]);
+  }
+  diagnostics.emplace_back("matches_direction_dropped", counts.direction_dropped);
+  // How long the consecutive matches make the motion, against the truth (docs/formats.md).
+  const auto [matched, dead_reckoning] = consecutive_translations(slam);
+  for (const auto& [name, translations] :
+       {std::pair{"consecutive_match_scale", &matched},
+        std::pair{"consecutive_dead_reckoning_scale", &dead_reckoning}}) {
+    if (const std::optional<double> scale =
+            match_translation_scale(*translations, truth.positions)) {
+      diagnostics.emplace_back(name, *scale);
+    }
+  }
+  return diagnostics;
+}
+
 }  // namespace
 
-RunOutcome run(const RunOptions& options) {
-  check_method(options.method);
-  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+MethodResult run_method(const std::string& method, const RunInputs& in) {
+  check_method(method);
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
   const NavigationLog& navigation = in.navigation;
@@ -170,96 +199,79 @@ RunOutcome run(const RunOptions& options) {
 
   // SLAM methods: the sonar readings are read before the clock starts, like the logs.
   std::optional<SonarInput> sonar;
-  if (is_slam_method(options.method)) {
-    sonar = load_sonar_readings(in.files, calibration, config.segmentation);
-  }
+  if (is_slam_method(method)) sonar = load_sonar_readings(in);
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
-  if (options.method == "integration") {
+  if (method == "integration") {
     dr.trajectory = integrate_velocities(navigation, start);
   } else {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
   }
   std::optional<SlamRun> slam;
-  if (sonar) slam = run_trajectory_slam(options.method, *sonar, in, dr.trajectory);
+  if (sonar) slam = run_trajectory_slam(method, *sonar, in, dr.trajectory);
   const std::vector<StampedPose>& trajectory = slam ? slam->trajectory : dr.trajectory;
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
   std::vector<PlacedScan> dr_scans;
-  if (options.method == "deadreckoning" && (in.files.is_log || in.files.detections)) {
-    dr_scans =
-        dead_reckoning_scans(load_sonar_readings(in.files, calibration, config.segmentation), in);
+  if (method == "deadreckoning" && has_sonar_data(in)) {
+    dr_scans = dead_reckoning_scans(load_sonar_readings(in), in);
   }
   const std::vector<PlacedScan>* scans = slam ? &slam->scans : &dr_scans;
   const bool has_scans = slam || !dr_scans.empty();
-  if (trajectory.size() < 2) {
-    io::fail_file(options.dataset_dir, "no navigation data after the start time");
-  }
+  if (trajectory.size() < 2) io::fail_file(in.dataset, "no navigation data after the start time");
 
-  RunOutcome outcome;
-  outcome.trajectory = trajectory;
-  std::vector<io::NeesSample> nees;
+  MethodResult result;
+  result.method = method;
+  result.trajectory = trajectory;
+  result.depth_m = truth.depth_m;
   if (!truth.kind.empty()) {
-    outcome.metrics = score_trajectory(truth, trajectory, config.segments, options.dataset_dir);
-    outcome.metrics->method = options.method;
-    outcome.metrics->runtime_s = runtime_s;
+    result.metrics = score_trajectory(truth, trajectory, config.segments, in.dataset);
+    RunMetrics& metrics = *result.metrics;
+    metrics.method = method;
+    metrics.runtime_s = runtime_s;
     if (has_scans) {
-      outcome.metrics->scans = static_cast<int>(scans->size());
-      nees = scan_nees(scan_poses(*scans), truth);
-      outcome.metrics->anees = average_nees(nees);
+      metrics.scans = static_cast<int>(scans->size());
+      result.nees = scan_nees(scan_poses(*scans), truth);
+      metrics.anees = average_nees(result.nees);
     }
-    if (slam) {
-      outcome.metrics->matches_accepted = slam->totals.accepted;
-      outcome.metrics->diagnostics = {{"scan_candidates", slam->totals.candidates},
-                                      {"scan_matches_valid", slam->totals.matched},
-                                      {"scans_skipped", slam->totals.skipped},
-                                      {"compass_accepted", slam->totals.compass_accepted}};
-      const MatchRejectionCounts& counts = slam->totals.rejections;
-      for (int reason = 1; reason < kMatchRejectionReasons; ++reason) {
-        outcome.metrics->diagnostics.emplace_back(
-            "matches_rejected_" + rejection_name(static_cast<MatchRejection>(reason)),
-            counts.rejected[static_cast<std::size_t>(reason)]);
-      }
-      outcome.metrics->diagnostics.emplace_back("matches_direction_dropped",
-                                                counts.direction_dropped);
-      // How long the consecutive matches make the motion, against the truth (docs/formats.md).
-      const auto [matched, dead_reckoning] = consecutive_translations(*slam);
-      for (const auto& [name, translations] :
-           {std::pair{"consecutive_match_scale", &matched},
-            std::pair{"consecutive_dead_reckoning_scale", &dead_reckoning}}) {
-        if (const std::optional<double> scale =
-                match_translation_scale(*translations, truth.positions)) {
-          outcome.metrics->diagnostics.emplace_back(name, *scale);
-        }
-      }
-    }
-    if (options.method == "deadreckoning") {
-      outcome.metrics->diagnostics = {
-          {"dvl_used", dr.dvl_used},
-          {"dvl_rejected", dr.dvl_rejected},
-          {"dvl_without_bottom_lock", navigation.dvl_rows_without_bottom_lock},
-          {"dvl_mean_nis", dr.dvl_mean_nis},
-          {"heading_used", dr.heading_used},
-          {"heading_mean_nis", dr.heading_mean_nis}};
+    if (slam) metrics.diagnostics = slam_diagnostics(*slam, truth, metrics.matches_accepted);
+    if (method == "deadreckoning") {
+      metrics.diagnostics = {{"dvl_used", dr.dvl_used},
+                             {"dvl_rejected", dr.dvl_rejected},
+                             {"dvl_without_bottom_lock", navigation.dvl_rows_without_bottom_lock},
+                             {"dvl_mean_nis", dr.dvl_mean_nis},
+                             {"heading_used", dr.heading_used},
+                             {"heading_mean_nis", dr.heading_mean_nis}};
     }
   }
+  if (has_scans) result.scans = *scans;
+  if (slam) result.matches = match_rows(*slam, truth);
+  return result;
+}
 
-  prepare_out_dir(options.out_dir, outcome.metrics.has_value());
-  const fs::path out(options.out_dir);
-  io::write_trajectory_tum((out / "trajectory.tum").string(), trajectory, truth.depth_m);
-  if (has_scans) {
-    io::write_scans_csv((out / "scans.csv").string(), *scans);
-    io::write_points_ply((out / "map.ply").string(), world_points(*scans));
+void write_method_result(const std::string& out_dir, const MethodResult& result,
+                         const std::string& dataset_label, bool write_map) {
+  prepare_out_dir(out_dir, result.metrics.has_value());
+  const fs::path out(out_dir);
+  io::write_trajectory_tum((out / "trajectory.tum").string(), result.trajectory, result.depth_m);
+  if (result.scans) {
+    io::write_scans_csv((out / "scans.csv").string(), *result.scans);
+    if (write_map) io::write_points_ply((out / "map.ply").string(), world_points(*result.scans));
   }
-  if (slam) io::write_matches_csv((out / "matches.csv").string(), match_rows(*slam, truth));
-  if (outcome.metrics) {
-    write_scores(options.out_dir, *outcome.metrics, nees,
-                 fs::absolute(options.dataset_dir).lexically_normal().string());
-  }
-  return outcome;
+  if (result.matches) io::write_matches_csv((out / "matches.csv").string(), *result.matches);
+  if (result.metrics) write_scores(out_dir, *result.metrics, result.nees, dataset_label);
+}
+
+RunOutcome run(const RunOptions& options) {
+  check_method(options.method);
+  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+  const MethodResult result = run_method(options.method, in);
+  write_method_result(options.out_dir, result,
+                      fs::absolute(options.dataset_dir).lexically_normal().string());
+  return {result.trajectory, result.metrics};
 }
 
 }  // namespace msislab::app

@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "app/truth.hpp"
+#include "io/results.hpp"
 #include "slam/evaluation.hpp"
+#include "slam/scan_sequence.hpp"
 
 namespace msislab::app {
 
@@ -26,6 +29,28 @@ struct RunOutcome {
   std::vector<StampedPose> trajectory;
   std::optional<RunMetrics> metrics;  ///< present when the dataset has truth (simulation or GPS)
 };
+
+/// A method's results on a dataset, computed and not yet written.
+struct MethodResult {
+  std::string method;
+  std::vector<StampedPose> trajectory;
+  double depth_m = 0.0;                              ///< for the TUM z
+  std::optional<RunMetrics> metrics;                 ///< present when the dataset has truth
+  std::vector<io::NeesSample> nees;                  ///< per scan, with pose truth
+  std::optional<std::vector<PlacedScan>> scans;      ///< with sonar data
+  std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
+};
+
+/// Runs a method on a dataset read already (from a directory or held in memory). Throws
+/// io::InputError.
+MethodResult run_method(const std::string& method, const RunInputs& in);
+
+/// Writes a result directory (docs/formats.md): trajectory.tum, scans.csv, map.ply (with
+/// write_map), matches.csv, metrics.json and nees.csv, as far as the result has them, each
+/// atomically; result files of an earlier run it does not rewrite are removed. dataset_label is
+/// recorded in metrics.json as the dataset.
+void write_method_result(const std::string& out_dir, const MethodResult& result,
+                         const std::string& dataset_label, bool write_map = true);
 
 /// Reads every input first, then runs and writes the result files atomically. Throws
 /// io::InputError on bad input (unknown method, missing or malformed files or config).

@@ -19,11 +19,11 @@ std::vector<SonarReading> readings_of(double t_s, const std::vector<double>& ran
   return readings;
 }
 
-SonarInput from_is_log(const std::string& path, const io::SonarSetup& setup,
+SonarInput from_is_log(const std::vector<io::SonarBeamRecord>& beams, const io::SonarSetup& setup,
                        const SonarMount& mount, const SegmentationConfig& config) {
   SonarInput input;
   input.source = "IS log";
-  for (const io::SonarBeamRecord& beam : io::read_is_log(path)) {
+  for (const io::SonarBeamRecord& beam : beams) {
     const double bearing = sonar_bearing_in_vehicle(beam.transducer_angle_rad, mount);
     const double t_s = beam.t_log_s + mount.time_offset_s;  // on the navigation clock
     input.beams.push_back(
@@ -82,7 +82,7 @@ SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration&
   const bool raw = files.is_log && segmentation.source != SonarSource::kDetections;
   const bool detections = files.detections && segmentation.source != SonarSource::kRaw;
   if (raw) {
-    input = from_is_log(*files.is_log, setup, calibration.sonar, segmentation);
+    input = from_is_log(io::read_is_log(*files.is_log), setup, calibration.sonar, segmentation);
   } else if (detections) {
     input = from_detections(files, setup, calibration.sonar, segmentation);
   } else if (segmentation.source == SonarSource::kRaw) {
@@ -96,6 +96,37 @@ SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration&
   }
   input.beams_per_revolution = io::steps_per_revolution(setup);
   return input;
+}
+
+SonarInput load_sonar_readings(const RunInputs& in) {
+  if (!in.records) return load_sonar_readings(in.files, in.calibration, in.config.segmentation);
+  const io::DatasetRecords& r = *in.records;
+  const SegmentationConfig& segmentation = in.config.segmentation;
+  SonarInput input;
+  if (!r.is_log.empty() && segmentation.source != SonarSource::kDetections) {
+    input = from_is_log(r.is_log, r.setup, in.calibration.sonar, segmentation);
+  } else if (r.has_detections && !r.beam_times.empty() &&
+             segmentation.source != SonarSource::kRaw) {
+    io::DatasetFiles names;
+    names.dir = r.name;
+    names.detections = r.name + " detections";
+    names.beam_times = r.name + " beam times";
+    input = readings_from_detections(names, r.beam_times, r.detections, r.setup,
+                                     in.calibration.sonar, segmentation);
+  } else {
+    io::fail_file(r.name,
+                  "no sonar data for segmentation.source " +
+                      std::string(segmentation.source == SonarSource::kRaw          ? "raw"
+                                  : segmentation.source == SonarSource::kDetections ? "detections"
+                                                                                    : "auto"));
+  }
+  input.beams_per_revolution = io::steps_per_revolution(r.setup);
+  return input;
+}
+
+bool has_sonar_data(const RunInputs& in) {
+  if (in.records) return !in.records->is_log.empty() || in.records->has_detections;
+  return in.files.is_log || in.files.detections;
 }
 
 }  // namespace msislab::app

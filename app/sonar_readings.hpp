@@ -2,6 +2,7 @@
 // the detected bins of *_detections.csv[.gz] with the beam times of *_IS_timestamps.log.
 #pragma once
 
+#include "app/truth.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
@@ -20,6 +21,11 @@ struct SonarInput {
 /// Throws io::InputError when the dataset has neither a raw log nor detections with beam times.
 SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration& calibration,
                                const SegmentationConfig& segmentation);
+
+/// The same for a run's dataset, from its files or, held in memory, its records.
+SonarInput load_sonar_readings(const RunInputs& in);
+/// Whether the dataset has any sonar data (a raw log or detections).
+bool has_sonar_data(const RunInputs& in);
 
 /// The readings of every beam of the beam times, chosen from the detected bins (rows in beam_row
 /// order) with segment_detections: what load_sonar_readings does with a dataset's detections, for

@@ -11,6 +11,10 @@ namespace msislab::app {
 Truth read_tum_truth(const std::string& path, const std::string& kind) {
   const std::vector<io::TumPose> poses = io::read_tum(path);
   if (poses.empty()) io::fail_file(path, "no poses");
+  return tum_truth(poses, kind);
+}
+
+Truth tum_truth(const std::vector<io::TumPose>& poses, const std::string& kind) {
   Truth truth;
   truth.kind = kind;
   for (const io::TumPose& p : poses) {
@@ -63,6 +67,7 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path) {
   RunInputs in;
   in.config = config_path.empty() ? SlamConfig{} : io::read_slam_config(config_path);
+  in.dataset = dataset_dir;
   in.files = io::find_dataset_files(dataset_dir);
   in.calibration = io::load_calibration(in.files);
   in.navigation = io::load_navigation(in.files, in.calibration);
@@ -71,6 +76,26 @@ RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& con
   if (in.config.segments.empty()) in.config.segments = io::load_truth_segments(in.files);
   in.start = initial_pose(in.truth, in.navigation, dataset_dir,
                           in.config.dead_reckoning.heading_sigma_rad);
+  return in;
+}
+
+RunInputs run_inputs_of(std::shared_ptr<const io::DatasetRecords> records, SlamConfig config) {
+  RunInputs in;
+  in.config = std::move(config);
+  in.dataset = records->name;
+  in.files.dir = records->name;
+  in.calibration = records->calibration;
+  in.navigation = io::navigation_of(records->dvl, records->mti, in.calibration);
+  if (!records->truth_trajectory.empty()) {
+    in.truth = tum_truth(records->truth_trajectory, "simulation");
+  } else if (!records->gps.empty()) {
+    in.truth.kind = "gps";
+    in.truth.positions = io::gps_fixes_of(records->gps, in.calibration);
+  }
+  if (in.config.segments.empty()) in.config.segments = records->truth_segments;
+  in.start =
+      initial_pose(in.truth, in.navigation, in.dataset, in.config.dead_reckoning.heading_sigma_rad);
+  in.records = std::move(records);
   return in;
 }
 

@@ -1,6 +1,7 @@
 // The truth of a dataset: simulation truth (truth/trajectory.tum) when present, else the GPS log.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@ Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);
 /// Pose truth from a TUM file (the simulation's truth/trajectory.tum, or a file given to
 /// `msislab eval --truth`), recorded as `kind`.
 Truth read_tum_truth(const std::string& path, const std::string& kind);
+/// The same from the poses (at least one).
+Truth tum_truth(const std::vector<io::TumPose>& poses, const std::string& kind);
 
 /// Where every method starts: the first truth pose (GPS: first fix once heading is available,
 /// heading from the MRU), else the origin at the first heading reading. Throws io::InputError when
@@ -32,10 +35,13 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
                          const std::string& dataset_dir, double heading_sigma_rad);
 
 /// Everything a method reads from a dataset before it runs: the SLAM config, the dataset's files
-/// and calibration, its navigation, its truth and the shared start pose.
+/// (or its records, for a dataset held in memory) and calibration, its navigation, its truth and
+/// the shared start pose.
 struct RunInputs {
   SlamConfig config;
+  std::string dataset;  ///< the directory, or the in-memory dataset's name, for messages
   io::DatasetFiles files;
+  std::shared_ptr<const io::DatasetRecords> records;  ///< set for a dataset held in memory
   Calibration calibration;
   NavigationLog navigation;
   Truth truth;
@@ -44,5 +50,7 @@ struct RunInputs {
 
 /// Reads and checks them (config_path empty: the default config). Throws io::InputError.
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path);
+/// The same for a dataset held in memory. Throws io::InputError.
+RunInputs run_inputs_of(std::shared_ptr<const io::DatasetRecords> records, SlamConfig config);
 
 }  // namespace msislab::app

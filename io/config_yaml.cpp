@@ -206,8 +206,9 @@ std::vector<TimeSegment> read_segments(YamlMap map) {
   return segments;
 }
 
-Calibration read_calibration(const std::string& path) {
-  YamlMap root(load_yaml_file(path), path, "");
+namespace {
+Calibration calibration_from_yaml(const YAML::Node& node, const std::string& name) {
+  YamlMap root(node, name, "");
   Calibration c;
   YamlMap mru = root.map("mru");
   read_mru_mount(mru, c.mru);
@@ -225,20 +226,34 @@ Calibration read_calibration(const std::string& path) {
   return c;
 }
 
-void write_calibration(const std::string& path, const Calibration& c) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << std::setprecision(17);
-    out << "# Sensor mounts and local frame (docs/formats.md).\n"
-        << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg << "\n"
-        << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
-        << "\n  y_m: " << c.dvl.y_m << "\n"
-        << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
-        << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
-        << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m
-        << "\n  time_offset_s: " << c.sonar.time_offset_s << "\n"
-        << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
-        << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
-  });
+std::string calibration_yaml(const Calibration& c) {
+  std::ostringstream out;
+  out << std::setprecision(17);
+  out << "# Sensor mounts and local frame (docs/formats.md).\n"
+      << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg << "\n"
+      << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
+      << "\n  y_m: " << c.dvl.y_m << "\n"
+      << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
+      << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
+      << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m
+      << "\n  time_offset_s: " << c.sonar.time_offset_s << "\n"
+      << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
+      << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
+  return out.str();
+}
+}  // namespace
+
+Calibration read_calibration(const std::string& path) {
+  return calibration_from_yaml(load_yaml_file(path), path);
+}
+
+void write_calibration(const std::string& path, const Calibration& calibration) {
+  const std::string text = calibration_yaml(calibration);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+Calibration calibration_as_stored(const Calibration& calibration) {
+  return calibration_from_yaml(YAML::Load(calibration_yaml(calibration)), "calibration.yaml");
 }
 
 SlamConfig read_slam_config(const std::string& path) {

@@ -11,8 +11,12 @@ namespace msislab::io {
 
 /// Reads calibration.yaml; absent keys keep the St. Pere defaults.
 Calibration read_calibration(const std::string& path);
-/// Writes every calibration key, atomically; read_calibration() reads it back exactly.
+/// Writes every calibration key, atomically, with 17 significant digits; read_calibration()
+/// reads it back exactly except the sonar's bearing offset, stored in degrees.
 void write_calibration(const std::string& path, const Calibration& calibration);
+/// What read_calibration() gives back for a file write_calibration() wrote: a dataset held in
+/// memory carries this, so its methods see the bits a dataset directory would give them.
+Calibration calibration_as_stored(const Calibration& calibration);
 
 /// Reads a SLAM config file; absent keys keep their defaults.
 SlamConfig read_slam_config(const std::string& path);

@@ -90,9 +90,15 @@ Calibration load_calibration(const DatasetFiles& files) {
 }
 
 NavigationLog load_navigation(const DatasetFiles& files, const Calibration& calibration) {
+  const std::vector<DvlRecord> dvl = read_dvl_log(require(files.dvl, files, "*_DVL.log"));
+  return navigation_of(dvl, read_mti_log(require(files.mti, files, "*_MTi.log")), calibration);
+}
+
+NavigationLog navigation_of(const std::vector<DvlRecord>& dvl, const std::vector<MtiRecord>& mti,
+                            const Calibration& calibration) {
   NavigationLog log;
   const Eigen::Matrix2d R_vehicle_from_dvl = R_vehicle_dvl(calibration.dvl);
-  for (const DvlRecord& row : read_dvl_log(require(files.dvl, files, "*_DVL.log"))) {
+  for (const DvlRecord& row : dvl) {
     if (row.bottom_vel_status != 1.0) {
       ++log.dvl_rows_without_bottom_lock;
       continue;
@@ -100,14 +106,18 @@ NavigationLog load_navigation(const DatasetFiles& files, const Calibration& cali
     const Eigen::Vector2d v_dvl_mps(row.bottom_vel_cm_s[0] / 100.0, row.bottom_vel_cm_s[1] / 100.0);
     log.dvl.push_back({row.t_log_s, R_vehicle_from_dvl * v_dvl_mps});
   }
-  for (const MtiRecord& row : read_mti_log(require(files.mti, files, "*_MTi.log"))) {
+  for (const MtiRecord& row : mti) {
     log.heading.push_back({row.t_log_s, vehicle_yaw_from_mru(row.yaw_deg, calibration.mru)});
   }
   return log;
 }
 
 std::vector<PositionFix> load_gps_fixes(const DatasetFiles& files, const Calibration& calibration) {
-  const std::vector<GpsRecord> rows = read_gps_log(require(files.gps, files, "*_DGPS.log"));
+  return gps_fixes_of(read_gps_log(require(files.gps, files, "*_DGPS.log")), calibration);
+}
+
+std::vector<PositionFix> gps_fixes_of(const std::vector<GpsRecord>& rows,
+                                      const Calibration& calibration) {
   const LocalProjection projection(calibration.frame);
   std::vector<PositionFix> fixes;
   fixes.reserve(rows.size());

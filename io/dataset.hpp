@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "io/detections.hpp"
+#include "io/stpere_logs.hpp"
+#include "io/tum.hpp"
 #include "slam/calibration.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
@@ -27,6 +30,24 @@ struct DatasetFiles {
   std::optional<std::string> truth_segments;    ///< truth/segments.csv
 };
 
+/// A dataset held in memory as the records its files would store, so that a simulation can be
+/// handed straight to the methods (`msislab montecarlo`) and they see the same numbers as from the
+/// directory. `name` stands for the directory in messages.
+struct DatasetRecords {
+  std::string name;
+  Calibration calibration;  ///< as stored (calibration_as_stored)
+  std::vector<DvlRecord> dvl;
+  std::vector<MtiRecord> mti;
+  std::vector<GpsRecord> gps;  ///< empty: no *_DGPS.log
+  SonarSetup setup;
+  std::vector<SonarBeamRecord> is_log;     ///< empty: no *_IS.log
+  std::vector<BeamTimeRecord> beam_times;  ///< empty: no *_IS_timestamps.log
+  std::vector<DetectionRecord> detections;
+  bool has_detections = false;
+  std::vector<TumPose> truth_trajectory;  ///< yaw as stored (yaw_as_stored); empty: no truth
+  std::vector<TimeSegment> truth_segments;
+};
+
 /// Finds the files of a dataset directory. Throws InputError if the directory does not exist or a
 /// suffix matches more than one file.
 DatasetFiles find_dataset_files(const std::string& dir);
@@ -43,7 +64,14 @@ Calibration load_calibration(const DatasetFiles& files);
 /// Requires the DVL and MTi logs.
 NavigationLog load_navigation(const DatasetFiles& files, const Calibration& calibration);
 
+/// The same from the logs' records.
+NavigationLog navigation_of(const std::vector<DvlRecord>& dvl, const std::vector<MtiRecord>& mti,
+                            const Calibration& calibration);
+
 /// GPS fixes (status > 0) in the local frame. Requires the GPS log.
 std::vector<PositionFix> load_gps_fixes(const DatasetFiles& files, const Calibration& calibration);
+/// The same from the log's records.
+std::vector<PositionFix> gps_fixes_of(const std::vector<GpsRecord>& rows,
+                                      const Calibration& calibration);
 
 }  // namespace msislab::io

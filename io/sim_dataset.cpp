@@ -157,26 +157,21 @@ void write_segments(const std::string& path, const std::vector<TimeSegment>& seg
 void write_files(const fs::path& dir, const sim::Scenario& scenario,
                  const sim::SimulationResult& result, const std::string& scenario_text) {
   const std::string base = (dir / prefix_of(scenario.name)).string();
-  const std::vector<SonarBeamRecord> beams = beam_records(result.beams, scenario.sonar.mount);
-  write_is_log(base + "_IS.log", beams);
-  write_beam_times_log(base + "_IS_timestamps.log", beam_time_records(beams));
-  write_detections(base + "_detections.csv.gz", detection_records(beams, scenario));
-  write_setup_log(base + "_SETUP.log",
-                  {scenario.sonar.bins * scenario.sonar.bin_m, scenario.sonar.bin_m,
-                   2.0 * M_PI / scenario.sonar.steps_per_revolution});
-  write_dvl_log(base + "_DVL.log", dvl_records(result.dvl));
-  write_mti_log(base + "_MTi.log", mti_records(result.mru));
-  if (scenario.gps.enabled) {
-    write_gps_log(base + "_DGPS.log", gps_records(result.gps, scenario.gps.frame));
-  }
-  write_calibration((dir / "calibration.yaml").string(), sim::calibration_of(scenario));
+  const DatasetRecords records = simulated_records(scenario, result, /*as_stored=*/false);
+  write_is_log(base + "_IS.log", records.is_log);
+  write_beam_times_log(base + "_IS_timestamps.log", records.beam_times);
+  write_detections(base + "_detections.csv.gz", records.detections);
+  write_setup_log(base + "_SETUP.log", records.setup);
+  write_dvl_log(base + "_DVL.log", records.dvl);
+  write_mti_log(base + "_MTi.log", records.mti);
+  if (scenario.gps.enabled) write_gps_log(base + "_DGPS.log", records.gps);
+  write_calibration((dir / "calibration.yaml").string(), records.calibration);
   write_file_atomically((dir / "scenario.yaml").string(),
                         [&](std::ostream& out) { out << scenario_text; });
   fs::create_directories(dir / "truth");
-  write_tum((dir / "truth" / "trajectory.tum").string(),
-            truth_poses(result.truth, scenario.vehicle.depth_m));
+  write_tum((dir / "truth" / "trajectory.tum").string(), records.truth_trajectory);
   write_beam_truth((dir / "truth" / "beams.csv").string(), result.beams);
-  write_segments((dir / "truth" / "segments.csv").string(), scenario.segments);
+  write_segments((dir / "truth" / "segments.csv").string(), records.truth_segments);
 }
 
 }  // namespace
@@ -198,6 +193,30 @@ void write_beam_truth(const std::string& path, const std::vector<sim::RenderedBe
     }
     out << text;
   });
+}
+
+DatasetRecords simulated_records(const sim::Scenario& scenario, const sim::SimulationResult& result,
+                                 bool as_stored) {
+  DatasetRecords records;
+  records.name = "simulated " + prefix_of(scenario.name) + " (seed " +
+                 std::to_string(scenario.seed) + ", in memory)";
+  const Calibration calibration = sim::calibration_of(scenario);
+  records.calibration = as_stored ? calibration_as_stored(calibration) : calibration;
+  records.is_log = beam_records(result.beams, scenario.sonar.mount);
+  records.beam_times = beam_time_records(records.is_log);
+  records.detections = detection_records(records.is_log, scenario);
+  records.has_detections = true;
+  records.setup = {scenario.sonar.bins * scenario.sonar.bin_m, scenario.sonar.bin_m,
+                   2.0 * M_PI / scenario.sonar.steps_per_revolution};
+  records.dvl = dvl_records(result.dvl);
+  records.mti = mti_records(result.mru);
+  if (scenario.gps.enabled) records.gps = gps_records(result.gps, scenario.gps.frame);
+  records.truth_trajectory = truth_poses(result.truth, scenario.vehicle.depth_m);
+  if (as_stored) {
+    for (TumPose& pose : records.truth_trajectory) pose.yaw_rad = yaw_as_stored(pose.yaw_rad);
+  }
+  records.truth_segments = scenario.segments;
+  return records;
 }
 
 void write_simulated_dataset(const std::string& dir, const sim::Scenario& scenario,

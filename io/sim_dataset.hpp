@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "io/dataset.hpp"
 #include "sim/simulator.hpp"
 
 namespace msislab::io {
@@ -13,6 +14,13 @@ namespace msislab::io {
 /// as scenario.yaml for provenance.
 void write_simulated_dataset(const std::string& dir, const sim::Scenario& scenario,
                              const sim::SimulationResult& result, const std::string& scenario_text);
+
+/// The records the dataset's files hold (every file but scenario.yaml and truth/beams.csv). With
+/// as_stored, the values read back from the files (calibration_as_stored, yaw_as_stored), so that
+/// methods given the records in memory compute what they compute from the directory; without,
+/// the values the files are written from.
+DatasetRecords simulated_records(const sim::Scenario& scenario, const sim::SimulationResult& result,
+                                 bool as_stored = true);
 
 /// The per-beam truth table, truth/beams.csv.
 void write_beam_truth(const std::string& path, const std::vector<sim::RenderedBeam>& beams);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 #include "io/atomic_file.hpp"
@@ -16,10 +17,11 @@ constexpr std::array<std::string_view, 8> kNames = {"t", "x", "y", "z", "qx", "q
 
 // Yaw of the normalised quaternion: atan2(2 (qw qz + qx qy), 1 - 2 (qy^2 + qz^2)). Scaling by the
 // largest component first keeps the norm from overflowing or underflowing.
-double yaw_from_quaternion(const DataLines& lines, std::array<double, 4> q) {
+/// nullopt for the zero quaternion.
+std::optional<double> yaw_from_quaternion(std::array<double, 4> q) {
   double largest = 0.0;
   for (const double c : q) largest = std::max(largest, std::abs(c));
-  if (largest == 0.0) lines.fail("zero quaternion (qx = qy = qz = qw = 0) has no rotation");
+  if (largest == 0.0) return std::nullopt;
   for (double& c : q) c /= largest;
   const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   const double qx = q[0] / norm;
@@ -38,7 +40,9 @@ TumPose read_pose(const DataLines& lines) {
   pose.x_m = v[1];
   pose.y_m = v[2];
   pose.z_m = v[3];
-  pose.yaw_rad = yaw_from_quaternion(lines, {v[4], v[5], v[6], v[7]});
+  const std::optional<double> yaw = yaw_from_quaternion({v[4], v[5], v[6], v[7]});
+  if (!yaw) lines.fail("zero quaternion (qx = qy = qz = qw = 0) has no rotation");
+  pose.yaw_rad = *yaw;
   return pose;
 }
 
@@ -83,6 +87,10 @@ void write_tum(const std::string& path, const std::vector<TumPose>& poses) {
       out.write(line.data(), static_cast<std::streamsize>(line.size()));
     }
   });
+}
+
+double yaw_as_stored(double yaw_rad) {
+  return *yaw_from_quaternion({0.0, 0.0, std::sin(0.5 * yaw_rad), std::cos(0.5 * yaw_rad)});
 }
 
 }  // namespace msislab::io

@@ -20,5 +20,8 @@ struct TumPose {
 std::vector<TumPose> read_tum(const std::string& path);
 /// Writes a TUM file atomically with full double precision.
 void write_tum(const std::string& path, const std::vector<TumPose>& poses);
+/// The yaw read_tum() gives back for a pose written with this yaw: through its quaternion, so
+/// the last bits may differ. A trajectory held in memory in place of a file carries this.
+double yaw_as_stored(double yaw_rad);
 
 }  // namespace msislab::io

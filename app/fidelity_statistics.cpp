@@ -123,15 +123,6 @@ void add_run_lengths(const std::vector<DetectedBeam>& beams, double bin_m, doubl
 
 }  // namespace
 
-double quantile(std::vector<double> values, double p) {
-  if (values.empty()) return kNaN;
-  std::sort(values.begin(), values.end());
-  const double h = static_cast<double>(values.size() - 1) * std::clamp(p, 0.0, 1.0);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
-}
-
 double ks_distance(std::vector<double> a, std::vector<double> b) {
   if (a.empty() || b.empty()) return kNaN;
   std::sort(a.begin(), a.end());

@@ -13,11 +13,11 @@
 #include "io/detections.hpp"
 #include "slam/scan_sequence.hpp"
 
+#include "slam/evaluation.hpp"
+
 namespace msislab::app {
 
-/// The p-quantile (0 <= p <= 1) by linear interpolation between order statistics: position
-/// h = (n - 1) p in the sorted sample. NaN for an empty sample.
-double quantile(std::vector<double> values, double p);
+using msislab::quantile;
 
 /// Two-sample Kolmogorov-Smirnov distance sup_x |F_a(x) - F_b(x)| between the empirical
 /// distribution functions: 0 for identical samples, 1 for disjoint ones. NaN when either is empty.

@@ -1,23 +1,37 @@
 #include "app/montecarlo_command.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
 #include <thread>
 
+#include "app/directory_lock.hpp"
+#include "app/methods.hpp"
 #include "app/montecarlo_directory.hpp"
-#include "app/parallel_jobs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
 #include "app/run_command.hpp"
+#include "app/worker_processes.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
+#include "io/mesh_io.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/scenario_yaml.hpp"
+#include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
+#include "sim/scene.hpp"
 
 namespace msislab::app {
 
@@ -32,7 +46,7 @@ std::string absolute(const std::string& path) {
 void check_methods(const std::vector<std::string>& methods) {
   if (methods.empty()) throw io::InputError("--methods: no method given");
   for (std::size_t i = 0; i < methods.size(); ++i) {
-    check_method(methods[i], "--methods");
+    method_info(methods[i], "--methods");
     if (std::find(methods.begin(), methods.begin() + static_cast<long>(i), methods[i]) !=
         methods.begin() + static_cast<long>(i)) {
       throw io::InputError("--methods '" + methods[i] + "': given twice");
@@ -40,11 +54,24 @@ void check_methods(const std::vector<std::string>& methods) {
   }
 }
 
-/// Reads and checks every input, and makes or resumes the directory: scenario.yaml and
-/// config.yaml copies, montecarlo.json.
-io::MonteCarloManifest prepare(const MonteCarloOptions& options, const std::string& executable) {
-  check_methods(options.methods);
+/// What the workers share: the directory's settings and the inputs read once by the caller.
+struct RunContext {
   io::MonteCarloManifest manifest;
+  std::string dir;
+  sim::Scenario scenario;
+  std::string scenario_text;
+  sim::TriangleMesh mesh;
+  SlamConfig config;
+  int simulation_threads = 1;
+  bool keep_datasets = false;
+};
+
+/// Reads and checks every input and locks the directory; then makes or resumes it: scenario.yaml
+/// and config.yaml copies, montecarlo.json.
+RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock>& lock) {
+  check_methods(options.methods);
+  RunContext ctx;
+  io::MonteCarloManifest& manifest = ctx.manifest;
   if (!options.shard.empty() &&
       !io::parse_shard(options.shard, manifest.shard_index, manifest.shard_count)) {
     throw io::InputError("--shard '" + options.shard + "': expected i/N with 0 <= i < N");
@@ -56,113 +83,190 @@ io::MonteCarloManifest prepare(const MonteCarloOptions& options, const std::stri
     throw io::InputError("--jobs " + std::to_string(options.jobs) +
                          ": must be 0 (default) or more");
   }
-  const sim::Scenario scenario = io::read_scenario(options.scenario_path);
-  if (!fs::is_regular_file(scenario.scene.mesh_path)) {
+  ctx.scenario = io::read_scenario(options.scenario_path);
+  if (!fs::is_regular_file(ctx.scenario.scene.mesh_path)) {
     io::fail_file(options.scenario_path,
-                  "key 'scene.mesh': '" + scenario.scene.mesh_path + "' does not exist");
+                  "key 'scene.mesh': '" + ctx.scenario.scene.mesh_path + "' does not exist");
   }
-  if (!options.config_path.empty()) io::read_slam_config(options.config_path);
-  if (::access(executable.c_str(), X_OK) != 0) {
-    io::fail_file(executable, "not an executable msislab");
-  }
-  const std::string scenario_text = io::read_whole_file(options.scenario_path);
+  const io::MeshMaterials materials{ctx.scenario.scene.default_material,
+                                    ctx.scenario.scene.group_materials};
+  ctx.mesh = io::read_mesh(ctx.scenario.scene.mesh_path, materials);
+  if (!options.config_path.empty()) ctx.config = io::read_slam_config(options.config_path);
+  ctx.scenario_text = io::read_whole_file(options.scenario_path);
   const std::string config_text =
       options.config_path.empty() ? "" : io::read_whole_file(options.config_path);
-  manifest.executable_digest = executable_digest(executable);
-  check_resumable(options.out_dir, scenario_text, !options.config_path.empty(), config_text,
-                  options.scenario_path, manifest.executable_digest);
+  manifest.executable_digest = executable_digest(self_executable());
 
+  lock.emplace(options.out_dir, "msislab montecarlo " + options.scenario_path);
+  check_resumable(options.out_dir, ctx.scenario_text, !options.config_path.empty(), config_text,
+                  options.scenario_path, manifest.executable_digest);
   manifest.scenario_source = absolute(options.scenario_path);
-  manifest.first_seed = scenario.seed;
+  manifest.first_seed = ctx.scenario.seed;
   manifest.runs = options.runs;
   manifest.methods = options.methods;
   manifest.has_config = !options.config_path.empty();
-  write_directory_header(options.out_dir, manifest, scenario_text, config_text);
-  return manifest;
+  write_directory_header(options.out_dir, manifest, ctx.scenario_text, config_text);
+  ctx.dir = options.out_dir;
+  ctx.keep_datasets = options.keep_datasets;
+  return ctx;
 }
 
-struct RunContext {
-  const io::MonteCarloManifest& manifest;
-  std::string dir;
-  std::string executable;
-  bool single_threaded_simulation;
-};
+/// DIR/runs/<method>/.run_<rrrr>.partial: where a run's result is written before it is put in
+/// place, so a run directory is never half-written.
+std::string partial_dir(const std::string& dir, const std::string& method, int run) {
+  return (fs::path(dir) / "runs" / method / ("." + run_name(run) + ".partial")).string();
+}
 
-/// Records that a method did not finish run r: failed.json, and no metrics.json left behind.
-void record_failure(const std::string& result_dir, const io::RunFailure& failure) {
-  io::create_output_dir(result_dir);
+/// Fills the partial directory of (method, run) with `write`, then puts it in place of the run
+/// directory.
+void put_in_place(const std::string& dir, const std::string& method, int run,
+                  const std::function<void(const std::string&)>& write) {
+  const std::string partial = partial_dir(dir, method, run);
   std::error_code ec;
-  fs::remove(fs::path(result_dir) / "metrics.json", ec);
-  fs::remove(fs::path(result_dir) / "nees.csv", ec);
-  io::write_failure_json((fs::path(result_dir) / "failed.json").string(), failure);
+  fs::remove_all(partial, ec);
+  io::create_output_dir(partial);
+  write(partial);
+  const std::string target = run_dir(dir, method, run);
+  fs::remove_all(target, ec);
+  fs::rename(partial, target, ec);
+  if (ec) io::fail_file(target, "cannot put the run's results in place: " + ec.message());
 }
 
-/// Runs one method on the simulated dataset; false when it failed (recorded).
-bool run_method(const RunContext& ctx, const std::string& dataset, const std::string& method,
-                int run, std::uint64_t seed) {
-  const std::string out = run_dir(ctx.dir, method, run);
-  io::create_output_dir(out);
-  std::error_code ec;
-  fs::remove(fs::path(out) / "failed.json", ec);
-  const std::string stderr_path = (fs::path(out) / "stderr.txt").string();
-  std::vector<std::string> args = {ctx.executable, "run",   dataset, "--method",
-                                   method,         "--out", out};
-  if (ctx.manifest.has_config) {
-    args.insert(args.end(), {"--config", (fs::path(ctx.dir) / "config.yaml").string()});
-  }
-  const ProcessResult result = run_process(args, stderr_path);
-  const bool finished = result.ok() && fs::exists(fs::path(out) / "metrics.json");
-  if (!finished) {
-    record_failure(out, {run, seed, "run",
-                         result.ok() ? "no metrics.json written (no truth in the dataset?)"
-                                     : describe_failure(result, stderr_path)});
-    return false;
-  }
-  // The summary needs neither the map nor an empty error log; the map is large.
-  fs::remove(fs::path(out) / "map.ply", ec);
-  if (fs::is_empty(stderr_path, ec)) fs::remove(stderr_path, ec);
-  return true;
+/// Records that a method did not finish run r: a run directory holding only failed.json.
+void record_failure(const std::string& dir, const std::string& method,
+                    const io::RunFailure& failure) {
+  put_in_place(dir, method, failure.run, [&](const std::string& out) {
+    io::write_failure_json((fs::path(out) / "failed.json").string(), failure);
+  });
 }
 
-/// Simulates run r into a scratch dataset, runs the pending methods on it and deletes the dataset.
-/// Returns whether any method failed.
-bool execute_run(const RunContext& ctx, int run, const std::vector<std::string>& pending) {
+std::string scratch_file(const std::string& dir, int run, const char* suffix) {
+  return (fs::path(dir) / "scratch" / (run_name(run) + suffix)).string();
+}
+
+/// The worker's note of what it is doing (the last line names the stage a crash hit).
+void note_stage(const std::string& dir, int run, const std::string& stage) {
+  std::ofstream(scratch_file(dir, run, ".stage"), std::ios::app) << stage << "\n" << std::flush;
+}
+
+/// Test hook (docs/cli.md): MSISLAB_MONTECARLO_FAULTS="run:where:how,..." makes the worker of
+/// run `run` crash (SIGSEGV) or throw at `where` ("simulate" or a method name).
+void injected_fault(int run, const std::string& where) {
+  const char* faults = std::getenv("MSISLAB_MONTECARLO_FAULTS");
+  if (faults == nullptr) return;
+  std::istringstream list(faults);
+  for (std::string entry; std::getline(list, entry, ',');) {
+    const std::string prefix = std::to_string(run) + ":" + where + ":";
+    if (entry.rfind(prefix, 0) != 0) continue;
+    const std::string how = entry.substr(prefix.size());
+    if (how == "crash") std::raise(SIGSEGV);
+    if (how == "throw") throw std::runtime_error("injected failure (MSISLAB_MONTECARLO_FAULTS)");
+  }
+}
+
+/// Worker process of run r: simulates into memory, runs the pending methods on the dataset and
+/// puts each method's result (or its failed.json) in place.
+int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& pending) {
+  // The worker's stderr goes to a file, whose last line explains a crash.
+  const int err = ::open(scratch_file(ctx.dir, run, ".stderr").c_str(),
+                         O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (err >= 0) ::dup2(err, STDERR_FILENO);
   const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
-  const fs::path scratch = fs::path(ctx.dir) / "scratch";
-  const std::string dataset = (scratch / run_name(run)).string();
-  const std::string stderr_path = (scratch / (run_name(run) + ".simulate.txt")).string();
-  io::create_output_dir(scratch.string());
-  std::vector<std::string> args = {
-      ctx.executable, "simulate", ctx.manifest.scenario_source, "--out",
-      dataset,        "--seed",   std::to_string(seed)};
-  if (ctx.single_threaded_simulation) args.insert(args.end(), {"--threads", "1"});
-  const ProcessResult simulated = run_process(args, stderr_path);
-  bool failed = false;
-  if (!simulated.ok()) {
-    const std::string reason = describe_failure(simulated, stderr_path);
-    for (const std::string& method : pending) {
-      record_failure(run_dir(ctx.dir, method, run), {run, seed, "simulate", reason});
+  std::shared_ptr<const io::DatasetRecords> records;
+  std::string dataset_label;
+  try {
+    note_stage(ctx.dir, run, "simulate");
+    sim::Scenario scenario = ctx.scenario;
+    scenario.seed = seed;
+    const sim::Scene scene(ctx.mesh, scenario.scene.surface);
+    injected_fault(run, "simulate");
+    const sim::SimulationResult result = sim::simulate(scenario, scene, ctx.simulation_threads);
+    records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
+    dataset_label = records->name;
+    if (ctx.keep_datasets) {
+      dataset_label = absolute((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
+      io::write_simulated_dataset(dataset_label, scenario, result, ctx.scenario_text);
     }
-    failed = true;
-  } else {
+  } catch (const std::exception& e) {
     for (const std::string& method : pending) {
-      failed |= !run_method(ctx, dataset, method, run, seed);
+      record_failure(ctx.dir, method, {run, seed, "simulate", e.what()});
+    }
+    return 0;
+  }
+  std::optional<RunInputs> in;
+  for (const std::string& method : pending) {
+    try {
+      note_stage(ctx.dir, run, "run");
+      if (!in) in = run_inputs_of(records, ctx.config);
+      injected_fault(run, method);
+      const MethodResult result = run_method(method, *in);
+      if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");
+      // The summary needs neither the map nor the dataset; the map is large.
+      put_in_place(ctx.dir, method, run, [&](const std::string& out) {
+        write_method_result(out, result, dataset_label, /*write_map=*/false);
+        io::write_errors_csv((fs::path(out) / "errors.csv").string(), result.errors,
+                             result.t_first_truth_s);
+      });
+    } catch (const std::exception& e) {
+      record_failure(ctx.dir, method, {run, seed, "run", e.what()});
     }
   }
+  return 0;
+}
+
+/// The last line of the worker's stage notes ("simulate" or "run"); "simulate" when there is none.
+std::string crashed_stage(const std::string& dir, int run) {
+  std::ifstream in(scratch_file(dir, run, ".stage"));
+  std::string line, last = "simulate";
+  while (std::getline(in, line)) {
+    if (!line.empty()) last = line;
+  }
+  return last;
+}
+
+/// Removes what workers left half-written: partial run directories and datasets, scratch files.
+void remove_leftovers(const std::string& dir, const std::vector<std::string>& methods,
+                      std::optional<int> run = std::nullopt) {
   std::error_code ec;
-  fs::remove_all(dataset, ec);
-  fs::remove(stderr_path, ec);
-  return failed;
+  for (const std::string& method : methods) {
+    const fs::path folder = fs::path(dir) / "runs" / method;
+    if (!fs::is_directory(folder)) continue;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+      const std::string name = entry.path().filename().string();
+      const bool partial = name.size() > 8 && name.compare(name.size() - 8, 8, ".partial") == 0;
+      if (partial && (!run || name == "." + run_name(*run) + ".partial")) {
+        fs::remove_all(entry.path(), ec);
+      }
+    }
+  }
+  const fs::path datasets = fs::path(dir) / "datasets";
+  if (fs::is_directory(datasets)) {
+    for (const auto& entry : fs::directory_iterator(datasets, ec)) {
+      const std::string name = entry.path().filename().string();
+      const std::string hidden = run ? "." + run_name(*run) + "." : ".";
+      if (name.rfind(hidden, 0) == 0) fs::remove_all(entry.path(), ec);
+    }
+  }
+  if (run) {
+    for (const char* suffix : {".stderr", ".stage"})
+      fs::remove(scratch_file(dir, *run, suffix), ec);
+  } else {
+    fs::remove_all(fs::path(dir) / "scratch", ec);
+  }
+}
+
+bool finished(const std::string& dir, const std::string& method, int run) {
+  return fs::exists(fs::path(run_dir(dir, method, run)) / "metrics.json");
 }
 
 }  // namespace
 
 MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloLog& log) {
-  const std::string executable =
-      options.executable.empty() ? self_executable() : absolute(options.executable);
-  const io::MonteCarloManifest manifest = prepare(options, executable);
-  const std::string dir = options.out_dir;
-  const std::vector<int> runs = runs_of(manifest);
+  std::optional<DirectoryLock> lock;
+  RunContext ctx = prepare(options, lock);
+  const std::string& dir = ctx.dir;
+  const std::vector<int> runs = runs_of(ctx.manifest);
+  remove_leftovers(dir, ctx.manifest.methods);  // of a command killed outright
 
   struct Pending {
     int run;
@@ -171,8 +275,8 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
   std::vector<Pending> todo;
   for (const int r : runs) {
     std::vector<std::string> methods;
-    for (const std::string& m : manifest.methods) {
-      if (!fs::exists(fs::path(run_dir(dir, m, r)) / "metrics.json")) methods.push_back(m);
+    for (const std::string& m : ctx.manifest.methods) {
+      if (!finished(dir, m, r)) methods.push_back(m);
     }
     if (!methods.empty()) todo.push_back({r, methods});
   }
@@ -180,32 +284,58 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
                        ? options.jobs
                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // Several runs at once: one simulation thread each, so that J runs keep J cores busy.
-  const RunContext ctx{manifest, dir, executable,
-                       std::min(static_cast<std::size_t>(jobs), todo.size()) > 1};
+  ctx.simulation_threads =
+      std::min(static_cast<std::size_t>(jobs), todo.size()) > 1
+          ? 1
+          : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // The shared parent folders are made here, not by the workers at the same time.
   io::create_output_dir((fs::path(dir) / "scratch").string());
-  for (const std::string& m : manifest.methods) {
+  for (const std::string& m : ctx.manifest.methods) {
     io::create_output_dir((fs::path(dir) / "runs" / m).string());
   }
+  if (ctx.keep_datasets) io::create_output_dir((fs::path(dir) / "datasets").string());
 
   MonteCarloOutcome outcome;
   outcome.runs = runs.size();
-  outcome.executed = todo.size();
   Progress progress(runs.size(), runs.size() - todo.size(), log.terminal, log.log);
   progress.redraw();
-  run_parallel(
-      todo.size(), jobs,
-      [&](std::size_t i) {
-        const bool failed = execute_run(ctx, todo[i].run, todo[i].methods);
-        progress.run_finished(failed);
-      },
-      [&] { progress.redraw(); });
+  WorkerPool pool;
+  pool.workers = jobs;
+  const int lock_fd = lock->fd();
+  pool.job = [&](std::size_t i) {
+    ::close(lock_fd);  // the lock is the caller's alone
+    return execute_run(ctx, todo[i].run, todo[i].methods);
+  };
+  pool.finished = [&](std::size_t i, const ProcessResult& result) {
+    const int r = todo[i].run;
+    const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(r);
+    bool failed = false;
+    for (const std::string& method : todo[i].methods) {
+      if (finished(dir, method, r)) continue;
+      failed = true;
+      const bool recorded = fs::exists(fs::path(run_dir(dir, method, r)) / "failed.json");
+      if (!result.ok() || !recorded) {
+        record_failure(dir, method,
+                       {r, seed, crashed_stage(dir, r),
+                        describe_failure(result, scratch_file(dir, r, ".stderr"))});
+      }
+    }
+    ++outcome.executed;
+    remove_leftovers(dir, ctx.manifest.methods, r);
+    progress.run_finished(failed);
+  };
+  pool.tick = [&] { progress.redraw(); };
+  pool.stopped = [&](std::size_t i) { remove_leftovers(dir, ctx.manifest.methods, todo[i].run); };
+  outcome.interrupted = run_worker_processes(todo.size(), pool);
   progress.end();
   std::error_code ec;
   fs::remove(fs::path(dir) / "scratch", ec);  // only when empty
-
-  outcome.summary = write_summary_files(dir, manifest, runs);
-  outcome.failed = failed_runs(dir, manifest.methods, runs);
+  if (outcome.interrupted != 0) {
+    outcome.failed = failed_runs(dir, ctx.manifest.methods, runs);
+    return outcome;
+  }
+  outcome.summary = write_summary_files(dir, ctx.manifest, runs);
+  outcome.failed = failed_runs(dir, ctx.manifest.methods, runs);
   return outcome;
 }
 

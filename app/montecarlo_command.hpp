@@ -1,7 +1,9 @@
 // `msislab montecarlo SCENARIO.yaml --runs N --out DIR [--methods a,b] [--jobs J]
-// [--config SLAM.yaml] [--shard i/N]` and `msislab montecarlo merge OUT_DIR SHARD_DIR...`:
-// N seeded simulate + run repetitions per method, each a child process of the msislab executable,
-// resumable and shardable, summarised into consistency statistics (docs/cli.md, docs/formats.md).
+// [--config SLAM.yaml] [--shard i/N] [--keep-datasets]` and `msislab montecarlo merge OUT_DIR
+// SHARD_DIR...`: N seeded repetitions of simulate + every method, each run in a forked worker
+// process that simulates into memory and hands the dataset straight to the methods; resumable,
+// shardable, one writer per directory, summarised into consistency statistics (docs/cli.md,
+// docs/formats.md).
 #pragma once
 
 #include <cstddef>
@@ -18,10 +20,10 @@ struct MonteCarloOptions {
   int runs = 0;
   std::string out_dir;
   std::vector<std::string> methods = {"robocentric", "worldcentric"};
-  int jobs = 0;             ///< concurrent runs; 0: one per hardware thread
-  std::string config_path;  ///< SLAM config for every run; empty: the defaults
-  std::string shard;        ///< "i/N": only the runs r with r % N == i; empty: every run
-  std::string executable;   ///< the msislab executable the runs start; empty: this process's
+  int jobs = 0;                ///< concurrent runs; 0: one per hardware thread
+  std::string config_path;     ///< SLAM config for every run; empty: the defaults
+  std::string shard;           ///< "i/N": only the runs r with r % N == i; empty: every run
+  bool keep_datasets = false;  ///< also write each run's dataset to DIR/datasets/run_<rrrr>
 };
 
 /// Where the messages go: progress on `log` (a bar redrawn in place when `terminal`).
@@ -34,12 +36,17 @@ struct MonteCarloOutcome {
   std::size_t runs = 0;      ///< runs in this directory (its shard)
   std::size_t executed = 0;  ///< runs (re)done by this call; the others were finished already
   std::size_t failed = 0;    ///< runs with at least one failed method
+  /// The stop request (SIGINT, SIGTERM, SIGHUP) that ended the runs early, else 0. Then the
+  /// finished runs are kept, no summary is written, and the same command resumes.
+  int interrupted = 0;
   std::vector<MethodSummary> summary;
 };
 
-/// Checks every input (methods, shard, scenario, config, an existing DIR made from the same
-/// scenario and config), then runs what is not finished yet and writes DIR/summary.json,
-/// DIR/nees.csv and DIR/seeds.csv. Failed runs are recorded, not thrown. Throws io::InputError.
+/// Checks every input (methods, shard, scenario, its mesh, config, an existing DIR made from the
+/// same scenario and config by this build), locks DIR (InputError naming the holder when another
+/// command has it), then runs what is not finished yet and writes DIR/summary.json, DIR/nees.csv
+/// and DIR/seeds.csv. A run that fails or crashes is recorded (failed.json), not thrown; a stop
+/// request ends the workers and returns with `interrupted` set. Throws io::InputError.
 MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloLog& log);
 
 struct MergeOptions {

@@ -93,6 +93,8 @@ MonteCarloRun read_run(const std::string& dir, const std::string& method, int ru
   record.index = run;
   if (fs::exists(rd / "metrics.json")) {
     record.metrics = io::read_metrics_json((rd / "metrics.json").string()).metrics;
+    if (fs::exists(rd / "errors.csv"))
+      record.errors = io::read_errors_csv((rd / "errors.csv").string());
     if (fs::exists(rd / "nees.csv")) {
       for (const io::NeesSample& s : io::read_nees_csv((rd / "nees.csv").string())) {
         record.nees.push_back(s.nees);
@@ -118,6 +120,8 @@ std::vector<MethodSummary> write_summary_files(const std::string& dir,
   const fs::path d(dir);
   io::write_summary_json((d / "summary.json").string(), summaries);
   io::write_montecarlo_nees_csv((d / "nees.csv").string(), summaries);
+  io::write_error_spread_csv((d / "errors.csv").string(), summaries);
+  io::write_error_histogram_csv((d / "error_histogram.csv").string(), error_histograms(summaries));
   io::write_seeds_csv((d / "seeds.csv").string(), runs, manifest.first_seed);
   return summaries;
 }

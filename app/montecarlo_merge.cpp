@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "app/directory_lock.hpp"
 #include "app/montecarlo_directory.hpp"
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
@@ -73,6 +74,7 @@ MonteCarloOutcome merge_montecarlo(const MergeOptions& options) {
   manifest.shard_index = 0;
   manifest.shard_count = 1;
   const ShardHeader& first = shards.front();
+  const DirectoryLock lock(options.out_dir, "msislab montecarlo merge");
   check_resumable(options.out_dir, first.scenario_text, manifest.has_config, first.config_text,
                   (fs::path(options.shard_dirs.front()) / "scenario.yaml").string(),
                   manifest.executable_digest);

@@ -81,6 +81,15 @@ std::vector<std::string> draw_plot(const PlotInputs& in) {
   if (!in.nees.empty()) {
     writer.chart(figures, "nees.png", nees_chart(in.nees, options.width_px, options.height_px));
   }
+  if (!in.error_spread.empty()) {
+    writer.chart(figures, "error_spread.png",
+                 error_spread_chart(in.error_spread, options.width_px, options.height_px));
+  }
+  if (!in.error_histograms.empty()) {
+    writer.chart(
+        figures, "error_distribution.png",
+        error_distribution_chart(in.error_histograms, options.width_px, options.height_px));
+  }
   if (in.revolution) writer.acoustic_image(figures, *in.revolution);
   return writer.written();
 }

@@ -1,5 +1,7 @@
 #include "app/plot_figures.hpp"
 
+#include "app/methods.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -118,35 +120,7 @@ void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
   chart.series.push_back(std::move(upper));
 }
 
-/// The line of a method in the charts that compare methods: world-centric dashed, so that where it
-/// coincides with the robocentric line (the same estimate, docs/trajectory_slam.md) both show.
-plot::SeriesStyle comparison_style(const std::string& method) {
-  return method == "worldcentric" ? plot::SeriesStyle::kDashedLine : plot::SeriesStyle::kLine;
-}
-
 }  // namespace
-
-std::string method_title(const std::string& method) {
-  static const std::map<std::string, std::string> titles = {{"deadreckoning", "Dead reckoning"},
-                                                            {"integration", "DVL integration"},
-                                                            {"worldcentric", "World-centric SLAM"},
-                                                            {"robocentric", "Robocentric SLAM"}};
-  const auto it = titles.find(method);
-  return it == titles.end() ? method : it->second;
-}
-
-std::uint32_t method_colour(const std::string& method) {
-  static const std::map<std::string, std::uint32_t> colours = {{"deadreckoning", 0xd62728},
-                                                               {"integration", 0xff7f0e},
-                                                               {"worldcentric", 0x1f77b4},
-                                                               {"robocentric", 0x2ca02c}};
-  static const std::uint32_t others[] = {0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22};
-  const auto it = colours.find(method);
-  if (it != colours.end()) return it->second;
-  std::size_t sum = 0;
-  for (const char ch : method) sum += static_cast<unsigned char>(ch);
-  return others[sum % std::size(others)];
-}
 
 plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
                                  int height_px) {
@@ -209,7 +183,7 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
         method_title(r->method) + " (mean " + io::format_fixed(mean_error_m(r->errors), 2) + " m)",
         {},
         {},
-        comparison_style(r->method),
+        method_style(r->method),
         method_colour(r->method),
         2.5f};
     for (const ErrorSample& e : r->errors) {
@@ -265,7 +239,7 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
     plot::Series mean{method_title(method) + " (" + in_bounds_percent(method_rows) + " in bounds)",
                       {},
                       {},
-                      comparison_style(method),
+                      method_style(method),
                       method_colour(method),
                       2.5f};
     for (const io::NeesRow& r : method_rows) {
@@ -275,6 +249,69 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
     chart.series.push_back(std::move(mean));
   }
   chart.x_range = plot::AxisRange{scan_min, std::max(scan_max, scan_min + 1.0)};
+  return chart;
+}
+
+plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, int width_px,
+                                   int height_px) {
+  plot::ChartSpec chart;
+  chart.x_label = "time [s]";
+  chart.y_label = "position error [m]";
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  int runs = 0;
+  std::vector<std::string> order;
+  for (const io::ErrorSpreadRow& r : rows) {
+    runs = std::max(runs, r.spread.runs);
+    if (std::find(order.begin(), order.end(), r.method) == order.end()) order.push_back(r.method);
+  }
+  chart.title = "Position error over " + std::to_string(runs) + " runs (dashed: 5-95 %)";
+  for (const std::string& method : order) {
+    plot::Series mean{method_title(method) + " mean", {},  {}, plot::SeriesStyle::kLine,
+                      method_colour(method),          2.5f};
+    plot::Series low{method_title(method) + " 5-95 %",
+                     {},
+                     {},
+                     plot::SeriesStyle::kDashedLine,
+                     method_colour(method),
+                     1.5f};
+    plot::Series high{"", {}, {}, plot::SeriesStyle::kDashedLine, method_colour(method), 1.5f};
+    for (const io::ErrorSpreadRow& r : rows) {
+      if (r.method != method) continue;
+      for (plot::Series* s : {&mean, &low, &high}) s->x.push_back(r.spread.t_s);
+      mean.y.push_back(r.spread.mean_m);
+      low.y.push_back(r.spread.p05_m);
+      high.y.push_back(r.spread.p95_m);
+    }
+    chart.series.push_back(std::move(low));
+    chart.series.push_back(std::move(high));
+    chart.series.push_back(std::move(mean));
+  }
+  return chart;
+}
+
+plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
+                                         int width_px, int height_px) {
+  plot::ChartSpec chart;
+  chart.title = "Position error distribution (all runs, once a second)";
+  chart.x_label = "position error [m]";
+  chart.y_label = "fraction of samples per bin";
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  for (const ErrorHistogram& h : histograms) {
+    // The histogram's outline: up and down each bin's edges.
+    plot::Series outline{method_title(h.method),  {},  {}, method_style(h.method),
+                         method_colour(h.method), 2.5f};
+    outline.x.push_back(h.edges_m.front());
+    outline.y.push_back(0.0);
+    for (std::size_t b = 0; b < h.fractions.size(); ++b) {
+      outline.x.insert(outline.x.end(), {h.edges_m[b], h.edges_m[b + 1]});
+      outline.y.insert(outline.y.end(), {h.fractions[b], h.fractions[b]});
+    }
+    outline.x.push_back(h.edges_m.back());
+    outline.y.push_back(0.0);
+    chart.series.push_back(std::move(outline));
+  }
   return chart;
 }
 

@@ -5,16 +5,11 @@
 #include <string>
 #include <vector>
 
+#include "app/methods.hpp"
 #include "app/plot_inputs.hpp"
 #include "plot/chart.hpp"
 
 namespace msislab::app {
-
-/// Display name of a method ("worldcentric" -> "World-centric SLAM"); unknown names unchanged.
-std::string method_title(const std::string& method);
-
-/// Line colour of a method (0xRRGGBB): the same in every figure.
-std::uint32_t method_colour(const std::string& method);
 
 /// Truth (or GPS) and the estimate in the world frame with equal aspect, the map points as small
 /// dots and the 2-sigma position ellipses of every k-th scan (k = every, or about 25 in all).
@@ -24,6 +19,16 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
 /// Position error against time since the first truth stamp, one line per result with errors.
 plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
                             int height_px);
+
+/// Monte Carlo: the position error against time per method, its mean over the runs (solid) and
+/// the 5 and 95 % quantiles (dashed).
+plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, int width_px,
+                                   int height_px);
+
+/// Monte Carlo: the distribution of the position error per method (every run's samples pooled),
+/// as a histogram outline on shared bins.
+plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
+                                         int width_px, int height_px);
 
 /// Run-averaged NEES against scan index per method, with the 95% bounds; log y axis.
 plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px);

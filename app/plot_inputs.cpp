@@ -123,6 +123,12 @@ PlotInputs load_plot_inputs(const PlotOptions& options) {
   } else if (fs::is_regular_file(dir / "nees.csv")) {
     // A Monte Carlo directory: its per-run results are many; plot one by naming its folder.
     in.nees = io::read_montecarlo_nees((dir / "nees.csv").string());
+    if (fs::is_regular_file(dir / "errors.csv")) {
+      in.error_spread = io::read_error_spread_csv((dir / "errors.csv").string());
+    }
+    if (fs::is_regular_file(dir / "error_histogram.csv")) {
+      in.error_histograms = io::read_error_histogram_csv((dir / "error_histogram.csv").string());
+    }
   } else {
     for (const fs::path& subdir : result_subdirs(dir)) {
       in.results.push_back(load_result(subdir, options, datasets));

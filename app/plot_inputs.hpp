@@ -44,8 +44,10 @@ struct PlotInputs {
   /// DIR itself when it holds trajectory.tum; else its subdirectories that do (a comparison).
   std::vector<ResultData> results;
   bool comparison = false;
-  std::vector<io::NeesRow> nees;              ///< DIR/nees.csv of a Monte Carlo directory
-  std::optional<SonarRevolution> revolution;  ///< when the dataset has a *_IS.log
+  std::vector<io::NeesRow> nees;                 ///< DIR/nees.csv of a Monte Carlo directory
+  std::vector<io::ErrorSpreadRow> error_spread;  ///< its errors.csv, when present
+  std::vector<ErrorHistogram> error_histograms;  ///< its error_histogram.csv, when present
+  std::optional<SonarRevolution> revolution;     ///< when the dataset has a *_IS.log
 };
 
 /// Reads everything `plot` needs. Throws io::InputError for a missing DIR, a malformed file, a

@@ -1,5 +1,7 @@
 #include "app/report_command.hpp"
 
+#include "app/methods.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,13 +21,6 @@ namespace msislab::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-/// Where a method's row goes: the paper's two filters, then the baselines, then any other.
-std::size_t method_rank(const std::string& method) {
-  static const std::vector<std::string> order = {"robocentric", "worldcentric", "deadreckoning",
-                                                 "integration"};
-  return static_cast<std::size_t>(std::find(order.begin(), order.end(), method) - order.begin());
-}
 
 /// A table cell: the value with `decimals` decimals, "n/a" when it is not finite or missing.
 std::string fixed(double value, int decimals) {

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/eval_command.hpp"
+#include "app/methods.hpp"
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
@@ -15,28 +16,11 @@
 #include "io/input_error.hpp"
 #include "io/results.hpp"
 #include "slam/dead_reckoning.hpp"
-#include "slam/robocentric_slam.hpp"
 #include "slam/trajectory_correction.hpp"
-#include "slam/worldcentric_slam.hpp"
 
 namespace msislab::app {
 
 namespace fs = std::filesystem;
-
-const std::vector<std::string>& available_methods() {
-  static const std::vector<std::string> methods = {"deadreckoning", "integration", "robocentric",
-                                                   "worldcentric"};
-  return methods;
-}
-
-void check_method(const std::string& method, const std::string& option) {
-  const auto& methods = available_methods();
-  if (std::find(methods.begin(), methods.end(), method) != methods.end()) return;
-  std::string list;
-  for (const std::string& m : methods) list += (list.empty() ? "" : ", ") + m;
-  throw io::InputError(option + " '" + method +
-                       "': not available in this build (available: " + list + ")");
-}
 
 namespace {
 
@@ -53,10 +37,6 @@ void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
 }  // namespace
 
 namespace {
-
-bool is_slam_method(const std::string& method) {
-  return method == "robocentric" || method == "worldcentric";
-}
 
 struct SlamRun {
   std::vector<PlacedScan> scans;  ///< with their corrected world poses
@@ -77,16 +57,12 @@ std::vector<PlacedScan> dead_reckoning_scans(const SonarInput& sonar, const RunI
 
 /// Trajectory SLAM (robocentric or world-centric) over the dataset's scans, and the corrected
 /// trajectory.
-SlamRun run_trajectory_slam(const std::string& method, const SonarInput& sonar, const RunInputs& in,
+SlamRun run_trajectory_slam(const MethodInfo& method, const SonarInput& sonar, const RunInputs& in,
                             const std::vector<StampedPose>& dead_reckoning) {
   SlamRun run;
   run.scans = dead_reckoning_scans(sonar, in);
-  std::unique_ptr<TrajectorySlam> slam;
-  if (method == "robocentric") {
-    slam = std::make_unique<RoboCentricSlam>(in.config.trajectory_slam, in.start.pose);
-  } else {
-    slam = std::make_unique<WorldCentricSlam>(in.config.trajectory_slam, in.start.pose);
-  }
+  const std::unique_ptr<TrajectorySlam> slam =
+      method.make_slam(in.config.trajectory_slam, in.start.pose);
   for (const PlacedScan& placed : run.scans) {
     SlamStepStats step = slam->add_scan(placed.scan);
     run.matches.insert(run.matches.end(), std::make_move_iterator(step.matches.begin()),
@@ -189,8 +165,8 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam
 
 }  // namespace
 
-MethodResult run_method(const std::string& method, const RunInputs& in) {
-  check_method(method);
+MethodResult run_method(const std::string& name, const RunInputs& in) {
+  const MethodInfo& method = method_info(name);
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
   const NavigationLog& navigation = in.navigation;
@@ -199,11 +175,11 @@ MethodResult run_method(const std::string& method, const RunInputs& in) {
 
   // SLAM methods: the sonar readings are read before the clock starts, like the logs.
   std::optional<SonarInput> sonar;
-  if (is_slam_method(method)) sonar = load_sonar_readings(in);
+  if (method.kind == MethodKind::kTrajectorySlam) sonar = load_sonar_readings(in);
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
-  if (method == "integration") {
+  if (method.kind == MethodKind::kIntegration) {
     dr.trajectory = integrate_velocities(navigation, start);
   } else {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
@@ -216,7 +192,7 @@ MethodResult run_method(const std::string& method, const RunInputs& in) {
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
   std::vector<PlacedScan> dr_scans;
-  if (method == "deadreckoning" && has_sonar_data(in)) {
+  if (method.kind == MethodKind::kDeadReckoning && has_sonar_data(in)) {
     dr_scans = dead_reckoning_scans(load_sonar_readings(in), in);
   }
   const std::vector<PlacedScan>* scans = slam ? &slam->scans : &dr_scans;
@@ -224,13 +200,15 @@ MethodResult run_method(const std::string& method, const RunInputs& in) {
   if (trajectory.size() < 2) io::fail_file(in.dataset, "no navigation data after the start time");
 
   MethodResult result;
-  result.method = method;
+  result.method = method.name;
   result.trajectory = trajectory;
   result.depth_m = truth.depth_m;
   if (!truth.kind.empty()) {
     result.metrics = score_trajectory(truth, trajectory, config.segments, in.dataset);
+    result.errors = position_errors(trajectory, truth.positions);
+    result.t_first_truth_s = truth.positions.front().t_s;
     RunMetrics& metrics = *result.metrics;
-    metrics.method = method;
+    metrics.method = method.name;
     metrics.runtime_s = runtime_s;
     if (has_scans) {
       metrics.scans = static_cast<int>(scans->size());
@@ -238,7 +216,7 @@ MethodResult run_method(const std::string& method, const RunInputs& in) {
       metrics.anees = average_nees(result.nees);
     }
     if (slam) metrics.diagnostics = slam_diagnostics(*slam, truth, metrics.matches_accepted);
-    if (method == "deadreckoning") {
+    if (method.kind == MethodKind::kDeadReckoning) {
       metrics.diagnostics = {{"dvl_used", dr.dvl_used},
                              {"dvl_rejected", dr.dvl_rejected},
                              {"dvl_without_bottom_lock", navigation.dvl_rows_without_bottom_lock},
@@ -266,7 +244,7 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
 }
 
 RunOutcome run(const RunOptions& options) {
-  check_method(options.method);
+  method_info(options.method);  // an unknown method fails before anything is read
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
   const MethodResult result = run_method(options.method, in);
   write_method_result(options.out_dir, result,

@@ -20,11 +20,6 @@ struct RunOptions {
   std::string config_path;  ///< empty: the default SLAM config
 };
 
-/// The methods this build can run.
-const std::vector<std::string>& available_methods();
-/// InputError "OPTION 'm': not available in this build (available: ...)" unless m is one of them.
-void check_method(const std::string& method, const std::string& option = "--method");
-
 struct RunOutcome {
   std::vector<StampedPose> trajectory;
   std::optional<RunMetrics> metrics;  ///< present when the dataset has truth (simulation or GPS)
@@ -34,9 +29,11 @@ struct RunOutcome {
 struct MethodResult {
   std::string method;
   std::vector<StampedPose> trajectory;
-  double depth_m = 0.0;                              ///< for the TUM z
-  std::optional<RunMetrics> metrics;                 ///< present when the dataset has truth
-  std::vector<io::NeesSample> nees;                  ///< per scan, with pose truth
+  double depth_m = 0.0;               ///< for the TUM z
+  std::optional<RunMetrics> metrics;  ///< present when the dataset has truth
+  std::vector<io::NeesSample> nees;   ///< per scan, with pose truth
+  std::vector<ErrorSample> errors;    ///< position error at every truth stamp
+  double t_first_truth_s = 0.0;
   std::optional<std::vector<PlacedScan>> scans;      ///< with sonar data
   std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
 };

@@ -1,5 +1,7 @@
 #include "io/montecarlo_files.hpp"
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -116,6 +118,15 @@ void write_summary_json(const std::string& path, const std::vector<MethodSummary
       out << "],\n"
           << "    \"missing\": " << s.missing << ",\n"
           << "    \"mean_error_m\": " << json_optional(s.mean_error_m) << ",\n"
+          << "    \"mean_error_quantiles_m\": ";
+      if (s.mean_error_quantiles_m) {
+        const auto& q = *s.mean_error_quantiles_m;
+        out << "{\"p05\": " << json_number(q[0]) << ", \"p50\": " << json_number(q[1])
+            << ", \"p95\": " << json_number(q[2]) << "}";
+      } else {
+        out << "null";
+      }
+      out << ",\n"
           << "    \"final_error_m\": " << json_optional(s.final_error_m) << ",\n"
           << "    \"anees\": " << json_optional(s.anees) << ",\n"
           << "    \"nees_in_bounds_fraction\": " << json_optional(s.nees_in_bounds_fraction)
@@ -154,6 +165,13 @@ std::vector<StoredSummary> read_summary_json(const std::string& path) {
     }
     s.missing = int_of(m, "missing", 0);
     s.mean_error_m = m.number_or_null("mean_error_m");
+    const auto quantiles =
+        std::find_if(m.value().members.begin(), m.value().members.end(),
+                     [](const auto& member) { return member.first == "mean_error_quantiles_m"; });
+    if (quantiles != m.value().members.end() && quantiles->second.type != JsonValue::Type::null) {
+      const JsonObject q = m.object("mean_error_quantiles_m");
+      s.mean_error_quantiles_m = {q.number("p05"), q.number("p50"), q.number("p95")};
+    }
     s.final_error_m = m.number_or_null("final_error_m");
     s.anees = m.number_or_null("anees");
     s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
@@ -167,6 +185,44 @@ std::vector<StoredSummary> read_summary_json(const std::string& path) {
   }
   if (methods.empty()) fail_file(path, "no method in it");
   return methods;
+}
+
+void write_error_spread_csv(const std::string& path, const std::vector<MethodSummary>& methods) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "method,t_s,runs,mean_m,p05_m,p50_m,p95_m\n";
+    for (const MethodSummary& s : methods) {
+      for (const ErrorSpread& e : s.error_spread) {
+        text += s.method + ',';
+        append_number(text, e.t_s);
+        text += ',' + std::to_string(e.runs);
+        for (const double v : {e.mean_m, e.p05_m, e.p50_m, e.p95_m}) {
+          text += ',';
+          append_number(text, v);
+        }
+        text += '\n';
+      }
+    }
+    out << text;
+  });
+}
+
+void write_error_histogram_csv(const std::string& path,
+                               const std::vector<ErrorHistogram>& histograms) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "method,lower_m,upper_m,fraction\n";
+    for (const ErrorHistogram& h : histograms) {
+      for (std::size_t b = 0; b < h.fractions.size(); ++b) {
+        text += h.method + ',';
+        append_number(text, h.edges_m[b]);
+        text += ',';
+        append_number(text, h.edges_m[b + 1]);
+        text += ',';
+        append_number(text, h.fractions[b]);
+        text += '\n';
+      }
+    }
+    out << text;
+  });
 }
 
 void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods) {

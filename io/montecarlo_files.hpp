@@ -53,6 +53,15 @@ struct StoredSummary {
 };
 std::vector<StoredSummary> read_summary_json(const std::string& path);
 
+/// errors.csv of a Monte Carlo directory: "method,t_s,runs,mean_m,p05_m,p50_m,p95_m", the spread
+/// of the position error over the runs once a second, atomically.
+void write_error_spread_csv(const std::string& path, const std::vector<MethodSummary>& methods);
+
+/// error_histogram.csv of a Monte Carlo directory: "method,lower_m,upper_m,fraction", each
+/// method's pooled position errors on shared bins, atomically.
+void write_error_histogram_csv(const std::string& path,
+                               const std::vector<ErrorHistogram>& histograms);
+
 /// nees.csv of a Monte Carlo directory: "method,scan,runs,mean_nees,lower,upper", atomically.
 void write_montecarlo_nees_csv(const std::string& path, const std::vector<MethodSummary>& methods);
 

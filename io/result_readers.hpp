@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "slam/monte_carlo.hpp"
+
 namespace msislab::io {
 
 /// The vertices (x, y) of an ASCII PLY point cloud such as map.ply; z and other properties are
@@ -28,5 +30,15 @@ struct NeesRow {
 
 /// Reads nees.csv (header "method,scan,runs,mean_nees,lower,upper"); scans increase per method.
 std::vector<NeesRow> read_montecarlo_nees(const std::string& path);
+
+/// errors.csv of a Monte Carlo directory (write_error_spread_csv); times increase per method.
+struct ErrorSpreadRow {
+  std::string method;
+  ErrorSpread spread;
+};
+std::vector<ErrorSpreadRow> read_error_spread_csv(const std::string& path);
+
+/// error_histogram.csv of a Monte Carlo directory (write_error_histogram_csv).
+std::vector<ErrorHistogram> read_error_histogram_csv(const std::string& path);
 
 }  // namespace msislab::io

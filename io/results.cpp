@@ -271,6 +271,38 @@ void write_nees_csv(const std::string& path, const std::vector<NeesSample>& samp
   });
 }
 
+void write_errors_csv(const std::string& path, const std::vector<ErrorSample>& errors,
+                      double t_first_truth_s) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "t_s,error_m\n";
+    double next_s = 0.0;
+    for (const ErrorSample& e : errors) {
+      const double t_s = e.t_s - t_first_truth_s;
+      if (t_s + 1e-9 < next_s) continue;
+      append_number(text, t_s);
+      text += ',';
+      append_number(text, e.error_m);
+      text += '\n';
+      next_s = std::floor(t_s + 1e-9) + 1.0;
+    }
+    out << text;
+  });
+}
+
+std::vector<ErrorSample> read_errors_csv(const std::string& path) {
+  std::vector<ErrorSample> errors;
+  for_each_csv_row(path, "t_s,error_m", [&](std::string_view row, std::size_t line) {
+    const auto fields = split_csv<2>(row, path, line);
+    const ErrorSample e{parse_finite(fields[0], {path, line, 1, "t_s"}),
+                        parse_finite(fields[1], {path, line, 2, "error_m"})};
+    if (!errors.empty() && !(e.t_s > errors.back().t_s)) {
+      fail_at(path, line, "t_s does not increase");
+    }
+    errors.push_back(e);
+  });
+  return errors;
+}
+
 std::vector<NeesSample> read_nees_csv(const std::string& path) {
   std::vector<NeesSample> samples;
   for_each_csv_row(path, "scan,t_s,nees", [&](std::string_view row, std::size_t line) {

@@ -60,6 +60,12 @@ struct NeesSample {
 };
 /// nees.csv: "scan,t_s,nees", one row per scan in order, atomically.
 void write_nees_csv(const std::string& path, const std::vector<NeesSample>& samples);
+
+/// errors.csv of a Monte Carlo run: "t_s,error_m", the position error once a second (the first
+/// truth stamp at or after each whole second from the first one), t_s from the first truth stamp.
+void write_errors_csv(const std::string& path, const std::vector<ErrorSample>& errors,
+                      double t_first_truth_s);
+std::vector<ErrorSample> read_errors_csv(const std::string& path);
 /// nees.csv read back (the scan column must count 0, 1, 2, ...).
 std::vector<NeesSample> read_nees_csv(const std::string& path);
 

@@ -1,6 +1,7 @@
 #include "sim/sonar_physics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 
@@ -69,15 +70,51 @@ void spread_in_range(const std::vector<double>& kernel, std::vector<double>& pow
   power.swap(out);
 }
 
+namespace {
+
+/// The unit Gaussian at lattice corner (i, j, k): a hash of the corner through Box-Muller.
+double corner_value(std::int64_t i, std::int64_t j, std::int64_t k) {
+  std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
+                    static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full ^
+                    static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull;
+  const std::uint64_t a = splitmix64(h), b = splitmix64(a);
+  const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;
+  const double u2 = unit_interval(b);
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
+}
+
+/// The corner values recently used on this thread: neighbouring rays hit neighbouring points, so
+/// most corners repeat, and a log, a sqrt and a cos are saved each time (the values are the same).
+class CornerCache {
+ public:
+  double value(std::int64_t i, std::int64_t j, std::int64_t k) {
+    const std::uint64_t slot =
+        (static_cast<std::uint64_t>(i) * 73856093u ^ static_cast<std::uint64_t>(j) * 19349663u ^
+         static_cast<std::uint64_t>(k) * 83492791u) &
+        (kSlots - 1);
+    Entry& e = entries_[slot];
+    if (!e.filled || e.i != i || e.j != j || e.k != k) {
+      e = {i, j, k, corner_value(i, j, k), true};
+    }
+    return e.value;
+  }
+
+ private:
+  static constexpr std::uint64_t kSlots = 4096;
+  struct Entry {
+    std::int64_t i = 0, j = 0, k = 0;
+    double value = 0.0;
+    bool filled = false;
+  };
+  std::array<Entry, kSlots> entries_{};
+};
+
+}  // namespace
+
 double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
-  const auto corner_value = [](std::int64_t i, std::int64_t j, std::int64_t k) {
-    std::uint64_t h = static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull ^
-                      static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full ^
-                      static_cast<std::uint64_t>(k) * 0x165667B19E3779F9ull;
-    const std::uint64_t a = splitmix64(h), b = splitmix64(a);
-    const double u1 = (static_cast<double>(a >> 11) + 0.5) * 0x1.0p-53;
-    const double u2 = unit_interval(b);
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
+  thread_local CornerCache corners;
+  const auto corner_value = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return corners.value(i, j, k);
   };
   const Eigen::Vector3d q = p_m.cast<double>() / length_m;
   const Eigen::Vector3d f = q.array().floor();

@@ -47,6 +47,10 @@ struct ErrorStats {
 /// Statistics of a set of errors; nullopt when it is empty.
 std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors);
 
+/// The p-quantile (0 <= p <= 1) by linear interpolation between order statistics: position
+/// h = (n - 1) p in the sorted sample. NaN for an empty sample.
+double quantile(std::vector<double> values, double p);
+
 /// A named time window, in seconds from the first truth stamp: [begin_s, end_s).
 struct TimeSegment {
   std::string name;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "slam/scan_matching.hpp"
 
@@ -67,6 +68,7 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
   summary.method = method;
   std::vector<std::optional<double>> mean_errors, final_errors;
   std::vector<std::vector<double>> nees_by_run;
+  std::map<double, std::vector<double>> errors_at;  // t_s -> the runs' errors then
   double nees_sum = 0.0;
   std::size_t nees_count = 0;
   for (const MonteCarloRun& run : runs) {
@@ -80,12 +82,31 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     mean_errors.push_back(run.metrics->errors.mean_m);
     final_errors.push_back(run.metrics->errors.final_m);
     if (std::isfinite(run.metrics->runtime_s)) summary.runtime_s += run.metrics->runtime_s;
+    for (const ErrorSample& e : run.errors) {
+      errors_at[e.t_s].push_back(e.error_m);
+      summary.pooled_errors_m.push_back(e.error_m);
+    }
     if (run.nees.empty()) continue;
     nees_by_run.push_back(run.nees);
     for (const double v : run.nees) nees_sum += v;
     nees_count += run.nees.size();
   }
+  for (const auto& [t_s, errors] : errors_at) {
+    double sum = 0.0;
+    for (const double e : errors) sum += e;
+    summary.error_spread.push_back(
+        {t_s, static_cast<int>(errors.size()), sum / static_cast<double>(errors.size()),
+         quantile(errors, 0.05), quantile(errors, 0.5), quantile(errors, 0.95)});
+  }
   summary.mean_error_m = mean_present(mean_errors);
+  std::vector<double> finished_means;
+  for (const std::optional<double>& m : mean_errors) {
+    if (m) finished_means.push_back(*m);
+  }
+  if (!finished_means.empty()) {
+    summary.mean_error_quantiles_m = {quantile(finished_means, 0.05), quantile(finished_means, 0.5),
+                                      quantile(finished_means, 0.95)};
+  }
   summary.final_error_m = mean_present(final_errors);
   if (nees_count > 0) summary.anees = nees_sum / static_cast<double>(nees_count);
   summary.nees = average_nees_over_runs(nees_by_run);
@@ -101,6 +122,32 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     summary.segments.emplace_back(name, mean_present(means));
   }
   return summary;
+}
+
+std::vector<ErrorHistogram> error_histograms(const std::vector<MethodSummary>& methods, int bins) {
+  double largest = 0.0;
+  for (const MethodSummary& m : methods) {
+    for (const double e : m.pooled_errors_m) largest = std::max(largest, e);
+  }
+  std::vector<ErrorHistogram> histograms;
+  if (bins < 1 || !(largest > 0.0)) return histograms;
+  const double width = largest / bins;
+  for (const MethodSummary& m : methods) {
+    if (m.pooled_errors_m.empty()) continue;
+    ErrorHistogram h;
+    h.method = m.method;
+    for (int b = 0; b <= bins; ++b) h.edges_m.push_back(b == bins ? largest : b * width);
+    std::vector<std::size_t> counts(static_cast<std::size_t>(bins), 0);
+    for (const double e : m.pooled_errors_m) {
+      const auto b = static_cast<std::size_t>(std::clamp(static_cast<int>(e / width), 0, bins - 1));
+      ++counts[b];
+    }
+    for (const std::size_t c : counts) {
+      h.fractions.push_back(static_cast<double>(c) / static_cast<double>(m.pooled_errors_m.size()));
+    }
+    histograms.push_back(std::move(h));
+  }
+  return histograms;
 }
 
 }  // namespace msislab

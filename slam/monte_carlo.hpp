@@ -3,6 +3,7 @@
 // average of N 3-DOF NEES is chi-square with 3N DOF), and the summary of the runs' metrics.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <utility>
@@ -35,7 +36,19 @@ struct MonteCarloRun {
   int index = 0;                      ///< r: the run used seed = scenario seed + r
   std::optional<RunMetrics> metrics;  ///< present when the run finished
   bool failed = false;
-  std::vector<double> nees;  ///< per scan (SLAM methods with pose truth)
+  std::vector<double> nees;         ///< per scan (SLAM methods with pose truth)
+  std::vector<ErrorSample> errors;  ///< position error, t_s from the first truth stamp
+};
+
+/// The spread over the runs of the position error at one time (seconds from the first truth
+/// stamp): its mean and 5, 50, 95 % quantiles over the runs that have a sample there.
+struct ErrorSpread {
+  double t_s = 0.0;
+  int runs = 0;
+  double mean_m = 0.0;
+  double p05_m = 0.0;
+  double p50_m = 0.0;
+  double p95_m = 0.0;
 };
 
 /// The runs of one method summarised.
@@ -44,17 +57,33 @@ struct MethodSummary {
   int runs = 0;    ///< finished
   int failed = 0;  ///< recorded as failed
   std::vector<int> failed_runs;
-  int missing = 0;                      ///< neither finished nor failed (an unfinished shard)
-  std::optional<double> mean_error_m;   ///< mean over the runs of each run's mean error
-  std::optional<double> final_error_m;  ///< mean over the runs of each run's final error
-  std::optional<double> anees;          ///< mean over every run and scan of the scan NEES
+  int missing = 0;                     ///< neither finished nor failed (an unfinished shard)
+  std::optional<double> mean_error_m;  ///< mean over the runs of each run's mean error
+  /// The 5, 50 and 95 % quantiles over the runs of each run's mean error (quantile()).
+  std::optional<std::array<double, 3>> mean_error_quantiles_m;
+  std::optional<double> final_error_m;            ///< mean over the runs of each run's final error
+  std::optional<double> anees;                    ///< mean over every run and scan of the scan NEES
   std::optional<double> nees_in_bounds_fraction;  ///< fraction_inside(nees)
   std::vector<AveragedNees> nees;                 ///< per scan index
   /// Segment name -> mean over the runs of the segment's mean error (runs where it is null
   /// skipped).
   std::vector<std::pair<std::string, std::optional<double>>> segments;
-  double runtime_s = 0.0;  ///< sum of the runs' runtime_s
+  double runtime_s = 0.0;                 ///< sum of the runs' runtime_s
+  std::vector<ErrorSpread> error_spread;  ///< per time the runs sampled, in time order
+  std::vector<double> pooled_errors_m;    ///< every run's error samples, for the distribution
 };
+
+/// A histogram of each method's pooled position errors on bins shared by all the methods.
+struct ErrorHistogram {
+  std::string method;
+  std::vector<double> edges_m;    ///< bins + 1 increasing edges from 0
+  std::vector<double> fractions;  ///< of the method's samples in each bin (the last one closed)
+};
+
+/// `bins` equal bins from 0 to the largest pooled error of any method; methods without samples
+/// are left out.
+std::vector<ErrorHistogram> error_histograms(const std::vector<MethodSummary>& methods,
+                                             int bins = 40);
 
 /// Summarises the runs in the order given (by run index, so the sums do not depend on which run
 /// finished first).

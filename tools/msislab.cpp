@@ -4,12 +4,14 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 
 #include "app/eval_command.hpp"
 #include "app/fidelity_command.hpp"
 #include "app/image_command.hpp"
+#include "app/methods.hpp"
 #include "app/montecarlo_command.hpp"
 #include "app/plot_command.hpp"
 #include "app/report_command.hpp"
@@ -26,7 +28,7 @@ constexpr int kBadInput = 2;
 
 std::string method_list() {
   std::string methods;
-  for (const std::string& m : msislab::app::available_methods()) {
+  for (const std::string& m : msislab::app::method_names()) {
     methods += (methods.empty() ? "" : ", ") + m;
   }
   return methods;
@@ -84,8 +86,9 @@ void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& opti
                             msislab::app::MergeOptions& merge, bool& no_plot) {
   CLI::App* mc = app.add_subcommand(
       "montecarlo",
-      "N seeded simulate + run repetitions per method, as child processes; resumable and "
-      "shardable; writes per-run results, summary.json, nees.csv and figures/nees.png");
+      "N seeded repetitions of simulate + every method, each run in a worker process that keeps "
+      "the dataset in memory; resumable and shardable, one command per directory; writes per-run "
+      "results, summary.json, nees.csv and figures");
   mc->add_option("SCENARIO", options.scenario_path, "Scenario YAML (required unless merge)");
   mc->add_option("--runs,-n", options.runs, "Number of runs N (required); run r uses seed + r");
   mc->add_option("--out,-o", options.out_dir,
@@ -100,6 +103,9 @@ void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& opti
   mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
   mc->add_option("--shard", options.shard,
                  "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");
+  mc->add_flag("--keep-datasets", options.keep_datasets,
+               "Also write each run's simulated dataset to DIR/datasets/run_<rrrr> (about 70 MB "
+               "each on the St. Pere replica)");
   mc->add_flag("--no-plot", no_plot,
                "Do not draw figures/nees.png at the end (shards never draw; see msislab plot)");
   mc->require_subcommand(0, 1);
@@ -398,9 +404,16 @@ int main(int argc, char** argv) {
         if (!montecarlo_no_plot) draw_montecarlo_figures(merge_options.out_dir);
       } else {
         check_montecarlo_options(montecarlo_options, *montecarlo);
-        print_montecarlo(
-            msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1}),
-            montecarlo_options.out_dir, false);
+        const msislab::app::MonteCarloOutcome outcome =
+            msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1});
+        if (outcome.interrupted != 0) {
+          std::cerr << "montecarlo: stopped by " << sigabbrev_np(outcome.interrupted)
+                    << "; every worker ended, the finished runs are kept in "
+                    << montecarlo_options.out_dir << "; run the same command to resume"
+                    << std::endl;
+          return 128 + outcome.interrupted;
+        }
+        print_montecarlo(outcome, montecarlo_options.out_dir, false);
         if (!montecarlo_no_plot && montecarlo_options.shard.empty()) {
           draw_montecarlo_figures(montecarlo_options.out_dir);
         }

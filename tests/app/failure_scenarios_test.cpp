@@ -52,7 +52,6 @@ MonteCarloOutcome run_scenario(const testing::TempDir& tmp, const std::string& s
   options.out_dir = tmp.file("mc");
   options.methods = {"robocentric", "deadreckoning"};
   options.jobs = 2;
-  options.executable = MSISLAB_EXE;
   std::ostringstream log;
   MonteCarloOutcome outcome = montecarlo(options, {log, false});
   EXPECT_EQ(outcome.failed, 0u) << log.str();

@@ -66,7 +66,6 @@ TEST(MarinaLoop, SlamBeatsDeadReckoningAndRobocentricNeesStaysInBounds) {
   options.out_dir = tmp.file("mc");
   options.methods = {"robocentric", "worldcentric", "deadreckoning"};
   options.jobs = 2;
-  options.executable = MSISLAB_EXE;
   std::ostringstream log;
   const MonteCarloOutcome outcome = montecarlo(options, {log, false});
 

@@ -3,17 +3,26 @@
 // failed runs recorded while the others finish, and bad input rejected before anything runs.
 #include "app/montecarlo_command.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "app/montecarlo_directory.hpp"
+#include "app/process.hpp"
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "cli_runner.hpp"
@@ -43,7 +52,6 @@ MonteCarloOptions options_for(const fs::path& out, const std::string& shard = ""
   options.methods = kMethods;
   options.jobs = 2;
   options.shard = shard;
-  options.executable = MSISLAB_EXE;
   return options;
 }
 
@@ -163,9 +171,15 @@ TEST(MonteCarloCommand, RunRIsTheScenarioSimulatedWithSeedPlusR) {
       (fs::path(run_dir(full.dir.string(), "worldcentric", 2)) / "metrics.json").string());
   EXPECT_EQ(in_mc.metrics.errors.mean_m, direct.metrics.errors.mean_m);
   EXPECT_EQ(in_mc.metrics.anees, direct.metrics.anees);
-  EXPECT_EQ(
-      read_text(tmp.file("wc/nees.csv")),
-      read_text((fs::path(run_dir(full.dir.string(), "worldcentric", 2)) / "nees.csv").string()));
+  // The dataset handed over in memory gives the methods the very numbers its files give them.
+  const fs::path in_memory(run_dir(full.dir.string(), "worldcentric", 2));
+  for (const char* file : {"nees.csv", "trajectory.tum", "scans.csv", "matches.csv"}) {
+    EXPECT_EQ(read_text(tmp.file(std::string("wc/") + file)),
+              read_text((in_memory / file).string()))
+        << file;
+  }
+  EXPECT_EQ(in_mc.metrics.errors.max_m, direct.metrics.errors.max_m);
+  EXPECT_EQ(in_mc.metrics.diagnostics, direct.metrics.diagnostics);
 }
 
 TEST(MonteCarloCommand, ResumeRedoesOnlyTheUnfinishedRun) {
@@ -226,7 +240,7 @@ TEST(MonteCarloCommand, MergedShardsGiveTheSameSummary) {
 // executable digest is neither resumed nor merged, so results of other defaults never mix.
 TEST(MonteCarloCommand, AnotherBuildIsNotResumedOrMerged) {
   const TempDir tmp;
-  const std::string digest = executable_digest(MSISLAB_EXE);
+  const std::string digest = executable_digest(self_executable());
   EXPECT_EQ(digest.size(), 16u);
   const std::string manifest = read_text((full_run().dir / "montecarlo.json").string());
   ASSERT_NE(manifest.find("\"executable_digest\": \"" + digest + "\""), std::string::npos)
@@ -256,46 +270,36 @@ TEST(MonteCarloCommand, AnotherBuildIsNotResumedOrMerged) {
   }
 }
 
-// A stand-in for msislab that, while the file `fail` exists beside it, fails worldcentric's run 1
-// with exit status 3 and kills the simulation of run 2 (seed 3) with SIGKILL, and otherwise runs
-// the real executable. (One stand-in for both passes: a directory is resumed only by the
-// executable that made it.)
-std::string write_failing_msislab(const TempDir& tmp) {
-  const std::string path = tmp.file("failing_msislab.sh");
-  write_text(tmp.file("fail"), "");
-  write_text(path,
-             std::string("#!/bin/sh\n") + "if [ -f '" + tmp.file("fail") + "' ]; then\n" +
-                 "  case \"$*\" in\n"
-                 "    *worldcentric/run_0001*) echo 'msislab: injected failure' >&2; exit 3;;\n"
-                 "    *'--seed 3'*) kill -9 $$;;\n"
-                 "  esac\n"
-                 "fi\n"
-                 "exec '" +
-                 MSISLAB_EXE + "' \"$@\"\n");
-  fs::permissions(path, fs::perms::owner_all);
-  return path;
-}
+// Sets MSISLAB_MONTECARLO_FAULTS (the workers' test hook, docs/cli.md) while it lives.
+struct InjectedFaults {
+  explicit InjectedFaults(const char* faults) { ::setenv("MSISLAB_MONTECARLO_FAULTS", faults, 1); }
+  ~InjectedFaults() { ::unsetenv("MSISLAB_MONTECARLO_FAULTS"); }
+};
 
 TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
   const TempDir tmp;
   const fs::path dir = tmp.path() / "mc";
-  MonteCarloOptions options = options_for(dir);
-  options.executable = write_failing_msislab(tmp);
-  const auto logged = run_montecarlo(options);
+  const MonteCarloOptions options = options_for(dir);
+  std::unique_ptr<Logged> logged;
+  {
+    // worldcentric throws in run 1; the worker of run 2 crashes (SIGSEGV) while simulating.
+    const InjectedFaults faults("1:worldcentric:throw,2:simulate:crash");
+    logged = run_montecarlo(options);
+  }
   EXPECT_EQ(logged->outcome.failed, 2u);
   EXPECT_NE(logged->log.str().find("3/3 runs done, 2 failed"), std::string::npos)
       << logged->log.str();
 
   const std::string failed_run =
       read_text((fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json").string());
-  EXPECT_NE(failed_run.find("\"reason\": \"exit status 3: msislab: injected failure\""),
+  EXPECT_NE(failed_run.find("\"reason\": \"injected failure (MSISLAB_MONTECARLO_FAULTS)\""),
             std::string::npos)
       << failed_run;
   EXPECT_NE(failed_run.find("\"stage\": \"run\""), std::string::npos) << failed_run;
   for (const std::string& method : kMethods) {
     const fs::path rd(run_dir(dir.string(), method, 2));
     const std::string killed = read_text((rd / "failed.json").string());
-    EXPECT_NE(killed.find("\"reason\": \"killed by signal 9"), std::string::npos) << killed;
+    EXPECT_NE(killed.find("\"reason\": \"killed by signal 11"), std::string::npos) << killed;
     EXPECT_NE(killed.find("\"stage\": \"simulate\""), std::string::npos) << killed;
     EXPECT_NE(killed.find("\"seed\": 3"), std::string::npos) << killed;
     EXPECT_FALSE(fs::exists(rd / "metrics.json"));
@@ -314,7 +318,6 @@ TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
             std::string::npos);
 
   // Resumed once the failures stop, the failed runs are redone and the summary is the full one.
-  fs::remove(tmp.file("fail"));
   const auto resumed = run_montecarlo(options);
   EXPECT_EQ(resumed->outcome.executed, 2u);
   EXPECT_EQ(resumed->outcome.failed, 0u);
@@ -340,7 +343,7 @@ TEST(MonteCarloCommand, BadInputIsRejectedBeforeAnythingRuns) {
   const fs::path out = tmp.path() / "mc";
   MonteCarloOptions options = options_for(out);
   options.methods = {"deadreckoning", "nosuchmethod"};
-  expect_rejected(options, "available: deadreckoning");
+  expect_rejected(options, "available: robocentric");
   options.methods = {"worldcentric", "worldcentric"};
   expect_rejected(options, "given twice");
   for (const char* shard : {"2/2", "x", "1/0"}) {
@@ -365,6 +368,118 @@ TEST(MonteCarloCommand, BadInputIsRejectedBeforeAnythingRuns) {
     ADD_FAILURE() << "resumed a directory of another scenario";
   } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("another scenario"), std::string::npos) << e.what();
+  }
+}
+
+/// Starts msislab with the arguments in the background, stdout and stderr into files; its pid.
+pid_t start_msislab(const std::vector<std::string>& args, const TempDir& tmp) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int out = ::open(tmp.file("bg.out").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    const int err = ::open(tmp.file("bg.err").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(out, STDOUT_FILENO);
+    ::dup2(err, STDERR_FILENO);
+    std::vector<char*> argv;
+    argv.push_back(const_cast<char*>(MSISLAB_EXE));
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(MSISLAB_EXE, argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+/// The processes whose command line mentions `text` (the Monte Carlo directory: the command and
+/// its workers, which are forks of it).
+std::vector<std::string> processes_mentioning(const std::string& text) {
+  std::vector<std::string> found;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    const std::string name = entry.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string cmdline((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::replace(cmdline.begin(), cmdline.end(), '\0', ' ');
+    if (cmdline.find(text) != std::string::npos) found.push_back(name + ": " + cmdline);
+  }
+  return found;
+}
+
+/// Waits until the file exists; false after the timeout.
+bool wait_for_file(const fs::path& file, std::chrono::seconds timeout) {
+  const auto end = std::chrono::steady_clock::now() + timeout;
+  while (!fs::exists(file)) {
+    if (std::chrono::steady_clock::now() > end) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+// One writer per directory, and a clean stop: while a sweep runs a second command on its
+// directory exits 2 naming the holder; SIGTERM ends it and every worker (exit 143), keeps the
+// finished runs and leaves nothing half-written; the same command then completes the sweep with
+// the summary and NEES of an uninterrupted one (byte for byte, the wall times apart).
+TEST(MonteCarloCli, SigtermStopsEveryWorkerAndTheRerunCompletesTheSweep) {
+  const TempDir tmp;
+  const std::string out = tmp.file("mc_stopped");
+  const std::vector<std::string> args = {
+      "montecarlo", kScenario, "--runs",    "10",    "--methods", "deadreckoning,worldcentric",
+      "--jobs",     "2",       "--no-plot", "--out", out};
+  const pid_t pid = start_msislab(args, tmp);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(wait_for_file(fs::path(run_dir(out, "worldcentric", 0)) / "metrics.json",
+                            std::chrono::seconds(60)));
+
+  const std::string second = "montecarlo " + testing::shell_quote(kScenario) +
+                             " --runs 10 --methods deadreckoning,worldcentric --no-plot --out " +
+                             testing::shell_quote(out);
+  const testing::CliResult refused = testing::run_msislab(second, tmp);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+  EXPECT_NE(refused.err.find(out + ": in use by another msislab command (msislab montecarlo "),
+            std::string::npos)
+      << refused.err;
+  EXPECT_NE(refused.err.find("pid " + std::to_string(pid)), std::string::npos) << refused.err;
+
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const std::string err = read_text(tmp.file("bg.err"));
+  ASSERT_TRUE(WIFEXITED(status)) << err;
+  if (WEXITSTATUS(status) == 0) GTEST_SKIP() << "the sweep finished before SIGTERM arrived";
+  EXPECT_EQ(WEXITSTATUS(status), 128 + SIGTERM) << err;
+  EXPECT_NE(err.find("montecarlo: stopped by TERM"), std::string::npos) << err;
+  EXPECT_EQ(processes_mentioning(out), std::vector<std::string>{});
+  EXPECT_FALSE(fs::exists(fs::path(out) / "scratch"));
+  EXPECT_FALSE(fs::exists(fs::path(out) / "summary.json"));
+  int finished = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(fs::path(out) / "runs")) {
+    const std::string name = entry.path().filename().string();
+    EXPECT_EQ(name.find(".partial"), std::string::npos) << entry.path();
+    if (name.rfind("run_", 0) == 0) {
+      // A run directory is whole: its result files, or a recorded failure.
+      EXPECT_TRUE(fs::exists(entry.path() / "metrics.json")) << entry.path();
+      EXPECT_TRUE(fs::exists(entry.path() / "errors.csv")) << entry.path();
+      ++finished;
+    }
+  }
+  EXPECT_GE(finished, 1);
+  EXPECT_LT(finished, 20);
+
+  // The same command resumes and completes; an uninterrupted sweep gives the same numbers.
+  const testing::CliResult resumed = testing::run_msislab(second, tmp);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("holds 10 runs ("), std::string::npos) << resumed.out;
+  const std::string whole = tmp.file("mc_whole");
+  const testing::CliResult uninterrupted = testing::run_msislab(
+      "montecarlo " + testing::shell_quote(kScenario) +
+          " --runs 10 --methods deadreckoning,worldcentric --jobs 1 --no-plot --out " +
+          testing::shell_quote(whole),
+      tmp);
+  ASSERT_EQ(uninterrupted.exit_code, 0) << uninterrupted.err;
+  EXPECT_EQ(without_runtimes(read_text(out + "/summary.json")),
+            without_runtimes(read_text(whole + "/summary.json")));
+  for (const char* file : {"nees.csv", "errors.csv", "error_histogram.csv", "seeds.csv"}) {
+    EXPECT_EQ(read_text(out + "/" + file), read_text(whole + "/" + file)) << file;
   }
 }
 

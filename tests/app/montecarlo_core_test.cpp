@@ -1,7 +1,15 @@
-// The Monte Carlo machinery without the simulator: the job pool (every index once, never more
-// than the workers at a time, errors passed on), the progress line, child processes and how their
+// The Monte Carlo machinery without the simulator: the worker processes (every job once in its
+// own process, never more than the workers at a time, crashes contained, stop requests obeyed),
+// the progress line, child processes and how their
 // failures are described, and the run layout.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
 
 #include <atomic>
 #include <chrono>
@@ -11,9 +19,9 @@
 #include <thread>
 
 #include "app/montecarlo_directory.hpp"
-#include "app/parallel_jobs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
+#include "app/worker_processes.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -21,41 +29,107 @@ namespace {
 
 using testing::TempDir;
 
-TEST(ParallelJobs, EveryIndexOnceWithBoundedConcurrency) {
-  std::mutex mutex;
-  std::multiset<std::size_t> seen;
-  std::atomic<int> running{0}, peak{0};
-  int ticks = 0;
-  run_parallel(
-      20, 3,
-      [&](std::size_t i) {
-        const int now = ++running;
-        int expected = peak.load();
-        while (now > expected && !peak.compare_exchange_weak(expected, now)) {
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
-        --running;
-        const std::lock_guard<std::mutex> lock(mutex);
-        seen.insert(i);
-      },
-      [&] { ++ticks; }, std::chrono::milliseconds(2));
-  ASSERT_EQ(seen.size(), 20u);
-  for (std::size_t i = 0; i < 20; ++i) EXPECT_EQ(seen.count(i), 1u) << i;
-  EXPECT_LE(peak.load(), 3);
-  EXPECT_GE(peak.load(), 2);
-  EXPECT_GT(ticks, 0);
-  run_parallel(0, 4, [](std::size_t) { FAIL(); });
+/// Files in dir whose name starts with prefix.
+int count_files(const std::string& dir, const std::string& prefix) {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    n += entry.path().filename().string().rfind(prefix, 0) == 0;
+  }
+  return n;
 }
 
-TEST(ParallelJobs, AThrowingJobStopsTheRestAndIsRethrown) {
-  std::atomic<int> started{0};
-  EXPECT_THROW(run_parallel(100, 1,
-                            [&](std::size_t i) {
-                              ++started;
-                              if (i == 2) throw std::runtime_error("job 2");
-                            }),
-               std::runtime_error);
-  EXPECT_EQ(started.load(), 3);
+TEST(WorkerProcesses, EveryJobOnceInItsOwnProcessWithBoundedConcurrency) {
+  const TempDir tmp;
+  const std::string dir = tmp.path().string();
+  WorkerPool pool;
+  pool.workers = 3;
+  pool.job = [&](std::size_t i) {
+    // Marks itself running, records how many were, and its process.
+    const std::string running = dir + "/running_" + std::to_string(i);
+    testing::write_text(running, "");
+    const int now = count_files(dir, "running_");
+    std::this_thread::sleep_for(std::chrono::milliseconds(40));
+    testing::write_text(dir + "/done_" + std::to_string(i),
+                        std::to_string(now) + " " + std::to_string(::getpid()));
+    std::filesystem::remove(running);
+    return static_cast<int>(i % 4);
+  };
+  std::map<std::size_t, ProcessResult> results;
+  pool.finished = [&](std::size_t i, const ProcessResult& r) { results[i] = r; };
+  int ticks = 0;
+  pool.tick = [&] { ++ticks; };
+  pool.tick_period = std::chrono::milliseconds(5);
+  EXPECT_EQ(run_worker_processes(12, pool), 0);
+  ASSERT_EQ(results.size(), 12u);
+  int peak = 0;
+  for (std::size_t i = 0; i < 12; ++i) {
+    EXPECT_TRUE(results[i].exited) << i;
+    EXPECT_EQ(results[i].exit_code, static_cast<int>(i % 4)) << i;
+    std::istringstream done(testing::read_text(dir + "/done_" + std::to_string(i)));
+    int running = 0;
+    long pid = 0;
+    done >> running >> pid;
+    peak = std::max(peak, running);
+    EXPECT_NE(pid, static_cast<long>(::getpid())) << i;
+  }
+  EXPECT_LE(peak, 3);
+  EXPECT_GE(peak, 2);
+  EXPECT_GT(ticks, 0);
+  pool.job = [](std::size_t) -> int { std::abort(); };
+  EXPECT_EQ(run_worker_processes(0, pool), 0);
+}
+
+TEST(WorkerProcesses, ACrashOrExceptionEndsOnlyItsOwnWorker) {
+  WorkerPool pool;
+  pool.workers = 2;
+  pool.job = [](std::size_t i) {
+    if (i == 1) std::raise(SIGSEGV);
+    if (i == 2) throw std::runtime_error("job 2");
+    return 0;
+  };
+  std::map<std::size_t, ProcessResult> results;
+  pool.finished = [&](std::size_t i, const ProcessResult& r) { results[i] = r; };
+  EXPECT_EQ(run_worker_processes(4, pool), 0);
+  ASSERT_EQ(results.size(), 4u);
+  EXPECT_TRUE(results[0].ok());
+  EXPECT_FALSE(results[1].exited);
+  EXPECT_EQ(results[1].signal, SIGSEGV);
+  EXPECT_TRUE(results[2].exited);
+  EXPECT_EQ(results[2].exit_code, 70);
+  EXPECT_TRUE(results[3].ok());
+}
+
+// A stop request (here job 0 sends SIGTERM to the pool's process) ends every running worker and
+// starts no further job; the pool returns the signal and no worker is left.
+TEST(WorkerProcesses, AStopRequestEndsEveryWorker) {
+  const TempDir tmp;
+  const std::string dir = tmp.path().string();
+  const pid_t self = ::getpid();
+  WorkerPool pool;
+  pool.workers = 3;
+  pool.job = [&](std::size_t i) {
+    testing::write_text(dir + "/pid_" + std::to_string(i), std::to_string(::getpid()));
+    if (i == 0) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      ::kill(self, SIGTERM);
+    }
+    std::this_thread::sleep_for(std::chrono::seconds(30));
+    return 0;
+  };
+  std::vector<std::size_t> stopped, finished;
+  pool.stopped = [&](std::size_t i) { stopped.push_back(i); };
+  pool.finished = [&](std::size_t i, const ProcessResult&) { finished.push_back(i); };
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(run_worker_processes(10, pool), SIGTERM);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  EXPECT_EQ(stopped.size(), 3u);
+  EXPECT_TRUE(finished.empty());
+  EXPECT_EQ(count_files(dir, "pid_"), 3);  // no job started after the request
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const pid_t pid = std::stoi(testing::read_text(entry.path().string()));
+    EXPECT_EQ(::kill(pid, 0), -1) << "worker " << pid << " still exists";
+    EXPECT_EQ(errno, ESRCH);
+  }
 }
 
 TEST(Progress, PlainLinesWithElapsedAndEta) {

@@ -1,0 +1,86 @@
+#include "app/methods.hpp"
+
+#include <algorithm>
+#include <iterator>
+
+#include "io/input_error.hpp"
+#include "slam/robocentric_slam.hpp"
+#include "slam/worldcentric_slam.hpp"
+
+namespace msislab::app {
+
+const std::vector<MethodInfo>& methods() {
+  static const std::vector<MethodInfo> registry = {
+      {"robocentric", "Robocentric SLAM", 0x2ca02c, plot::SeriesStyle::kLine,
+       MethodKind::kTrajectorySlam,
+       [](const TrajectorySlamConfig& config, const GaussianPose2& start) {
+         return std::unique_ptr<TrajectorySlam>(std::make_unique<RoboCentricSlam>(config, start));
+       }},
+      // Dashed, so that where it coincides with the robocentric line (the same estimate,
+      // docs/trajectory_slam.md) both show.
+      {"worldcentric", "World-centric SLAM", 0x1f77b4, plot::SeriesStyle::kDashedLine,
+       MethodKind::kTrajectorySlam,
+       [](const TrajectorySlamConfig& config, const GaussianPose2& start) {
+         return std::unique_ptr<TrajectorySlam>(std::make_unique<WorldCentricSlam>(config, start));
+       }},
+      {"deadreckoning",
+       "Dead reckoning",
+       0xd62728,
+       plot::SeriesStyle::kLine,
+       MethodKind::kDeadReckoning,
+       {}},
+      {"integration",
+       "DVL integration",
+       0xff7f0e,
+       plot::SeriesStyle::kLine,
+       MethodKind::kIntegration,
+       {}},
+  };
+  return registry;
+}
+
+const MethodInfo* find_method(const std::string& name) {
+  const auto& all = methods();
+  const auto it =
+      std::find_if(all.begin(), all.end(), [&](const MethodInfo& m) { return m.name == name; });
+  return it == all.end() ? nullptr : &*it;
+}
+
+const MethodInfo& method_info(const std::string& name, const std::string& option) {
+  if (const MethodInfo* info = find_method(name)) return *info;
+  std::string list;
+  for (const std::string& m : method_names()) list += (list.empty() ? "" : ", ") + m;
+  throw io::InputError(option + " '" + name + "': not available in this build (available: " + list +
+                       ")");
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const MethodInfo& m : methods()) names.push_back(m.name);
+  return names;
+}
+
+std::string method_title(const std::string& name) {
+  const MethodInfo* info = find_method(name);
+  return info ? info->title : name;
+}
+
+std::uint32_t method_colour(const std::string& name) {
+  if (const MethodInfo* info = find_method(name)) return info->colour;
+  static const std::uint32_t others[] = {0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22};
+  std::size_t sum = 0;
+  for (const char ch : name) sum += static_cast<unsigned char>(ch);
+  return others[sum % std::size(others)];
+}
+
+plot::SeriesStyle method_style(const std::string& name) {
+  const MethodInfo* info = find_method(name);
+  return info ? info->style : plot::SeriesStyle::kLine;
+}
+
+std::size_t method_rank(const std::string& name) {
+  const MethodInfo* info = find_method(name);
+  return info ? static_cast<std::size_t>(info - methods().data()) : methods().size();
+}
+
+}  // namespace msislab::app

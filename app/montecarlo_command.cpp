@@ -194,12 +194,13 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     return 0;
   }
   std::optional<RunInputs> in;
+  SharedInputs shared;
   for (const std::string& method : pending) {
     try {
       note_stage(ctx.dir, run, "run");
       if (!in) in = run_inputs_of(records, ctx.config);
       injected_fault(run, method);
-      const MethodResult result = run_method(method, *in);
+      const MethodResult result = run_method(method, *in, &shared);
       if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");
       // The summary needs neither the map nor the dataset; the map is large.
       put_in_place(ctx.dir, method, run, [&](const std::string& out) {

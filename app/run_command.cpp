@@ -165,7 +165,7 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam
 
 }  // namespace
 
-MethodResult run_method(const std::string& name, const RunInputs& in) {
+MethodResult run_method(const std::string& name, const RunInputs& in, SharedInputs* shared) {
   const MethodInfo& method = method_info(name);
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
@@ -175,7 +175,12 @@ MethodResult run_method(const std::string& name, const RunInputs& in) {
 
   // SLAM methods: the sonar readings are read before the clock starts, like the logs.
   std::optional<SonarInput> sonar;
-  if (method.kind == MethodKind::kTrajectorySlam) sonar = load_sonar_readings(in);
+  const auto readings = [&] {
+    if (!shared) return load_sonar_readings(in);
+    if (!shared->sonar) shared->sonar = load_sonar_readings(in);
+    return *shared->sonar;
+  };
+  if (method.kind == MethodKind::kTrajectorySlam) sonar = readings();
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
@@ -185,7 +190,15 @@ MethodResult run_method(const std::string& name, const RunInputs& in) {
     dr = run_dead_reckoning(navigation, config.dead_reckoning, p_vehicle_dvl_m, start);
   }
   std::optional<SlamRun> slam;
-  if (sonar) slam = run_trajectory_slam(method, *sonar, in, dr.trajectory);
+  if (sonar) {
+    slam = run_trajectory_slam(method, *sonar, in, dr.trajectory);
+    if (shared && !shared->dead_reckoning_scans) {
+      shared->dead_reckoning_scans = slam->scans;
+      for (std::size_t i = 0; i < slam->scans.size(); ++i) {
+        (*shared->dead_reckoning_scans)[i].centre_world = slam->dead_reckoning_at_scans[i];
+      }
+    }
+  }
   const std::vector<StampedPose>& trajectory = slam ? slam->trajectory : dr.trajectory;
   const double runtime_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
@@ -193,7 +206,11 @@ MethodResult run_method(const std::string& name, const RunInputs& in) {
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
   std::vector<PlacedScan> dr_scans;
   if (method.kind == MethodKind::kDeadReckoning && has_sonar_data(in)) {
-    dr_scans = dead_reckoning_scans(load_sonar_readings(in), in);
+    if (shared && shared->dead_reckoning_scans) {
+      dr_scans = *shared->dead_reckoning_scans;
+    } else {
+      dr_scans = dead_reckoning_scans(readings(), in);
+    }
   }
   const std::vector<PlacedScan>* scans = slam ? &slam->scans : &dr_scans;
   const bool has_scans = slam || !dr_scans.empty();

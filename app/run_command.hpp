@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/results.hpp"
 #include "slam/evaluation.hpp"
@@ -38,9 +39,20 @@ struct MethodResult {
   std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
 };
 
-/// Runs a method on a dataset read already (from a directory or held in memory). Throws
+/// What several methods on one dataset can share, filled by the first that needs it: the sonar
+/// readings (read before any method's clock starts) and the scans placed by dead reckoning (which
+/// dead reckoning itself places after its clock; every SLAM method still builds its own scans on
+/// its clock).
+struct SharedInputs {
+  std::optional<SonarInput> sonar;
+  std::optional<std::vector<PlacedScan>> dead_reckoning_scans;
+};
+
+/// Runs a method on a dataset read already (from a directory or held in memory), sharing with
+/// the other methods on it through `shared` when given (the results are the same). Throws
 /// io::InputError.
-MethodResult run_method(const std::string& method, const RunInputs& in);
+MethodResult run_method(const std::string& method, const RunInputs& in,
+                        SharedInputs* shared = nullptr);
 
 /// Writes a result directory (docs/formats.md): trajectory.tum, scans.csv, map.ply (with
 /// write_map), matches.csv, metrics.json and nees.csv, as far as the result has them, each

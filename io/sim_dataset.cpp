@@ -104,21 +104,36 @@ std::vector<DetectionRecord> detection_records(const std::vector<SonarBeamRecord
     const long k = std::lround(beams[i].transducer_angle_rad / step_rad);
     return static_cast<int>(((k % steps) + steps) % steps);
   };
-  std::vector<DetectionRecord> rows;
+  // The detected bins of every beam of a complete revolution first, so the rows (a million on
+  // the St. Pere replica) are laid out once.
+  std::vector<std::pair<std::size_t, std::int32_t>> swept;  // beam, keyframe
   std::int32_t keyframe = 0;
   for (std::size_t start = 0; start + static_cast<std::size_t>(steps) <= beams.size(); ++start) {
     if (angle_index(start) != steps - 1) continue;
     ++keyframe;
     for (std::size_t i = start; i < start + static_cast<std::size_t>(steps); ++i) {
-      const SonarBeamRecord& b = beams[i];
-      const int idx = angle_index(i);
-      for (const int j : detect_bins(b.intensity, scenario.sonar.bin_m, scenario.detections)) {
-        rows.push_back({keyframe, static_cast<std::int64_t>(i), b.t_log_s,
-                        static_cast<std::int64_t>(b.sensor_time_ms), idx, idx * step_rad,
-                        (j + 1) * scenario.sonar.bin_m});
-      }
+      swept.emplace_back(i, keyframe);
     }
     start += static_cast<std::size_t>(steps) - 1;
+  }
+  std::vector<std::vector<int>> detected(swept.size());
+  std::size_t total = 0;
+  for (std::size_t k = 0; k < swept.size(); ++k) {
+    detected[k] =
+        detect_bins(beams[swept[k].first].intensity, scenario.sonar.bin_m, scenario.detections);
+    total += detected[k].size();
+  }
+  std::vector<DetectionRecord> rows;
+  rows.reserve(total);
+  for (std::size_t k = 0; k < swept.size(); ++k) {
+    const auto [i, frame] = swept[k];
+    const SonarBeamRecord& b = beams[i];
+    const int idx = angle_index(i);
+    for (const int j : detected[k]) {
+      rows.push_back({frame, static_cast<std::int64_t>(i), b.t_log_s,
+                      static_cast<std::int64_t>(b.sensor_time_ms), idx, idx * step_rad,
+                      (j + 1) * scenario.sonar.bin_m});
+    }
   }
   return rows;
 }

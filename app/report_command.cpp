@@ -138,7 +138,11 @@ std::vector<std::pair<std::string, std::string>> figure_captions(const std::stri
           {"errors.png", "(d) Position error against time, every method"},
           {"integration.png", "Plain DVL integration against the " + truth},
           {"acoustic_image.png", "One revolution of the raw sonar log (acoustic image)"},
-          {"nees.png", "Run-averaged NEES of the scan pose per scan step, with the 95% bounds"}};
+          {"nees.png", "Run-averaged NEES of the scan pose per scan step, with the 95% bounds"},
+          {"error_spread.png",
+           "Position error against time over the runs: mean, and 5-95 % of the runs dashed"},
+          {"error_distribution.png",
+           "Distribution of the position error, every run sampled once a second"}};
 }
 
 void figure_list(std::ostringstream& md, const std::string& figures_dir, const std::string& label,

@@ -156,6 +156,48 @@ TEST(PlotMonteCarlo, NeesFigure) {
                 {method_colour("worldcentric"), method_colour("deadreckoning")});
 }
 
+// With the spread files the Monte Carlo directory gets its three figures: NEES, the error against
+// time (mean and 5-95 % band per method) and the error distribution.
+TEST(PlotMonteCarlo, SpreadFigures) {
+  REQUIRE_X_DISPLAY();
+  const TempDir tmp;
+  const std::string mc = write_monte_carlo_dir(tmp);
+  std::string spread = "method,t_s,runs,mean_m,p05_m,p50_m,p95_m\n";
+  std::string histogram = "method,lower_m,upper_m,fraction\n";
+  for (const auto& [method, scale] : {std::pair{"worldcentric", 1.0}, {"deadreckoning", 3.0}}) {
+    for (int t = 0; t < 60; ++t) {
+      const double e = scale * 0.05 * t;
+      spread += std::string(method) + "," + std::to_string(t) + ",25," + std::to_string(e) + "," +
+                std::to_string(0.5 * e) + "," + std::to_string(e) + "," + std::to_string(1.8 * e) +
+                "\n";
+    }
+    for (int b = 0; b < 10; ++b) {
+      histogram +=
+          std::string(method) + "," + std::to_string(b) + "," + std::to_string(b + 1) + "," +
+          std::to_string(method == std::string("worldcentric") ? (b < 5 ? 0.2 : 0.0) : 0.1) + "\n";
+    }
+  }
+  write_text(mc + "/errors.csv", spread);
+  write_text(mc + "/error_histogram.csv", histogram);
+  const std::vector<std::string> written = plot({mc, "", 0, 1200, 900, -1});
+  ASSERT_EQ(written,
+            (std::vector<std::string>{mc + "/figures/nees.png", mc + "/figures/error_spread.png",
+                                      mc + "/figures/error_distribution.png"}));
+  for (const std::string& figure : written) {
+    expect_figure(figure, 1200, 900,
+                  {method_colour("worldcentric"), method_colour("deadreckoning")});
+  }
+  // A malformed spread file is one clear error naming it.
+  write_text(mc + "/errors.csv",
+             "method,t_s,runs,mean_m,p05_m,p50_m,p95_m\nworldcentric,1,0,1,1,1,1\n");
+  try {
+    plot({mc, "", 0, 1200, 900, -1});
+    ADD_FAILURE() << "no InputError";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(mc + "/errors.csv:2"), std::string::npos) << e.what();
+  }
+}
+
 TEST(PlotMonteCarlo, CliPrintsTheFilesItWrote) {
   REQUIRE_X_DISPLAY();
   const TempDir tmp;

@@ -125,6 +125,11 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   EXPECT_EQ(back.sonar.time_offset_s, c.sonar.time_offset_s);
   EXPECT_EQ(back.frame.origin_latitude_deg, c.frame.origin_latitude_deg);
   EXPECT_EQ(back.frame.origin_longitude_deg, c.frame.origin_longitude_deg);
+  // What a dataset held in memory carries is what the file gives back, to the bit.
+  const Calibration stored = calibration_as_stored(c);
+  EXPECT_EQ(stored.sonar.bearing_offset_rad, back.sonar.bearing_offset_rad);
+  EXPECT_EQ(stored.mru.yaw_offset_deg, back.mru.yaw_offset_deg);
+  EXPECT_EQ(stored.frame.origin_longitude_deg, back.frame.origin_longitude_deg);
   // Atomic write: no temporary left beside the file.
   int files = 0;
   for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir.path())) {

@@ -145,6 +145,7 @@ TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
   rc.failed = 2;
   rc.failed_runs = {7, 31};
   rc.mean_error_m = 2.574;
+  rc.mean_error_quantiles_m = std::array<double, 3>{1.25, 2.5, 4.75};
   rc.final_error_m = 3.5;
   rc.anees = 18.68;
   rc.nees_in_bounds_fraction = 0.072;
@@ -167,6 +168,8 @@ TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
   EXPECT_EQ(back[0].failed, 2);
   EXPECT_EQ(back[0].failed_runs, (std::vector<int>{7, 31}));
   EXPECT_EQ(back[0].mean_error_m, 2.574);
+  EXPECT_EQ(back[0].mean_error_quantiles_m, (std::array<double, 3>{1.25, 2.5, 4.75}));
+  EXPECT_FALSE(back[1].mean_error_quantiles_m);
   EXPECT_EQ(back[0].final_error_m, 3.5);
   EXPECT_EQ(back[0].anees, 18.68);
   EXPECT_EQ(back[0].nees_in_bounds_fraction, 0.072);
@@ -183,6 +186,57 @@ TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
   expect_error([&] { read_summary_json(path); }, "summary.json: no method");
   write_text(path, "{\"rc\": {\"runs\": 1.5}}\n");
   expect_error([&] { read_summary_json(path); }, "key 'rc.runs'");
+}
+
+TEST(ResultReaders, RunErrorsCsvOncePerSecondFromTheFirstTruthStamp) {
+  const TempDir tmp;
+  const std::string path = tmp.file("errors.csv");
+  std::vector<ErrorSample> errors;
+  for (int i = 0; i <= 25; ++i) errors.push_back({100.0 + 0.1 * i, 0.01 * i});
+  write_errors_csv(path, errors, 100.0);
+  const std::vector<ErrorSample> back = read_errors_csv(path);
+  ASSERT_EQ(back.size(), 3u);  // t = 0, 1, 2 s
+  EXPECT_DOUBLE_EQ(back[1].t_s, 1.0);
+  EXPECT_DOUBLE_EQ(back[1].error_m, 0.1);
+  write_text(path, "t_s,error_m\n0,1\n0,2\n");
+  EXPECT_THROW(read_errors_csv(path), InputError);
+}
+
+TEST(ResultReaders, ErrorSpreadAndHistogramCsvReadBack) {
+  const TempDir tmp;
+  MethodSummary s;
+  s.method = "robocentric";
+  s.error_spread = {{0.0, 3, 0.1, 0.0, 0.1, 0.2}, {1.0, 3, 0.5, 0.25, 0.5, 0.75}};
+  s.pooled_errors_m = {0.1, 0.2, 0.3};
+  write_error_spread_csv(tmp.file("errors.csv"), {s});
+  const std::vector<ErrorSpreadRow> rows = read_error_spread_csv(tmp.file("errors.csv"));
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1].method, "robocentric");
+  EXPECT_EQ(rows[1].spread.runs, 3);
+  EXPECT_EQ(rows[1].spread.p95_m, 0.75);
+  write_error_histogram_csv(tmp.file("h.csv"), error_histograms({s}, 3));
+  const std::vector<ErrorHistogram> h = read_error_histogram_csv(tmp.file("h.csv"));
+  ASSERT_EQ(h.size(), 1u);
+  EXPECT_EQ(h[0].fractions.size(), 3u);
+  EXPECT_EQ(h[0].edges_m.back(), 0.3);
+  // Bad rows: one error each, naming the file and line.
+  for (const auto& [file, text] : std::vector<std::pair<std::string, std::string>>{
+           {"errors.csv",
+            "method,t_s,runs,mean_m,p05_m,p50_m,p95_m\na,1,3,1,1,1,1\na,1,3,1,1,1,1\n"},
+           {"h.csv", "method,lower_m,upper_m,fraction\na,0,1,0.5\na,2,3,0.5\n"},
+           {"h.csv", "method,lower_m,upper_m,fraction\na,0,1,1.5\n"}}) {
+    write_text(tmp.file(file), text);
+    try {
+      if (file == "errors.csv") {
+        read_error_spread_csv(tmp.file(file));
+      } else {
+        read_error_histogram_csv(tmp.file(file));
+      }
+      ADD_FAILURE() << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(tmp.file(file) + ":"), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace

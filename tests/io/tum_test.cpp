@@ -50,6 +50,10 @@ TEST(Tum, RoundTrip) {
     EXPECT_NEAR(back[i].yaw_rad, poses[i].yaw_rad, kYawTolerance_rad) << i;
   }
   EXPECT_EQ(testing::read_text(dir.file("a.tum")).rfind("# t x y z qx qy qz qw\n", 0), 0u);
+  // A trajectory held in memory instead of the file carries yaw_as_stored: the file's bits.
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    EXPECT_EQ(back[i].yaw_rad, yaw_as_stored(poses[i].yaw_rad)) << i;
+  }
 }
 
 TEST(Tum, YawAtZeroAndSmallAngles) {

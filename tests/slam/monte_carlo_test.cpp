@@ -109,5 +109,61 @@ TEST(MonteCarlo, SummaryOfFinishedFailedAndMissingRuns) {
   EXPECT_FALSE(none.mean_error_m);
 }
 
+TEST(MonteCarlo, QuantilesOfTheRunsMeanErrors) {
+  std::vector<MonteCarloRun> runs;
+  for (int r = 0; r < 21; ++r) runs.push_back(finished(r, 1.0 + r, 0.1, {}, 1.0));
+  MonteCarloRun failed;
+  failed.index = 21;
+  failed.failed = true;
+  runs.push_back(failed);
+  const MethodSummary s = summarise_runs("robocentric", runs);
+  ASSERT_TRUE(s.mean_error_quantiles_m);
+  // 21 finished runs, mean errors 1..21: positions 1, 10 and 19 of the sorted sample.
+  EXPECT_DOUBLE_EQ((*s.mean_error_quantiles_m)[0], 2.0);
+  EXPECT_DOUBLE_EQ((*s.mean_error_quantiles_m)[1], 11.0);
+  EXPECT_DOUBLE_EQ((*s.mean_error_quantiles_m)[2], 20.0);
+  EXPECT_FALSE(summarise_runs("x", {failed}).mean_error_quantiles_m);
+  EXPECT_DOUBLE_EQ(quantile({3.0, 1.0, 2.0, 4.0}, 0.5), 2.5);
+  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
+}
+
+TEST(MonteCarlo, ErrorSpreadOverTheRunsAtEachTime) {
+  std::vector<MonteCarloRun> runs;
+  for (int r = 0; r < 5; ++r) {
+    MonteCarloRun run = finished(r, 1.0, 0.1, {}, 1.0);
+    // Run r: error r at t = 0 and 10 r at t = 1; only runs 0-2 reach t = 2.
+    run.errors = {{0.0, 1.0 * r}, {1.0, 10.0 * r}};
+    if (r < 3) run.errors.push_back({2.0, 7.0});
+    runs.push_back(run);
+  }
+  const MethodSummary s = summarise_runs("deadreckoning", runs);
+  ASSERT_EQ(s.error_spread.size(), 3u);
+  EXPECT_EQ(s.error_spread[1].t_s, 1.0);
+  EXPECT_EQ(s.error_spread[1].runs, 5);
+  EXPECT_DOUBLE_EQ(s.error_spread[1].mean_m, 20.0);
+  EXPECT_DOUBLE_EQ(s.error_spread[1].p05_m, 2.0);  // h = 4 x 0.05 = 0.2 between 0 and 10
+  EXPECT_DOUBLE_EQ(s.error_spread[1].p50_m, 20.0);
+  EXPECT_DOUBLE_EQ(s.error_spread[1].p95_m, 38.0);
+  EXPECT_EQ(s.error_spread[2].runs, 3);
+  EXPECT_DOUBLE_EQ(s.error_spread[2].mean_m, 7.0);
+  EXPECT_EQ(s.pooled_errors_m.size(), 13u);
+}
+
+TEST(MonteCarlo, ErrorHistogramsShareTheirBins) {
+  MethodSummary a, b, empty;
+  a.method = "a";
+  a.pooled_errors_m = {0.0, 0.5, 1.0, 1.5, 3.9};
+  b.method = "b";
+  b.pooled_errors_m = {4.0, 2.0};
+  empty.method = "empty";
+  const std::vector<ErrorHistogram> h = error_histograms({a, b, empty}, 4);
+  ASSERT_EQ(h.size(), 2u);  // the method without samples is left out
+  EXPECT_EQ(h[0].edges_m, (std::vector<double>{0.0, 1.0, 2.0, 3.0, 4.0}));
+  EXPECT_EQ(h[1].edges_m, h[0].edges_m);
+  EXPECT_EQ(h[0].fractions, (std::vector<double>{0.4, 0.4, 0.0, 0.2}));
+  EXPECT_EQ(h[1].fractions, (std::vector<double>{0.0, 0.0, 0.5, 0.5}));  // 4.0 in the last bin
+  EXPECT_TRUE(error_histograms({empty}, 4).empty());
+}
+
 }  // namespace
 }  // namespace msislab

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 
@@ -107,25 +108,29 @@ void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& opti
                "Also write each run's simulated dataset to DIR/datasets/run_<rrrr> (about 70 MB "
                "each on the St. Pere replica)");
   mc->add_flag("--no-plot", no_plot,
-               "Do not draw figures/nees.png at the end (shards never draw; see msislab plot)");
+               "Do not draw the figures at the end (shards never draw; see msislab plot)");
   mc->require_subcommand(0, 1);
   CLI::App* m = mc->add_subcommand(
       "merge", "Merge shard directories into OUT_DIR and write its summary over every run");
   m->add_option("OUT_DIR", merge.out_dir, "Monte Carlo directory to write")->required();
   m->add_option("SHARD_DIR", merge.shard_dirs, "Shard directories made with --shard")->required();
-  m->add_flag("--no-plot", no_plot, "Do not draw figures/nees.png at the end");
+  m->add_flag("--no-plot", no_plot, "Do not draw the figures at the end");
 }
 
 /// The Monte Carlo figures, drawn by `msislab plot DIR` in a child process; a failure to draw is
 /// reported on stderr and leaves the statistics (and the exit status) alone.
 void draw_montecarlo_figures(const std::string& dir) {
   const std::string failure = msislab::app::draw_montecarlo_figures(dir);
-  if (failure.empty()) {
-    std::cout << "montecarlo: wrote " << dir << "/figures/nees.png" << std::endl;
-  } else {
+  if (!failure.empty()) {
     std::cerr << "montecarlo: figures not drawn (" << failure << "); draw them with `msislab plot "
               << dir << "`" << std::endl;
+    return;
   }
+  for (const char* name : {"nees.png", "error_spread.png", "error_distribution.png"}) {
+    const std::string figure = dir + "/figures/" + name;
+    if (std::filesystem::exists(figure)) std::cout << "montecarlo: wrote " << figure << "\n";
+  }
+  std::cout.flush();
 }
 
 void check_montecarlo_options(const msislab::app::MonteCarloOptions& options,

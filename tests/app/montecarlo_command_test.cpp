@@ -505,8 +505,11 @@ TEST(MonteCarloCli, RunsThroughTheExecutableAndRejectsBadArguments) {
       std::getenv("DISPLAY") != nullptr ||
       std::system("command -v xvfb-run >/dev/null && command -v xauth >/dev/null") == 0;
   if (can_draw) {
-    EXPECT_TRUE(fs::is_regular_file(fs::path(out) / "figures" / "nees.png")) << ok.err;
-    EXPECT_NE(ok.out.find("montecarlo: wrote " + out + "/figures/nees.png"), std::string::npos);
+    for (const char* figure : {"nees.png", "error_spread.png", "error_distribution.png"}) {
+      EXPECT_TRUE(fs::is_regular_file(fs::path(out) / "figures" / figure)) << ok.err;
+      EXPECT_NE(ok.out.find("montecarlo: wrote " + out + "/figures/" + figure), std::string::npos)
+          << ok.out;
+    }
   } else {
     EXPECT_NE(ok.err.find("montecarlo: figures not drawn ("), std::string::npos) << ok.err;
   }

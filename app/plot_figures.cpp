@@ -120,16 +120,23 @@ void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
   chart.series.push_back(std::move(upper));
 }
 
+/// An empty chart with its axis labels and size.
+plot::ChartSpec empty_chart(const std::string& x_label, const std::string& y_label, int width_px,
+                            int height_px) {
+  plot::ChartSpec chart;
+  chart.x_label = x_label;
+  chart.y_label = y_label;
+  chart.width_px = width_px;
+  chart.height_px = height_px;
+  return chart;
+}
+
 }  // namespace
 
 plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
                                  int height_px) {
-  plot::ChartSpec chart;
-  chart.x_label = "x (East) [m]";
-  chart.y_label = "y (North) [m]";
+  plot::ChartSpec chart = empty_chart("x (East) [m]", "y (North) [m]", width_px, height_px);
   chart.equal_aspect = true;
-  chart.width_px = width_px;
-  chart.height_px = height_px;
   chart.title = method_title(result.method);
   if (result.truth) chart.title += " vs " + truth_label(*result.truth);
   if (!result.errors.empty()) {
@@ -170,11 +177,7 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
 
 plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
                             int height_px) {
-  plot::ChartSpec chart;
-  chart.x_label = "time [s]";
-  chart.y_label = "position error [m]";
-  chart.width_px = width_px;
-  chart.height_px = height_px;
+  plot::ChartSpec chart = empty_chart("time [s]", "position error [m]", width_px, height_px);
   double t_max_s = 0.0, error_max_m = 0.0;
   for (const ResultData* r : results) {
     if (r->errors.empty()) continue;
@@ -205,12 +208,8 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
 }
 
 plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px) {
-  plot::ChartSpec chart;
-  chart.x_label = "scan index";
-  chart.y_label = "NEES";
+  plot::ChartSpec chart = empty_chart("scan index", "NEES", width_px, height_px);
   chart.log_y = true;
-  chart.width_px = width_px;
-  chart.height_px = height_px;
   const auto groups = by_method(rows);
   const std::optional<std::vector<io::NeesRow>> shared = shared_bounds(groups);
   long long runs_min = rows.front().runs, runs_max = rows.front().runs;
@@ -254,11 +253,7 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
 
 plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, int width_px,
                                    int height_px) {
-  plot::ChartSpec chart;
-  chart.x_label = "time [s]";
-  chart.y_label = "position error [m]";
-  chart.width_px = width_px;
-  chart.height_px = height_px;
+  plot::ChartSpec chart = empty_chart("time [s]", "position error [m]", width_px, height_px);
   int runs = 0;
   std::vector<std::string> order;
   for (const io::ErrorSpreadRow& r : rows) {
@@ -292,12 +287,9 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
 
 plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
                                          int width_px, int height_px) {
-  plot::ChartSpec chart;
+  plot::ChartSpec chart =
+      empty_chart("position error [m]", "fraction of samples per bin", width_px, height_px);
   chart.title = "Position error distribution (all runs, once a second)";
-  chart.x_label = "position error [m]";
-  chart.y_label = "fraction of samples per bin";
-  chart.width_px = width_px;
-  chart.height_px = height_px;
   for (const ErrorHistogram& h : histograms) {
     // The histogram's outline: up and down each bin's edges.
     plot::Series outline{method_title(h.method),  {},  {}, method_style(h.method),

@@ -40,11 +40,16 @@ ProcessResult run_process(const std::vector<std::string>& argv, const std::strin
       return result;
     }
   }
-  if (WIFEXITED(status)) {
+  return process_result(status);
+}
+
+ProcessResult process_result(int wait_status) {
+  ProcessResult result;
+  if (WIFEXITED(wait_status)) {
     result.exited = true;
-    result.exit_code = WEXITSTATUS(status);
-  } else if (WIFSIGNALED(status)) {
-    result.signal = WTERMSIG(status);
+    result.exit_code = WEXITSTATUS(wait_status);
+  } else if (WIFSIGNALED(wait_status)) {
+    result.signal = WTERMSIG(wait_status);
   }
   return result;
 }

@@ -19,6 +19,9 @@ struct ProcessResult {
 /// and waits for it. Safe to call from several threads at once.
 ProcessResult run_process(const std::vector<std::string>& argv, const std::string& stderr_path);
 
+/// How a child ended, from its waitpid status.
+ProcessResult process_result(int wait_status);
+
 /// "exit status 2", "killed by signal 9 (Killed)" or the start error, then ": " and the last
 /// non-empty line of the stderr file when there is one.
 std::string describe_failure(const ProcessResult& result, const std::string& stderr_path);

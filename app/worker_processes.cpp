@@ -40,17 +40,6 @@ constexpr int kUncaughtExceptionStatus = 70;  // EX_SOFTWARE
   ::_exit(status);
 }
 
-ProcessResult result_of(int status) {
-  ProcessResult result;
-  if (WIFEXITED(status)) {
-    result.exited = true;
-    result.exit_code = WEXITSTATUS(status);
-  } else if (WIFSIGNALED(status)) {
-    result.signal = WTERMSIG(status);
-  }
-  return result;
-}
-
 }  // namespace
 
 int run_worker_processes(std::size_t count, const WorkerPool& pool) {
@@ -98,7 +87,7 @@ int run_worker_processes(std::size_t count, const WorkerPool& pool) {
         ++it;
         continue;
       }
-      const ProcessResult result = result_of(status);
+      const ProcessResult result = process_result(status);
       if (stop != 0 && !result.exited) {
         if (pool.stopped) pool.stopped(it->second);
       } else if (pool.finished) {

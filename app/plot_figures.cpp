@@ -260,17 +260,19 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
     runs = std::max(runs, r.spread.runs);
     if (std::find(order.begin(), order.end(), r.method) == order.end()) order.push_back(r.method);
   }
-  chart.title = "Position error over " + std::to_string(runs) + " runs (dashed: 5-95 %)";
+  chart.title = "Position error over " + std::to_string(runs) + " runs (dotted: 5-95 %)";
   for (const std::string& method : order) {
-    plot::Series mean{method_title(method) + " mean", {},  {}, plot::SeriesStyle::kLine,
+    // The mean in the method's own style (world-centric dashed over the robocentric line it
+    // coincides with), the band dotted.
+    plot::Series mean{method_title(method) + " mean", {},  {}, method_style(method),
                       method_colour(method),          2.5f};
     plot::Series low{method_title(method) + " 5-95 %",
                      {},
                      {},
-                     plot::SeriesStyle::kDashedLine,
+                     plot::SeriesStyle::kDottedLine,
                      method_colour(method),
                      1.5f};
-    plot::Series high{"", {}, {}, plot::SeriesStyle::kDashedLine, method_colour(method), 1.5f};
+    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, method_colour(method), 1.5f};
     for (const io::ErrorSpreadRow& r : rows) {
       if (r.method != method) continue;
       for (plot::Series* s : {&mean, &low, &high}) s->x.push_back(r.spread.t_s);

@@ -20,8 +20,8 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
 plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
                             int height_px);
 
-/// Monte Carlo: the position error against time per method, its mean over the runs (solid) and
-/// the 5 and 95 % quantiles (dashed).
+/// Monte Carlo: the position error against time per method, its mean over the runs (in the
+/// method's style) and the 5 and 95 % quantiles (dotted).
 plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, int width_px,
                                    int height_px);
 

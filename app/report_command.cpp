@@ -140,7 +140,7 @@ std::vector<std::pair<std::string, std::string>> figure_captions(const std::stri
           {"acoustic_image.png", "One revolution of the raw sonar log (acoustic image)"},
           {"nees.png", "Run-averaged NEES of the scan pose per scan step, with the 95% bounds"},
           {"error_spread.png",
-           "Position error against time over the runs: mean, and 5-95 % of the runs dashed"},
+           "Position error against time over the runs: mean, and 5-95 % of the runs dotted"},
           {"error_distribution.png",
            "Distribution of the position error, every run sampled once a second"}};
 }

@@ -52,6 +52,16 @@ int run_worker_processes(std::size_t count, const WorkerPool& pool) {
   const std::size_t workers = static_cast<std::size_t>(std::max(1, pool.workers));
 
   std::map<pid_t, std::size_t> running;
+  // Should a callback throw, no worker outlives the call and the caller's mask comes back.
+  struct Cleanup {
+    std::map<pid_t, std::size_t>& running;
+    const sigset_t& old_mask;
+    ~Cleanup() {
+      for (const auto& [pid, index] : running) ::kill(pid, SIGTERM);
+      for (const auto& [pid, index] : running) ::waitpid(pid, nullptr, 0);
+      ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+    }
+  } cleanup{running, old_mask};
   std::size_t next = 0;
   int stop = 0;
   auto last_tick = std::chrono::steady_clock::now();
@@ -106,8 +116,7 @@ int run_worker_processes(std::size_t count, const WorkerPool& pool) {
   for (int sig; (sig = ::sigtimedwait(&watched, nullptr, &none)) > 0;) {
     if (stop == 0 && sig != SIGCHLD) stop = sig;
   }
-  ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
-  return stop;
+  return stop;  // the mask is restored by cleanup
 }
 
 }  // namespace msislab::app

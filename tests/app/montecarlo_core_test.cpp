@@ -99,6 +99,31 @@ TEST(WorkerProcesses, ACrashOrExceptionEndsOnlyItsOwnWorker) {
   EXPECT_TRUE(results[3].ok());
 }
 
+// A callback that throws in the caller ends every worker before the exception leaves the pool.
+TEST(WorkerProcesses, AThrowingCallbackLeavesNoWorker) {
+  const TempDir tmp;
+  const std::string dir = tmp.path().string();
+  WorkerPool pool;
+  pool.workers = 2;
+  pool.job = [&](std::size_t i) {
+    testing::write_text(dir + "/pid_" + std::to_string(i), std::to_string(::getpid()));
+    if (i > 0) std::this_thread::sleep_for(std::chrono::seconds(30));
+    return 0;
+  };
+  pool.finished = [](std::size_t, const ProcessResult&) { throw std::runtime_error("caller"); };
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_THROW(run_worker_processes(3, pool), std::runtime_error);
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const pid_t pid = std::stoi(testing::read_text(entry.path().string()));
+    EXPECT_EQ(::kill(pid, 0), -1) << "worker " << pid << " still exists";
+  }
+  // The caller's signal mask is back: SIGTERM is not blocked.
+  sigset_t mask;
+  ::pthread_sigmask(SIG_SETMASK, nullptr, &mask);
+  EXPECT_EQ(sigismember(&mask, SIGTERM), 0);
+}
+
 // A stop request (here job 0 sends SIGTERM to the pool's process) ends every running worker and
 // starts no further job; the pool returns the signal and no worker is left.
 TEST(WorkerProcesses, AStopRequestEndsEveryWorker) {

@@ -8,7 +8,7 @@
 #  3. the failure scenarios of issue 12 with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
 #  4. msislab report: writes the page from those folders and copies the figures beside it.
-# Usage: tools/results.sh [--runs N] [--jobs J]     (about 12 minutes on 2 cores with 50 runs)
+# Usage: tools/results.sh [--runs N] [--jobs J]     (about 6 minutes on 2 cores with 50 runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

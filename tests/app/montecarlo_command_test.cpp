@@ -182,6 +182,33 @@ TEST(MonteCarloCommand, RunRIsTheScenarioSimulatedWithSeedPlusR) {
   EXPECT_EQ(in_mc.metrics.diagnostics, direct.metrics.diagnostics);
 }
 
+// --keep-datasets writes each run's dataset beside its results; the run names it, and `run` on it
+// gives the same trajectory.
+TEST(MonteCarloCommand, KeptDatasetsAreTheRunsOwn) {
+  const TempDir tmp;
+  MonteCarloOptions options = options_for(tmp.path() / "mc");
+  options.runs = 1;
+  options.methods = {"worldcentric"};
+  options.keep_datasets = true;
+  run_montecarlo(options);
+  const fs::path dataset = tmp.path() / "mc" / "datasets" / "run_0000";
+  EXPECT_TRUE(fs::is_regular_file(dataset / "truth" / "trajectory.tum"));
+  EXPECT_TRUE(fs::is_regular_file(dataset / "calibration.yaml"));
+  const fs::path rd(run_dir((tmp.path() / "mc").string(), "worldcentric", 0));
+  EXPECT_EQ(io::read_metrics_json((rd / "metrics.json").string()).dataset_dir,
+            fs::absolute(dataset).lexically_normal().string());
+  run({dataset.string(), "worldcentric", tmp.file("again"), ""});
+  EXPECT_EQ(read_text(tmp.file("again/trajectory.tum")),
+            read_text((rd / "trajectory.tum").string()));
+  // Without the flag nothing is kept, and the run names its dataset as held in memory.
+  EXPECT_FALSE(fs::exists(full_run().dir / "datasets"));
+  EXPECT_EQ(
+      io::read_metrics_json(
+          (fs::path(run_dir(full_run().dir.string(), "worldcentric", 0)) / "metrics.json").string())
+          .dataset_dir,
+      "simulated small_basin (seed 1, in memory)");
+}
+
 TEST(MonteCarloCommand, ResumeRedoesOnlyTheUnfinishedRun) {
   const TempDir tmp;
   const fs::path dir = tmp.path() / "mc";

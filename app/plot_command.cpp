@@ -90,6 +90,16 @@ std::vector<std::string> draw_plot(const PlotInputs& in) {
         figures, "error_distribution.png",
         error_distribution_chart(in.error_histograms, options.width_px, options.height_px));
   }
+  if (in.sweep) {
+    for (std::size_t k = 0; k < in.sweep->keys.size(); ++k) {
+      std::string stem = in.sweep->keys[k];
+      std::replace(stem.begin(), stem.end(), '.', '_');
+      for (const char* metric : {"mean_error", "anees"}) {
+        writer.chart(figures, "sweep_" + stem + "_" + metric + ".png",
+                     sweep_chart(*in.sweep, k, metric, options.width_px, options.height_px));
+      }
+    }
+  }
   if (in.revolution) writer.acoustic_image(figures, *in.revolution);
   return writer.written();
 }

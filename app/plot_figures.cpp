@@ -1,5 +1,7 @@
 #include "app/plot_figures.hpp"
 
+#include <cstdlib>
+
 #include "app/methods.hpp"
 
 #include <algorithm>
@@ -305,6 +307,104 @@ plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& hist
     outline.x.push_back(h.edges_m.back());
     outline.y.push_back(0.0);
     chart.series.push_back(std::move(outline));
+  }
+  return chart;
+}
+
+plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
+                            int width_px, int height_px) {
+  const bool error = metric == "mean_error";
+  plot::ChartSpec chart = empty_chart(table.keys[key], error ? "mean position error [m]" : "ANEES",
+                                      width_px, height_px);
+  // The key's values in first-seen order; their x: the number, else the rank.
+  std::vector<std::string> values;
+  bool numeric = true;
+  for (const io::SweepRow& r : table.rows) {
+    if (std::find(values.begin(), values.end(), r.values[key]) == values.end()) {
+      values.push_back(r.values[key]);
+    }
+  }
+  std::vector<double> x_of(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    char* end = nullptr;
+    x_of[i] = std::strtod(values[i].c_str(), &end);
+    numeric = numeric && end != values[i].c_str() && *end == '\0';
+  }
+  std::string ranks;
+  if (!numeric) {
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      x_of[i] = static_cast<double>(i);
+      ranks += (ranks.empty() ? "" : ", ") + std::to_string(i) + ": " + values[i];
+    }
+  }
+  chart.title = (error ? "Mean error (dotted: 5-95 % of runs)" : "ANEES") + std::string(" vs ") +
+                table.keys[key].substr(table.keys[key].rfind('.') + 1) +
+                (ranks.empty() ? "" : " (" + ranks + ")");
+  // One line per method and combination of the other keys' values.
+  std::vector<std::string> lines;
+  const auto line_of = [&](const io::SweepRow& r) {
+    // The other keys by their last name: "Robocentric SLAM, iekf_iterations=1".
+    std::string name = method_title(r.method);
+    for (std::size_t k = 0; k < table.keys.size(); ++k) {
+      if (k != key)
+        name += ", " + table.keys[k].substr(table.keys[k].rfind('.') + 1) + "=" + r.values[k];
+    }
+    return name;
+  };
+  for (const io::SweepRow& r : table.rows) {
+    if (std::find(lines.begin(), lines.end(), line_of(r)) == lines.end())
+      lines.push_back(line_of(r));
+  }
+  std::map<std::string, int> shade;  // the lines of a method so far: each a darker shade
+  for (const std::string& line : lines) {
+    std::string method;
+    std::vector<std::pair<double, const io::SweepRow*>> points;
+    for (const io::SweepRow& r : table.rows) {
+      if (line_of(r) != line) continue;
+      method = r.method;
+      const auto at = std::find(values.begin(), values.end(), r.values[key]) - values.begin();
+      points.emplace_back(x_of[static_cast<std::size_t>(at)], &r);
+    }
+    std::sort(points.begin(), points.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    const std::uint32_t rgb = darker(method_colour(method), std::pow(0.6, shade[method]++));
+    plot::Series mid{line, {}, {}, method_style(method), rgb, 2.5f};
+    plot::Series low{"", {}, {}, plot::SeriesStyle::kDottedLine, rgb, 1.5f};
+    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, rgb, 1.5f};
+    for (const auto& [x, r] : points) {
+      const std::optional<double> y = error ? r->mean_error_m : r->anees;
+      if (!y) continue;
+      mid.x.push_back(x);
+      mid.y.push_back(*y);
+      if (error && r->p05_m && r->p95_m) {
+        low.x.push_back(x);
+        low.y.push_back(*r->p05_m);
+        high.x.push_back(x);
+        high.y.push_back(*r->p95_m);
+      }
+    }
+    if (mid.x.empty()) continue;
+    if (error && !low.x.empty()) {
+      chart.series.push_back(std::move(low));
+      chart.series.push_back(std::move(high));
+    }
+    plot::Series points_of_mid = mid;
+    points_of_mid.label.clear();
+    points_of_mid.style = plot::SeriesStyle::kPoints;
+    points_of_mid.width_px = 8.0f;
+    chart.series.push_back(std::move(mid));
+    chart.series.push_back(std::move(points_of_mid));
+  }
+  if (!error) {
+    const double x_min = *std::min_element(x_of.begin(), x_of.end());
+    const double x_max = *std::max_element(x_of.begin(), x_of.end());
+    chart.series.push_back({"consistent (3)",
+                            {x_min, x_max},
+                            {3.0, 3.0},
+                            plot::SeriesStyle::kDottedLine,
+                            0x888888,
+                            2.0f});
+    chart.log_y = true;
   }
   return chart;
 }

@@ -30,6 +30,12 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
 plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
                                          int width_px, int height_px);
 
+/// A sweep: a metric of the cells ("mean_error" with its 5-95 % band over the runs' mean errors,
+/// or "anees") against one swept key, one line per method and per value of the other keys.
+/// Numeric values are placed at their value, others at their rank (named in the title).
+plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
+                            int width_px, int height_px);
+
 /// Run-averaged NEES against scan index per method, with the 95% bounds; log y axis.
 plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px);
 

@@ -117,6 +117,12 @@ PlotInputs load_plot_inputs(const PlotOptions& options) {
   in.options = options;
   Datasets datasets;
   if (!options.dataset_dir.empty()) datasets.remember(options.dataset_dir);
+  if (fs::is_regular_file(dir / "sweep.csv")) {
+    // A sweep directory: its cells are Monte Carlo directories; plot one by naming its folder.
+    in.sweep = io::read_sweep_csv((dir / "sweep.csv").string());
+    if (in.sweep->rows.empty()) io::fail_file((dir / "sweep.csv").string(), "no rows to plot");
+    return in;
+  }
   if (is_result_dir(dir)) {
     // A result directory (its own nees.csv is the per-scan NEES of that run).
     in.results.push_back(load_result(dir, options, datasets));

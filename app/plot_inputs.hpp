@@ -14,6 +14,7 @@
 #include "app/truth.hpp"
 #include "io/result_readers.hpp"
 #include "io/results.hpp"
+#include "io/sweep_files.hpp"
 #include "slam/evaluation.hpp"
 
 namespace msislab::app {
@@ -47,6 +48,7 @@ struct PlotInputs {
   std::vector<io::NeesRow> nees;                 ///< DIR/nees.csv of a Monte Carlo directory
   std::vector<io::ErrorSpreadRow> error_spread;  ///< its errors.csv, when present
   std::vector<ErrorHistogram> error_histograms;  ///< its error_histogram.csv, when present
+  std::optional<io::SweepTable> sweep;           ///< DIR/sweep.csv of a sweep directory
   std::optional<SonarRevolution> revolution;     ///< when the dataset has a *_IS.log
 };
 

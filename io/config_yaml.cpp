@@ -256,8 +256,9 @@ Calibration calibration_as_stored(const Calibration& calibration) {
   return calibration_from_yaml(YAML::Load(calibration_yaml(calibration)), "calibration.yaml");
 }
 
-SlamConfig read_slam_config(const std::string& path) {
-  YamlMap root(load_yaml_file(path), path, "");
+namespace {
+SlamConfig slam_config_from_yaml(const YAML::Node& node, const std::string& path) {
+  YamlMap root(node, path, "");
   SlamConfig config;
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
@@ -265,6 +266,15 @@ SlamConfig read_slam_config(const std::string& path) {
   config.segments = read_segments(root.map("segments"));
   root.finish();
   return config;
+}
+}  // namespace
+
+SlamConfig read_slam_config(const std::string& path) {
+  return slam_config_from_yaml(load_yaml_file(path), path);
+}
+
+SlamConfig read_slam_config_text(const std::string& text, const std::string& name) {
+  return slam_config_from_yaml(load_yaml_text(text, name), name);
 }
 
 }  // namespace msislab::io

@@ -20,5 +20,7 @@ Calibration calibration_as_stored(const Calibration& calibration);
 
 /// Reads a SLAM config file; absent keys keep their defaults.
 SlamConfig read_slam_config(const std::string& path);
+/// The same from a config's text; `name` stands for the file in errors.
+SlamConfig read_slam_config_text(const std::string& text, const std::string& name);
 
 }  // namespace msislab::io

@@ -250,8 +250,10 @@ void read_detections(YamlMap map, DetectionModelConfig& d) {
 
 }  // namespace
 
-sim::Scenario read_scenario(const std::string& path) {
-  YamlMap root(load_yaml_file(path), path, "");
+namespace {
+sim::Scenario scenario_from_yaml(const YAML::Node& node, const std::string& path,
+                                 const std::string& dir) {
+  YamlMap root(node, path, "");
   sim::Scenario s;
   root.text("name", s.name);
   long long seed = 0;
@@ -260,7 +262,6 @@ sim::Scenario read_scenario(const std::string& path) {
   s.seed = static_cast<std::uint64_t>(seed);
   if (!root.has("scene")) root.fail("scene", "is required (scene.mesh)");
   if (!root.has("vehicle")) root.fail("vehicle", "is required (depth_m, speed_mps, path)");
-  const std::string dir = std::filesystem::path(path).parent_path().string();
   read_scene(root.map("scene"), dir, s.scene);
   read_vehicle(root.map("vehicle"), s.vehicle);
   s.segments = read_segments(root.map("segments"));
@@ -271,6 +272,17 @@ sim::Scenario read_scenario(const std::string& path) {
   read_detections(root.map("detections"), s.detections);
   root.finish();
   return s;
+}
+}  // namespace
+
+sim::Scenario read_scenario(const std::string& path) {
+  return scenario_from_yaml(load_yaml_file(path), path,
+                            std::filesystem::path(path).parent_path().string());
+}
+
+sim::Scenario read_scenario_text(const std::string& text, const std::string& name,
+                                 const std::string& dir) {
+  return scenario_from_yaml(load_yaml_text(text, name), name, dir);
 }
 
 }  // namespace msislab::io

@@ -10,5 +10,9 @@
 namespace msislab::io {
 
 sim::Scenario read_scenario(const std::string& path);
+/// The same from a scenario's text; `name` stands for the file in errors, and relative paths are
+/// relative to `dir`.
+sim::Scenario read_scenario_text(const std::string& text, const std::string& name,
+                                 const std::string& dir);
 
 }  // namespace msislab::io

@@ -19,6 +19,14 @@ YAML::Node load_yaml_file(const std::string& path) {
   }
 }
 
+YAML::Node load_yaml_text(const std::string& text, const std::string& name) {
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    fail_at(name, static_cast<std::size_t>(e.mark.line + 1), "malformed YAML: " + e.msg);
+  }
+}
+
 bool parse_finite_scalar(const std::string& text, double& out) {
   const char* begin = text.data();
   const char* end = begin + text.size();

@@ -13,6 +13,8 @@ namespace msislab::io {
 
 /// Loads a YAML file; a missing file or a syntax error becomes an InputError naming the file/line.
 YAML::Node load_yaml_file(const std::string& path);
+/// The same for YAML text; `name` stands for the file in errors.
+YAML::Node load_yaml_text(const std::string& text, const std::string& name);
 
 class YamlMap {
  public:

@@ -20,6 +20,7 @@
 #include "app/scans_command.hpp"
 #include "app/segment_command.hpp"
 #include "app/simulate_command.hpp"
+#include "app/sweep_command.hpp"
 #include "io/input_error.hpp"
 #include "plot/display.hpp"
 
@@ -131,6 +132,69 @@ void draw_montecarlo_figures(const std::string& dir) {
     if (std::filesystem::exists(figure)) std::cout << "montecarlo: wrote " << figure << "\n";
   }
   std::cout.flush();
+}
+
+struct SweepCli {
+  msislab::app::SweepOptions options;
+  std::string merge_out;
+  std::vector<std::string> merge_shards;
+  bool no_plot = false;
+  CLI::App* command = nullptr;
+};
+
+void add_sweep_command(CLI::App& app, SweepCli& cli) {
+  cli.command = app.add_subcommand(
+      "sweep",
+      "A Monte Carlo directory per cell of a grid (or list) of scenario and SLAM config overrides; "
+      "resumable and shardable; writes sweep.csv and figures");
+  cli.command->add_option("SWEEP", cli.options.sweep_path, "Sweep YAML (required unless merge)");
+  cli.command->add_option("--out,-o", cli.options.out_dir,
+                          "Sweep directory (required); an existing one is resumed");
+  cli.command->add_option("--jobs,-j", cli.options.jobs,
+                          "Runs at once in each cell (default: one per hardware thread)");
+  cli.command->add_option("--shard", cli.options.shard,
+                          "i/N: in every cell only the runs r with r % N == i; merge afterwards");
+  cli.command->add_flag("--no-plot", cli.no_plot, "Do not draw the figures at the end");
+  cli.command->require_subcommand(0, 1);
+  CLI::App* m = cli.command->add_subcommand(
+      "merge", "Merge sweep shard directories into OUT_DIR, cell by cell, and write sweep.csv");
+  m->add_option("OUT_DIR", cli.merge_out, "Sweep directory to write")->required();
+  m->add_option("SHARD_DIR", cli.merge_shards, "Shard directories made with --shard")->required();
+  m->add_flag("--no-plot", cli.no_plot, "Do not draw the figures at the end");
+}
+
+/// Runs `sweep` or `sweep merge`; the exit status.
+int run_sweep_command(SweepCli& cli) {
+  msislab::app::SweepOutcome outcome;
+  std::string dir;
+  if (cli.command->got_subcommand("merge")) {
+    dir = cli.merge_out;
+    outcome = msislab::app::merge_sweep(cli.merge_out, cli.merge_shards);
+  } else {
+    if (cli.options.sweep_path.empty()) throw msislab::io::InputError("sweep: SWEEP is required");
+    if (cli.options.out_dir.empty()) throw msislab::io::InputError("sweep: --out is required");
+    dir = cli.options.out_dir;
+    outcome = msislab::app::sweep(cli.options, {std::cerr, isatty(STDERR_FILENO) == 1});
+    if (outcome.interrupted != 0) {
+      std::cerr << "sweep: stopped by " << sigabbrev_np(outcome.interrupted)
+                << "; every worker ended, the finished runs are kept in " << dir
+                << "; run the same command to resume" << std::endl;
+      return 128 + outcome.interrupted;
+    }
+  }
+  std::cout << "sweep: " << dir << " holds " << outcome.cells << " cells (" << outcome.executed
+            << " runs done now, " << outcome.failed << " with a failed method); wrote sweep.csv"
+            << std::endl;
+  if (!cli.no_plot && cli.options.shard.empty()) {
+    const std::string failure = msislab::app::draw_montecarlo_figures(dir);
+    if (failure.empty()) {
+      std::cout << "sweep: wrote the figures in " << dir << "/figures" << std::endl;
+    } else {
+      std::cerr << "sweep: figures not drawn (" << failure << "); draw them with `msislab plot "
+                << dir << "`" << std::endl;
+    }
+  }
+  return 0;
 }
 
 void check_montecarlo_options(const msislab::app::MonteCarloOptions& options,
@@ -322,6 +386,8 @@ int main(int argc, char** argv) {
   msislab::app::MergeOptions merge_options;
   bool montecarlo_no_plot = false;
   add_montecarlo_command(app, montecarlo_options, merge_options, montecarlo_no_plot);
+  SweepCli sweep_cli;
+  add_sweep_command(app, sweep_cli);
   msislab::app::ImageOptions image_options;
   add_image_command(app, image_options);
   msislab::app::ScansOptions scans_options;
@@ -401,6 +467,7 @@ int main(int argc, char** argv) {
       }
       std::cout << std::endl;
     }
+    if (app.got_subcommand("sweep")) return run_sweep_command(sweep_cli);
     if (app.got_subcommand("montecarlo")) {
       CLI::App* montecarlo = app.get_subcommand("montecarlo");
       if (montecarlo->got_subcommand("merge")) {

@@ -68,9 +68,9 @@ int pixels_of(const cv::Mat& image, std::uint32_t rgb) {
 }
 
 /// The PNG decodes at the given size, is mostly white (the background) but not blank, and shows
-/// each colour.
+/// each colour (in more than min_pixels pixels: slanted lines are mostly anti-aliased).
 void expect_figure(const std::string& path, int width, int height,
-                   const std::vector<std::uint32_t>& colours) {
+                   const std::vector<std::uint32_t>& colours, int min_pixels = 200) {
   SCOPED_TRACE(path);
   ASSERT_TRUE(fs::is_regular_file(path));
   EXPECT_GT(fs::file_size(path), 1000u);
@@ -83,7 +83,7 @@ void expect_figure(const std::string& path, int width, int height,
   EXPECT_GT(white, total / 3) << "the background is not white";
   EXPECT_GT(total - white, total / 100) << "blank figure";
   for (const std::uint32_t rgb : colours) {
-    EXPECT_GT(pixels_of(image, rgb), 200) << "colour " << std::hex << rgb << " is missing";
+    EXPECT_GT(pixels_of(image, rgb), min_pixels) << "colour " << std::hex << rgb << " is missing";
   }
 }
 
@@ -195,6 +195,40 @@ TEST(PlotMonteCarlo, SpreadFigures) {
     ADD_FAILURE() << "no InputError";
   } catch (const io::InputError& e) {
     EXPECT_NE(std::string(e.what()).find(mc + "/errors.csv:2"), std::string::npos) << e.what();
+  }
+}
+
+// A sweep directory: per swept key, the mean error (with its band) and the ANEES against it.
+TEST(PlotSweep, AFigurePerKeyAndMetric) {
+  REQUIRE_X_DISPLAY();
+  const TempDir tmp;
+  const std::string dir = tmp.file("sweep");
+  fs::create_directories(dir);
+  std::string csv =
+      "cell,scenario.mru.heading_noise_deg,slam.trajectory_slam.iekf_iterations,method,runs,failed,"
+      "mean_error_m,mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,"
+      "nees_in_bounds_fraction\n";
+  int cell = 0;
+  for (const double noise : {0.5, 1.0, 2.0}) {
+    for (const int iterations : {1, 5}) {
+      for (const auto& [method, scale] : {std::pair{"robocentric", 1.0}, {"deadreckoning", 2.0}}) {
+        const double e = scale * noise * (1.0 + 0.1 * iterations);  // no two lines coincide
+        csv += std::to_string(cell) + "," + std::to_string(noise) + "," +
+               std::to_string(iterations) + "," + method + ",20,0," + std::to_string(e) + "," +
+               std::to_string(0.5 * e) + "," + std::to_string(e) + "," + std::to_string(1.5 * e) +
+               "," + std::to_string(2.0 + noise) + ",0.9\n";
+      }
+      ++cell;
+    }
+  }
+  write_text(dir + "/sweep.csv", csv);
+  const std::vector<std::string> written = plot({dir, "", 0, 1200, 900, -1});
+  ASSERT_EQ(written.size(), 4u);
+  EXPECT_EQ(written[0], dir + "/figures/sweep_scenario_mru_heading_noise_deg_mean_error.png");
+  EXPECT_EQ(written[3], dir + "/figures/sweep_slam_trajectory_slam_iekf_iterations_anees.png");
+  for (const std::string& figure : written) {
+    expect_figure(figure, 1200, 900, {method_colour("robocentric"), method_colour("deadreckoning")},
+                  20);
   }
 }
 

@@ -1,0 +1,162 @@
+#include "app/sweep_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "app/directory_lock.hpp"
+#include "app/methods.hpp"
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/montecarlo_files.hpp"
+#include "io/sweep_yaml.hpp"
+#include "io/text_lines.hpp"
+
+namespace msislab::app {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string cell_name(std::size_t cell) {
+  char name[32];
+  std::snprintf(name, sizeof name, "cell_%03zu", cell);
+  return name;
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+/// The sweep file's copy in DIR: a DIR made from other bytes is refused before anything changes.
+void check_same_sweep(const std::string& dir, const std::string& sweep_text,
+                      const std::string& sweep_path) {
+  const fs::path copy = fs::path(dir) / "sweep.yaml";
+  if (fs::exists(copy) && io::read_whole_file(copy.string()) != sweep_text) {
+    io::fail_file(dir, "holds the cells of another sweep (its sweep.yaml differs from " +
+                           sweep_path + "); choose another --out");
+  }
+}
+
+/// sweep.csv's rows from the cells' summary.json, in cell order then the summary's method order.
+io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
+  io::SweepTable table;
+  table.keys = sweep.keys;
+  for (std::size_t c = 0; c < sweep.cells.size(); ++c) {
+    const fs::path summary = fs::path(dir) / "cells" / cell_name(c) / "summary.json";
+    if (!fs::exists(summary)) continue;
+    std::vector<std::string> values;
+    for (const std::string& key : sweep.keys) {
+      std::string value;
+      for (const auto& [k, v] : sweep.cells[c].overrides) {
+        if (k == key) value = v.text;
+      }
+      values.push_back(value);
+    }
+    for (const io::StoredSummary& stored : io::read_summary_json(summary.string())) {
+      const MethodSummary& s = stored.summary;
+      io::SweepRow row;
+      row.cell = static_cast<int>(c);
+      row.values = values;
+      row.method = s.method;
+      row.runs = s.runs;
+      row.failed = s.failed;
+      row.mean_error_m = s.mean_error_m;
+      if (s.mean_error_quantiles_m) {
+        row.p05_m = (*s.mean_error_quantiles_m)[0];
+        row.p50_m = (*s.mean_error_quantiles_m)[1];
+        row.p95_m = (*s.mean_error_quantiles_m)[2];
+      }
+      row.anees = s.anees;
+      row.nees_in_bounds_fraction = s.nees_in_bounds_fraction;
+      table.rows.push_back(std::move(row));
+    }
+  }
+  return table;
+}
+
+}  // namespace
+
+SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
+  int shard_index = 0, shard_count = 1;
+  if (!options.shard.empty() && !io::parse_shard(options.shard, shard_index, shard_count)) {
+    throw io::InputError("--shard '" + options.shard + "': expected i/N with 0 <= i < N");
+  }
+  if (options.jobs < 0) {
+    throw io::InputError("--jobs " + std::to_string(options.jobs) +
+                         ": must be 0 (default) or more");
+  }
+  const io::Sweep plan = io::read_sweep(options.sweep_path);
+  for (const std::string& m : plan.methods) method_info(m, options.sweep_path + ": key 'methods'");
+  std::vector<io::CellInputs> inputs;
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) inputs.push_back(io::cell_inputs(plan, c));
+  const std::string sweep_text = io::read_whole_file(options.sweep_path);
+
+  const DirectoryLock lock(options.out_dir, "msislab sweep " + options.sweep_path);
+  check_same_sweep(options.out_dir, sweep_text, options.sweep_path);
+  write_text((fs::path(options.out_dir) / "sweep.yaml").string(), sweep_text);
+
+  SweepOutcome outcome;
+  outcome.cells = plan.cells.size();
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    const fs::path in_dir = fs::path(options.out_dir) / "inputs" / cell_name(c);
+    io::create_output_dir(in_dir.string());
+    write_text((in_dir / "scenario.yaml").string(), inputs[c].scenario_text);
+    MonteCarloOptions mc;
+    mc.scenario_path = (in_dir / "scenario.yaml").string();
+    if (!inputs[c].config_text.empty()) {
+      mc.config_path = (in_dir / "config.yaml").string();
+      write_text(mc.config_path, inputs[c].config_text);
+    }
+    mc.runs = plan.runs;
+    mc.methods = plan.methods;
+    mc.jobs = options.jobs;
+    mc.shard = options.shard;
+    mc.out_dir = (fs::path(options.out_dir) / "cells" / cell_name(c)).string();
+    log.log << "sweep: " << cell_name(c) << " (" << c + 1 << "/" << plan.cells.size()
+            << "): " << io::describe_cell(plan.cells[c]) << std::endl;
+    const MonteCarloOutcome cell = montecarlo(mc, log);
+    outcome.executed += cell.executed;
+    outcome.failed += cell.failed;
+    if (cell.interrupted != 0) {
+      outcome.interrupted = cell.interrupted;
+      return outcome;
+    }
+  }
+  outcome.table = sweep_table(options.out_dir, plan);
+  io::write_sweep_csv((fs::path(options.out_dir) / "sweep.csv").string(), outcome.table);
+  return outcome;
+}
+
+SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::string>& shard_dirs) {
+  if (shard_dirs.empty()) throw io::InputError("sweep merge: no SHARD_DIR given");
+  std::string sweep_text;
+  for (const std::string& shard : shard_dirs) {
+    const fs::path copy = fs::path(shard) / "sweep.yaml";
+    if (!fs::exists(copy)) io::fail_file(shard, "not a sweep directory (no sweep.yaml)");
+    const std::string text = io::read_whole_file(copy.string());
+    if (sweep_text.empty()) sweep_text = text;
+    if (text != sweep_text) {
+      io::fail_file(
+          shard, "made from another sweep file than " + shard_dirs.front() + "; cannot merge them");
+    }
+  }
+  const io::Sweep plan = io::read_sweep((fs::path(shard_dirs.front()) / "sweep.yaml").string());
+  const DirectoryLock lock(out_dir, "msislab sweep merge");
+  check_same_sweep(out_dir, sweep_text, shard_dirs.front() + "/sweep.yaml");
+  write_text((fs::path(out_dir) / "sweep.yaml").string(), sweep_text);
+  SweepOutcome outcome;
+  outcome.cells = plan.cells.size();
+  for (std::size_t c = 0; c < plan.cells.size(); ++c) {
+    MergeOptions merge;
+    merge.out_dir = (fs::path(out_dir) / "cells" / cell_name(c)).string();
+    for (const std::string& shard : shard_dirs) {
+      merge.shard_dirs.push_back((fs::path(shard) / "cells" / cell_name(c)).string());
+    }
+    outcome.failed += merge_montecarlo(merge).failed;
+  }
+  outcome.table = sweep_table(out_dir, plan);
+  io::write_sweep_csv((fs::path(out_dir) / "sweep.csv").string(), outcome.table);
+  return outcome;
+}
+
+}  // namespace msislab::app

@@ -1,0 +1,100 @@
+#include "io/sweep_files.hpp"
+
+#include <algorithm>
+
+#include "io/atomic_file.hpp"
+#include "io/input_error.hpp"
+#include "io/text_lines.hpp"
+
+namespace msislab::io {
+
+namespace {
+
+constexpr const char* kFigureColumns =
+    "method,runs,failed,mean_error_m,mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,"
+    "nees_in_bounds_fraction";
+constexpr std::size_t kFigureCount = 9;
+
+std::string header_of(const std::vector<std::string>& keys) {
+  std::string header = "cell";
+  for (const std::string& k : keys) header += "," + k;
+  return header + "," + kFigureColumns;
+}
+
+/// A value's text in a CSV field: its commas become semicolons.
+std::string field_text(std::string text) {
+  std::replace(text.begin(), text.end(), ',', ';');
+  return text;
+}
+
+void append_optional(std::string& out, const std::optional<double>& v) {
+  out += ',';
+  if (v) append_number(out, *v);
+}
+
+}  // namespace
+
+void write_sweep_csv(const std::string& path, const SweepTable& table) {
+  std::string text = header_of(table.keys) + "\n";
+  for (const SweepRow& r : table.rows) {
+    text += std::to_string(r.cell);
+    for (const std::string& v : r.values) text += "," + field_text(v);
+    text += "," + r.method + "," + std::to_string(r.runs) + "," + std::to_string(r.failed);
+    for (const auto& v :
+         {r.mean_error_m, r.p05_m, r.p50_m, r.p95_m, r.anees, r.nees_in_bounds_fraction}) {
+      append_optional(text, v);
+    }
+    text += "\n";
+  }
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+SweepTable read_sweep_csv(const std::string& path) {
+  const std::string text = read_whole_file(path);
+  const std::string first = text.substr(0, text.find('\n'));
+  std::vector<std::string> columns;
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = first.find(',', start)) != std::string::npos;
+       start = comma + 1) {
+    columns.push_back(first.substr(start, comma - start));
+  }
+  columns.push_back(first.substr(start));
+  if (columns.size() < 1 + kFigureCount || columns.front() != "cell" ||
+      header_of(std::vector<std::string>(columns.begin() + 1, columns.end() - kFigureCount)) !=
+          first) {
+    fail_at(path, 1,
+            "wrong header: expected 'cell,<swept keys>," + std::string(kFigureColumns) + "'");
+  }
+  SweepTable table;
+  table.keys.assign(columns.begin() + 1, columns.end() - kFigureCount);
+  const std::size_t n = columns.size();
+  for_each_csv_row(path, first, [&](std::string_view line, std::size_t number) {
+    std::vector<std::string_view> f(n);
+    split_csv_fields(line, path, number, f.data(), n);
+    const auto at = [&](std::size_t i) { return FieldAt{path, number, i + 1, columns[i]}; };
+    const auto optional = [&](std::size_t i) -> std::optional<double> {
+      if (f[i].empty()) return std::nullopt;
+      return parse_finite(f[i], at(i));
+    };
+    SweepRow r;
+    const std::int64_t cell = parse_integer(f[0], at(0));
+    if (cell < 0) fail_field(at(0), f[0], "is not a cell index");
+    r.cell = static_cast<int>(cell);
+    const std::size_t k = table.keys.size();
+    for (std::size_t i = 0; i < k; ++i) r.values.emplace_back(f[1 + i]);
+    if (f[1 + k].empty()) fail_field(at(1 + k), f[1 + k], "is empty");
+    r.method = std::string(f[1 + k]);
+    r.runs = static_cast<int>(parse_integer(f[2 + k], at(2 + k)));
+    r.failed = static_cast<int>(parse_integer(f[3 + k], at(3 + k)));
+    r.mean_error_m = optional(4 + k);
+    r.p05_m = optional(5 + k);
+    r.p50_m = optional(6 + k);
+    r.p95_m = optional(7 + k);
+    r.anees = optional(8 + k);
+    r.nees_in_bounds_fraction = optional(9 + k);
+    table.rows.push_back(std::move(r));
+  });
+  return table;
+}
+
+}  // namespace msislab::io

@@ -1,6 +1,7 @@
 #include "app/montecarlo_command.hpp"
 
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -159,7 +160,11 @@ void injected_fault(int run, const std::string& where) {
     const std::string prefix = std::to_string(run) + ":" + where + ":";
     if (entry.rfind(prefix, 0) != 0) continue;
     const std::string how = entry.substr(prefix.size());
-    if (how == "crash") std::raise(SIGSEGV);
+    if (how == "crash") {
+      const rlimit no_core{0, 0};  // an injected crash leaves no core file behind
+      ::setrlimit(RLIMIT_CORE, &no_core);
+      std::raise(SIGSEGV);
+    }
     if (how == "throw") throw std::runtime_error("injected failure (MSISLAB_MONTECARLO_FAULTS)");
   }
 }

@@ -3,6 +3,7 @@
 // the progress line, child processes and how their
 // failures are described, and the run layout.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -83,7 +84,11 @@ TEST(WorkerProcesses, ACrashOrExceptionEndsOnlyItsOwnWorker) {
   WorkerPool pool;
   pool.workers = 2;
   pool.job = [](std::size_t i) {
-    if (i == 1) std::raise(SIGSEGV);
+    if (i == 1) {
+      const rlimit no_core{0, 0};
+      ::setrlimit(RLIMIT_CORE, &no_core);
+      std::raise(SIGSEGV);
+    }
     if (i == 2) throw std::runtime_error("job 2");
     return 0;
   };

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "io/text_lines.hpp"
 
@@ -340,12 +341,16 @@ plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const 
   chart.title = (error ? "Mean error (dotted: 5-95 % of runs)" : "ANEES") + std::string(" vs ") +
                 table.keys[key].substr(table.keys[key].rfind('.') + 1) +
                 (ranks.empty() ? "" : " (" + ranks + ")");
-  // One line per method and combination of the other keys' values.
+  // One line per method and combination of the other keys' values; when each value of this key
+  // is one cell (a list whose other keys move with it), one line per method.
+  std::set<int> cells;
+  for (const io::SweepRow& r : table.rows) cells.insert(r.cell);
+  const bool one_cell_per_value = cells.size() == values.size();
   std::vector<std::string> lines;
   const auto line_of = [&](const io::SweepRow& r) {
     // The other keys by their last name: "Robocentric SLAM, iekf_iterations=1".
     std::string name = method_title(r.method);
-    for (std::size_t k = 0; k < table.keys.size(); ++k) {
+    for (std::size_t k = 0; k < table.keys.size() && !one_cell_per_value; ++k) {
       if (k != key)
         name += ", " + table.keys[k].substr(table.keys[k].rfind('.') + 1) + "=" + r.values[k];
     }

@@ -15,7 +15,11 @@ namespace fs = std::filesystem;
 
 RunMetrics score_trajectory(const Truth& truth, const std::vector<StampedPose>& trajectory,
                             const std::vector<TimeSegment>& segments, const std::string& source) {
-  const std::vector<ErrorSample> errors = position_errors(trajectory, truth.positions);
+  return score_errors(truth, position_errors(trajectory, truth.positions), segments, source);
+}
+
+RunMetrics score_errors(const Truth& truth, const std::vector<ErrorSample>& errors,
+                        const std::vector<TimeSegment>& segments, const std::string& source) {
   const std::optional<ErrorStats> stats = error_stats(errors);
   if (!stats) io::fail_file(source, "no " + truth.kind + " truth inside the estimated span");
   RunMetrics metrics;

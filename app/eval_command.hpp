@@ -17,6 +17,9 @@ namespace msislab::app {
 /// falls inside the trajectory's span.
 RunMetrics score_trajectory(const Truth& truth, const std::vector<StampedPose>& trajectory,
                             const std::vector<TimeSegment>& segments, const std::string& source);
+/// The same from the position errors (position_errors) computed already.
+RunMetrics score_errors(const Truth& truth, const std::vector<ErrorSample>& errors,
+                        const std::vector<TimeSegment>& segments, const std::string& source);
 
 /// The NEES of each scan pose against the pose truth; empty when the truth has no poses (GPS).
 std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,

@@ -73,16 +73,9 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   check_methods(options.methods);
   RunContext ctx;
   io::MonteCarloManifest& manifest = ctx.manifest;
-  if (!options.shard.empty() &&
-      !io::parse_shard(options.shard, manifest.shard_index, manifest.shard_count)) {
-    throw io::InputError("--shard '" + options.shard + "': expected i/N with 0 <= i < N");
-  }
+  check_shard_and_jobs(options.shard, options.jobs, manifest.shard_index, manifest.shard_count);
   if (options.runs < 1) {
     throw io::InputError("--runs " + std::to_string(options.runs) + ": must be at least 1");
-  }
-  if (options.jobs < 0) {
-    throw io::InputError("--jobs " + std::to_string(options.jobs) +
-                         ": must be 0 (default) or more");
   }
   ctx.scenario = io::read_scenario(options.scenario_path);
   if (!fs::is_regular_file(ctx.scenario.scene.mesh_path)) {
@@ -266,6 +259,17 @@ bool finished(const std::string& dir, const std::string& method, int run) {
 }
 
 }  // namespace
+
+void check_shard_and_jobs(const std::string& shard, int jobs, int& shard_index, int& shard_count) {
+  shard_index = 0;
+  shard_count = 1;
+  if (!shard.empty() && !io::parse_shard(shard, shard_index, shard_count)) {
+    throw io::InputError("--shard '" + shard + "': expected i/N with 0 <= i < N");
+  }
+  if (jobs < 0) {
+    throw io::InputError("--jobs " + std::to_string(jobs) + ": must be 0 (default) or more");
+  }
+}
 
 MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloLog& log) {
   std::optional<DirectoryLock> lock;

@@ -42,6 +42,10 @@ struct MonteCarloOutcome {
   std::vector<MethodSummary> summary;
 };
 
+/// InputError unless shard is empty or "i/N" (0 <= i < N; parsed into index and count, else
+/// 0 and 1) and jobs >= 0.
+void check_shard_and_jobs(const std::string& shard, int jobs, int& shard_index, int& shard_count);
+
 /// Checks every input (methods, shard, scenario, its mesh, config, an existing DIR made from the
 /// same scenario and config by this build), locks DIR (InputError naming the holder when another
 /// command has it), then runs what is not finished yet and writes DIR/summary.json, DIR/nees.csv
@@ -54,7 +58,7 @@ struct MergeOptions {
   std::vector<std::string> shard_dirs;
 };
 
-/// Draws the figures of a finished Monte Carlo directory (DIR/figures/nees.png) by running
+/// Draws the figures of a finished Monte Carlo (or sweep) directory into DIR/figures by running
 /// `msislab plot DIR` as a child process of `executable` (empty: this process's), which finds or
 /// starts an X display itself. Returns an empty string, or why no figure was drawn (the last line
 /// the plot command wrote to stderr). A missing figure does not undo the statistics.

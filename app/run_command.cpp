@@ -173,14 +173,15 @@ MethodResult run_method(const std::string& name, const RunInputs& in, SharedInpu
   const Truth& truth = in.truth;
   const StampedPose& start = in.start;
 
-  // SLAM methods: the sonar readings are read before the clock starts, like the logs.
-  std::optional<SonarInput> sonar;
-  const auto readings = [&] {
-    if (!shared) return load_sonar_readings(in);
-    if (!shared->sonar) shared->sonar = load_sonar_readings(in);
-    return *shared->sonar;
+  // SLAM methods: the sonar readings are read before the clock starts, like the logs; read once
+  // and shared between the methods when `shared` is given.
+  std::optional<SonarInput> own_readings;
+  const auto readings = [&]() -> const SonarInput& {
+    std::optional<SonarInput>& slot = shared ? shared->sonar : own_readings;
+    if (!slot) slot = load_sonar_readings(in);
+    return *slot;
   };
-  if (method.kind == MethodKind::kTrajectorySlam) sonar = readings();
+  const SonarInput* sonar = method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(calibration.dvl.x_m, calibration.dvl.y_m);
   DeadReckoningResult dr;
@@ -221,8 +222,8 @@ MethodResult run_method(const std::string& name, const RunInputs& in, SharedInpu
   result.trajectory = trajectory;
   result.depth_m = truth.depth_m;
   if (!truth.kind.empty()) {
-    result.metrics = score_trajectory(truth, trajectory, config.segments, in.dataset);
     result.errors = position_errors(trajectory, truth.positions);
+    result.metrics = score_errors(truth, result.errors, config.segments, in.dataset);
     result.t_first_truth_s = truth.positions.front().t_s;
     RunMetrics& metrics = *result.metrics;
     metrics.method = method.name;

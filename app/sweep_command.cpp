@@ -78,13 +78,7 @@ io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
 
 SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   int shard_index = 0, shard_count = 1;
-  if (!options.shard.empty() && !io::parse_shard(options.shard, shard_index, shard_count)) {
-    throw io::InputError("--shard '" + options.shard + "': expected i/N with 0 <= i < N");
-  }
-  if (options.jobs < 0) {
-    throw io::InputError("--jobs " + std::to_string(options.jobs) +
-                         ": must be 0 (default) or more");
-  }
+  check_shard_and_jobs(options.shard, options.jobs, shard_index, shard_count);
   const io::Sweep plan = io::read_sweep(options.sweep_path);
   for (const std::string& m : plan.methods) method_info(m, options.sweep_path + ": key 'methods'");
   std::vector<io::CellInputs> inputs;

@@ -14,8 +14,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kScenarioPrefix = "scenario.";
-constexpr const char* kSlamPrefix = "slam.";
+const std::string kScenarioPrefix = "scenario.";
+const std::string kSlamPrefix = "slam.";
 
 bool starts_with(const std::string& s, const std::string& prefix) {
   return s.rfind(prefix, 0) == 0;
@@ -38,8 +38,8 @@ SweepValue value_of(const YAML::Node& node) {
 }
 
 void check_key(YamlMap& map, const std::string& key) {
-  const std::string rest = starts_with(key, kScenarioPrefix) ? key.substr(9)
-                           : starts_with(key, kSlamPrefix)   ? key.substr(5)
+  const std::string rest = starts_with(key, kScenarioPrefix) ? key.substr(kScenarioPrefix.size())
+                           : starts_with(key, kSlamPrefix)   ? key.substr(kSlamPrefix.size())
                                                              : std::string();
   if (rest.empty() || rest.front() == '.' || rest.back() == '.' ||
       rest.find("..") != std::string::npos) {
@@ -186,9 +186,9 @@ CellInputs cell_inputs(const Sweep& sweep, std::size_t index) {
   if (!config.IsMap()) fail_file(sweep.config_path, "expected a mapping of keys");
   for (const auto& [key, value] : cell.overrides) {
     if (starts_with(key, kScenarioPrefix)) {
-      set_path(scenario, key.substr(9), value.text);
+      set_path(scenario, key.substr(kScenarioPrefix.size()), value.text);
     } else {
-      set_path(config, key.substr(5), value.text);
+      set_path(config, key.substr(kSlamPrefix.size()), value.text);
     }
   }
   CellInputs inputs{emit(scenario), config.size() == 0 ? std::string() : emit(config)};

@@ -113,9 +113,6 @@ class CornerCache {
 
 double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
   thread_local CornerCache corners;
-  const auto corner_value = [&](std::int64_t i, std::int64_t j, std::int64_t k) {
-    return corners.value(i, j, k);
-  };
   const Eigen::Vector3d q = p_m.cast<double>() / length_m;
   const Eigen::Vector3d f = q.array().floor();
   const Eigen::Vector3d t = q - f;
@@ -125,9 +122,9 @@ double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
     const double w =
         (dx ? t.x() : 1.0 - t.x()) * (dy ? t.y() : 1.0 - t.y()) * (dz ? t.z() : 1.0 - t.z());
     weights_squared += w * w;
-    value += w * corner_value(static_cast<std::int64_t>(f.x()) + dx,
-                              static_cast<std::int64_t>(f.y()) + dy,
-                              static_cast<std::int64_t>(f.z()) + dz);
+    value += w * corners.value(static_cast<std::int64_t>(f.x()) + dx,
+                               static_cast<std::int64_t>(f.y()) + dy,
+                               static_cast<std::int64_t>(f.z()) + dz);
   }
   return value / std::sqrt(weights_squared);
 }

@@ -118,18 +118,23 @@ void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& opti
   m->add_flag("--no-plot", no_plot, "Do not draw the figures at the end");
 }
 
-/// The Monte Carlo figures, drawn by `msislab plot DIR` in a child process; a failure to draw is
-/// reported on stderr and leaves the statistics (and the exit status) alone.
-void draw_montecarlo_figures(const std::string& dir) {
+/// The figures of a Monte Carlo or sweep directory, drawn by `msislab plot DIR` in a child process
+/// and listed as "COMMAND: wrote FILE"; a failure to draw is reported on stderr and leaves the
+/// statistics (and the exit status) alone.
+void draw_figures(const std::string& command, const std::string& dir) {
   const std::string failure = msislab::app::draw_montecarlo_figures(dir);
   if (!failure.empty()) {
-    std::cerr << "montecarlo: figures not drawn (" << failure << "); draw them with `msislab plot "
+    std::cerr << command << ": figures not drawn (" << failure << "); draw them with `msislab plot "
               << dir << "`" << std::endl;
     return;
   }
-  for (const char* name : {"nees.png", "error_spread.png", "error_distribution.png"}) {
-    const std::string figure = dir + "/figures/" + name;
-    if (std::filesystem::exists(figure)) std::cout << "montecarlo: wrote " << figure << "\n";
+  std::vector<std::string> figures;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/figures")) {
+    if (entry.path().extension() == ".png") figures.push_back(entry.path().filename().string());
+  }
+  std::sort(figures.begin(), figures.end());
+  for (const std::string& name : figures) {
+    std::cout << command << ": wrote " << dir << "/figures/" << name << "\n";
   }
   std::cout.flush();
 }
@@ -185,15 +190,7 @@ int run_sweep_command(SweepCli& cli) {
   std::cout << "sweep: " << dir << " holds " << outcome.cells << " cells (" << outcome.executed
             << " runs done now, " << outcome.failed << " with a failed method); wrote sweep.csv"
             << std::endl;
-  if (!cli.no_plot && cli.options.shard.empty()) {
-    const std::string failure = msislab::app::draw_montecarlo_figures(dir);
-    if (failure.empty()) {
-      std::cout << "sweep: wrote the figures in " << dir << "/figures" << std::endl;
-    } else {
-      std::cerr << "sweep: figures not drawn (" << failure << "); draw them with `msislab plot "
-                << dir << "`" << std::endl;
-    }
-  }
+  if (!cli.no_plot && cli.options.shard.empty()) draw_figures("sweep", dir);
   return 0;
 }
 
@@ -473,7 +470,7 @@ int main(int argc, char** argv) {
       if (montecarlo->got_subcommand("merge")) {
         print_montecarlo(msislab::app::merge_montecarlo(merge_options), merge_options.out_dir,
                          true);
-        if (!montecarlo_no_plot) draw_montecarlo_figures(merge_options.out_dir);
+        if (!montecarlo_no_plot) draw_figures("montecarlo", merge_options.out_dir);
       } else {
         check_montecarlo_options(montecarlo_options, *montecarlo);
         const msislab::app::MonteCarloOutcome outcome =
@@ -487,7 +484,7 @@ int main(int argc, char** argv) {
         }
         print_montecarlo(outcome, montecarlo_options.out_dir, false);
         if (!montecarlo_no_plot && montecarlo_options.shard.empty()) {
-          draw_montecarlo_figures(montecarlo_options.out_dir);
+          draw_figures("montecarlo", montecarlo_options.out_dir);
         }
       }
     }

@@ -117,6 +117,9 @@ std::vector<MethodSummary> write_summary_files(const std::string& dir,
     for (const int r : runs) records.push_back(read_run(dir, method, r));
     summaries.push_back(summarise_runs(method, records));
   }
+  for (std::size_t m = 1; m < summaries.size(); ++m) {
+    summaries[m].paired = paired_difference(summaries[m], summaries.front());
+  }
   const fs::path d(dir);
   io::write_summary_json((d / "summary.json").string(), summaries);
   io::write_montecarlo_nees_csv((d / "nees.csv").string(), summaries);

@@ -68,6 +68,13 @@ io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
       }
       row.anees = s.anees;
       row.nees_in_bounds_fraction = s.nees_in_bounds_fraction;
+      if (s.paired) {
+        row.paired_reference = s.paired->reference;
+        row.paired_difference_m = s.paired->mean_m;
+        row.paired_ci95_lower_m = s.paired->ci95_lower_m;
+        row.paired_ci95_upper_m = s.paired->ci95_upper_m;
+        row.paired_runs_lower = s.paired->runs_lower;
+      }
       table.rows.push_back(std::move(row));
     }
   }

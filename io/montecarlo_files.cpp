@@ -28,6 +28,14 @@ int int_of(const JsonObject& json, const std::string& key, int min) {
   return static_cast<int>(value);
 }
 
+/// The key is there and not null (optional sections of summary.json).
+bool has_non_null(const JsonObject& json, const std::string& key) {
+  const auto& members = json.value().members;
+  const auto it = std::find_if(members.begin(), members.end(),
+                               [&](const auto& member) { return member.first == key; });
+  return it != members.end() && it->second.type != JsonValue::Type::null;
+}
+
 }  // namespace
 
 void write_manifest_json(const std::string& path, const MonteCarloManifest& m) {
@@ -132,6 +140,17 @@ void write_summary_json(const std::string& path, const std::vector<MethodSummary
           << "    \"nees_in_bounds_fraction\": " << json_optional(s.nees_in_bounds_fraction)
           << ",\n"
           << "    \"nees_scans\": " << s.nees.size() << ",\n"
+          << "    \"paired_difference\": ";
+      if (s.paired) {
+        const PairedDifference& d = *s.paired;
+        out << "{\"reference\": " << json_string(d.reference) << ", \"runs\": " << d.runs
+            << ", \"mean_m\": " << json_number(d.mean_m) << ", \"sd_m\": " << json_number(d.sd_m)
+            << ", \"ci95_m\": [" << json_number(d.ci95_lower_m) << ", "
+            << json_number(d.ci95_upper_m) << "], \"runs_lower\": " << d.runs_lower << "}";
+      } else {
+        out << "null";
+      }
+      out << ",\n"
           << "    \"segments\": {";
       for (std::size_t k = 0; k < s.segments.size(); ++k) {
         out << (k ? ", " : "") << json_string(s.segments[k].first) << ": "
@@ -165,10 +184,7 @@ std::vector<StoredSummary> read_summary_json(const std::string& path) {
     }
     s.missing = int_of(m, "missing", 0);
     s.mean_error_m = m.number_or_null("mean_error_m");
-    const auto quantiles =
-        std::find_if(m.value().members.begin(), m.value().members.end(),
-                     [](const auto& member) { return member.first == "mean_error_quantiles_m"; });
-    if (quantiles != m.value().members.end() && quantiles->second.type != JsonValue::Type::null) {
+    if (has_non_null(m, "mean_error_quantiles_m")) {
       const JsonObject q = m.object("mean_error_quantiles_m");
       s.mean_error_quantiles_m = {q.number("p05"), q.number("p50"), q.number("p95")};
     }
@@ -176,6 +192,23 @@ std::vector<StoredSummary> read_summary_json(const std::string& path) {
     s.anees = m.number_or_null("anees");
     s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
     stored.nees_scans = static_cast<std::size_t>(int_of(m, "nees_scans", 0));
+    if (has_non_null(m, "paired_difference")) {
+      const JsonObject p = m.object("paired_difference");
+      PairedDifference d;
+      d.reference = p.string("reference");
+      d.runs = int_of(p, "runs", 2);
+      d.mean_m = p.number("mean_m");
+      d.sd_m = p.number("sd_m");
+      const std::vector<JsonValue>& ci = p.get("ci95_m", JsonValue::Type::array).items;
+      if (ci.size() != 2 || ci[0].type != JsonValue::Type::number ||
+          ci[1].type != JsonValue::Type::number) {
+        p.fail("ci95_m", "expected [lower, upper]");
+      }
+      d.ci95_lower_m = ci[0].number;
+      d.ci95_upper_m = ci[1].number;
+      d.runs_lower = int_of(p, "runs_lower", 0);
+      s.paired = d;
+    }
     const JsonObject segments = m.object("segments");
     for (const auto& [segment, window] : segments.value().members) {
       s.segments.emplace_back(segment, segments.number_or_null(segment));

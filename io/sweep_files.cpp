@@ -12,8 +12,9 @@ namespace {
 
 constexpr const char* kFigureColumns =
     "method,runs,failed,mean_error_m,mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,"
-    "nees_in_bounds_fraction";
-constexpr std::size_t kFigureCount = 9;
+    "nees_in_bounds_fraction,paired_reference,paired_difference_m,paired_ci95_lower_m,"
+    "paired_ci95_upper_m,paired_runs_lower";
+constexpr std::size_t kFigureCount = 14;
 
 std::string header_of(const std::vector<std::string>& keys) {
   std::string header = "cell";
@@ -44,6 +45,12 @@ void write_sweep_csv(const std::string& path, const SweepTable& table) {
          {r.mean_error_m, r.p05_m, r.p50_m, r.p95_m, r.anees, r.nees_in_bounds_fraction}) {
       append_optional(text, v);
     }
+    text += "," + r.paired_reference;
+    for (const auto& v : {r.paired_difference_m, r.paired_ci95_lower_m, r.paired_ci95_upper_m}) {
+      append_optional(text, v);
+    }
+    text += ",";
+    if (r.paired_runs_lower) text += std::to_string(*r.paired_runs_lower);
     text += "\n";
   }
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
@@ -92,6 +99,20 @@ SweepTable read_sweep_csv(const std::string& path) {
     r.p95_m = optional(7 + k);
     r.anees = optional(8 + k);
     r.nees_in_bounds_fraction = optional(9 + k);
+    r.paired_reference = std::string(f[10 + k]);
+    r.paired_difference_m = optional(11 + k);
+    r.paired_ci95_lower_m = optional(12 + k);
+    r.paired_ci95_upper_m = optional(13 + k);
+    if (!f[14 + k].empty()) {
+      const std::int64_t lower = parse_integer(f[14 + k], at(14 + k));
+      if (lower < 0) fail_field(at(14 + k), f[14 + k], "is not a run count");
+      r.paired_runs_lower = static_cast<int>(lower);
+    }
+    const bool paired = !r.paired_reference.empty();
+    if (paired != (r.paired_difference_m && r.paired_ci95_lower_m && r.paired_ci95_upper_m &&
+                   r.paired_runs_lower)) {
+      fail_at(path, number, "the paired_ columns are all set or all empty");
+    }
     table.rows.push_back(std::move(r));
   });
   return table;

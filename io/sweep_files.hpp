@@ -16,6 +16,11 @@ struct SweepRow {
   int failed = 0;
   std::optional<double> mean_error_m, p05_m, p50_m, p95_m;  ///< of the runs' mean errors
   std::optional<double> anees, nees_in_bounds_fraction;
+  /// The paired difference of this method's per-run mean errors minus the reference's (the
+  /// cell's first method; PairedDifference): empty for the reference itself.
+  std::string paired_reference;
+  std::optional<double> paired_difference_m, paired_ci95_lower_m, paired_ci95_upper_m;
+  std::optional<int> paired_runs_lower;
 };
 
 struct SweepTable {
@@ -24,8 +29,9 @@ struct SweepTable {
 };
 
 /// Writes sweep.csv atomically: "cell,<keys...>,method,runs,failed,mean_error_m,
-/// mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,nees_in_bounds_fraction"; an empty
-/// field is a missing value.
+/// mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,nees_in_bounds_fraction,
+/// paired_reference,paired_difference_m,paired_ci95_lower_m,paired_ci95_upper_m,
+/// paired_runs_lower"; an empty field is a missing value.
 void write_sweep_csv(const std::string& path, const SweepTable& table);
 /// Reads it back; InputError naming the file and line for a malformed row.
 SweepTable read_sweep_csv(const std::string& path);

@@ -1,5 +1,7 @@
 #include "slam/monte_carlo.hpp"
 
+#include <boost/math/distributions/students_t.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -80,6 +82,9 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     }
     ++summary.runs;
     mean_errors.push_back(run.metrics->errors.mean_m);
+    if (std::isfinite(run.metrics->errors.mean_m)) {
+      summary.run_mean_errors_m.emplace_back(run.index, run.metrics->errors.mean_m);
+    }
     final_errors.push_back(run.metrics->errors.final_m);
     if (std::isfinite(run.metrics->runtime_s)) summary.runtime_s += run.metrics->runtime_s;
     for (const ErrorSample& e : run.errors) {
@@ -122,6 +127,35 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     summary.segments.emplace_back(name, mean_present(means));
   }
   return summary;
+}
+
+std::optional<PairedDifference> paired_difference(const MethodSummary& method,
+                                                  const MethodSummary& reference) {
+  const std::map<int, double> reference_by_run(reference.run_mean_errors_m.begin(),
+                                               reference.run_mean_errors_m.end());
+  std::vector<double> d;
+  PairedDifference out;
+  out.reference = reference.method;
+  for (const auto& [run, error_m] : method.run_mean_errors_m) {
+    const auto it = reference_by_run.find(run);
+    if (it == reference_by_run.end()) continue;
+    d.push_back(error_m - it->second);
+    out.runs_lower += error_m < it->second;
+  }
+  if (d.size() < 2) return std::nullopt;
+  const double n = static_cast<double>(d.size());
+  double sum = 0.0;
+  for (const double v : d) sum += v;
+  out.mean_m = sum / n;
+  double squares = 0.0;
+  for (const double v : d) squares += (v - out.mean_m) * (v - out.mean_m);
+  out.sd_m = std::sqrt(squares / (n - 1.0));
+  const double t = boost::math::quantile(boost::math::students_t(n - 1.0), 0.975);
+  const double half_width = t * out.sd_m / std::sqrt(n);
+  out.runs = static_cast<int>(d.size());
+  out.ci95_lower_m = out.mean_m - half_width;
+  out.ci95_upper_m = out.mean_m + half_width;
+  return out;
 }
 
 std::vector<ErrorHistogram> error_histograms(const std::vector<MethodSummary>& methods, int bins) {

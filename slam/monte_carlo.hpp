@@ -51,6 +51,23 @@ struct ErrorSpread {
   double p95_m = 0.0;
 };
 
+/// A paired comparison of two methods' mean errors over the runs both finished: for each such run
+/// r, d_r = (method's mean error) - (reference's mean error), then the mean of the d_r with its
+/// two-sided 95 % confidence interval (Student t with runs - 1 DOF). The pairing takes out the
+/// run-to-run spread both methods share (the same simulated data), so a difference far smaller
+/// than either method's spread can still be told from zero.
+struct PairedDifference {
+  std::string reference;  ///< the method subtracted
+  int runs = 0;           ///< runs both finished
+  double mean_m = 0.0;    ///< mean of d_r: below 0, the method's errors are smaller
+  double sd_m = 0.0;      ///< sample standard deviation of d_r
+  double ci95_lower_m = 0.0;
+  double ci95_upper_m = 0.0;
+  int runs_lower = 0;  ///< runs where the method's mean error is below the reference's
+  /// Zero lies outside the interval: the two differ beyond the Monte Carlo noise.
+  bool significant() const { return ci95_lower_m > 0.0 || ci95_upper_m < 0.0; }
+};
+
 /// The runs of one method summarised.
 struct MethodSummary {
   std::string method;
@@ -71,7 +88,17 @@ struct MethodSummary {
   double runtime_s = 0.0;                 ///< sum of the runs' runtime_s
   std::vector<ErrorSpread> error_spread;  ///< per time the runs sampled, in time order
   std::vector<double> pooled_errors_m;    ///< every run's error samples, for the distribution
+  /// (run index, mean error) of every finished run with a mean error, in run order, for
+  /// paired_difference (not in summary.json).
+  std::vector<std::pair<int, double>> run_mean_errors_m;
+  /// Against the Monte Carlo directory's first method (its own row has none).
+  std::optional<PairedDifference> paired;
 };
+
+/// The paired difference of method's mean errors minus reference's over the runs both have;
+/// nullopt with fewer than 2 such runs.
+std::optional<PairedDifference> paired_difference(const MethodSummary& method,
+                                                  const MethodSummary& reference);
 
 /// A histogram of each method's pooled position errors on bins shared by all the methods.
 struct ErrorHistogram {

@@ -72,6 +72,18 @@ TEST(SweepCommand, GridCellsAndSweepCsv) {
     ASSERT_TRUE(r.mean_error_m && r.p05_m && r.p95_m && r.anees);
     EXPECT_LE(*r.p05_m, *r.mean_error_m + 1e-12);
     EXPECT_GE(*r.p95_m, *r.mean_error_m - 1e-12);
+    // Each cell's second method against its first, over the same runs.
+    const bool first = r.method == table.rows[2 * r.cell].method;
+    EXPECT_EQ(r.paired_reference, first ? "" : table.rows[2 * r.cell].method);
+    EXPECT_EQ(r.paired_difference_m.has_value(), !first);
+    if (!first) {
+      EXPECT_LE(*r.paired_ci95_lower_m, *r.paired_difference_m);
+      EXPECT_GE(*r.paired_ci95_upper_m, *r.paired_difference_m);
+      EXPECT_LE(*r.paired_runs_lower, 2);
+      // Every run finished: the mean difference is the difference of the means.
+      EXPECT_NEAR(*r.paired_difference_m, *r.mean_error_m - *table.rows[2 * r.cell].mean_error_m,
+                  1e-9);
+    }
   }
   // The overrides took effect: each cell's inputs carry them, and the heading noise changes
   // dead reckoning (which no SLAM key touches) while the matches per scan do not.

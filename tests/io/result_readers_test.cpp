@@ -8,6 +8,8 @@
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
+#include "io/sweep_files.hpp"
+#include "io/text_lines.hpp"
 #include "test_support.hpp"
 
 namespace msislab::io {
@@ -155,6 +157,7 @@ TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
   MethodSummary dr;
   dr.method = "deadreckoning";
   dr.runs = 50;
+  dr.paired = PairedDifference{"robocentric", 48, 1.25, 0.5, 1.1, 1.4, 3};
   const std::string path = tmp.file("summary.json");
   write_summary_json(path, {rc, dr});
   const std::vector<StoredSummary> stored = read_summary_json(path);
@@ -181,6 +184,15 @@ TEST(ResultReaders, SummaryJsonWrittenByMontecarloReadsBack) {
   EXPECT_EQ(back[1].method, "deadreckoning");
   EXPECT_FALSE(back[1].anees);
   EXPECT_FALSE(back[1].mean_error_m);
+  EXPECT_FALSE(back[0].paired);
+  ASSERT_TRUE(back[1].paired);
+  EXPECT_EQ(back[1].paired->reference, "robocentric");
+  EXPECT_EQ(back[1].paired->runs, 48);
+  EXPECT_EQ(back[1].paired->mean_m, 1.25);
+  EXPECT_EQ(back[1].paired->sd_m, 0.5);
+  EXPECT_EQ(back[1].paired->ci95_lower_m, 1.1);
+  EXPECT_EQ(back[1].paired->ci95_upper_m, 1.4);
+  EXPECT_EQ(back[1].paired->runs_lower, 3);
 
   write_text(path, "{}\n");
   expect_error([&] { read_summary_json(path); }, "summary.json: no method");
@@ -237,6 +249,41 @@ TEST(ResultReaders, ErrorSpreadAndHistogramCsvReadBack) {
       EXPECT_NE(std::string(e.what()).find(tmp.file(file) + ":"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(ResultReaders, SweepCsvWithPairedColumnsReadsBack) {
+  const TempDir tmp;
+  SweepTable table;
+  table.keys = {"scenario.sonar.revolution_s"};
+  SweepRow rc;
+  rc.cell = 0;
+  rc.values = {"13.8"};
+  rc.method = "robocentric";
+  rc.runs = 20;
+  rc.mean_error_m = 1.5;
+  SweepRow wc = rc;
+  wc.method = "worldcentric";
+  wc.paired_reference = "robocentric";
+  wc.paired_difference_m = 0.02;
+  wc.paired_ci95_lower_m = -0.01;
+  wc.paired_ci95_upper_m = 0.05;
+  wc.paired_runs_lower = 7;
+  table.rows = {rc, wc};
+  const std::string path = tmp.file("sweep.csv");
+  write_sweep_csv(path, table);
+  const SweepTable back = read_sweep_csv(path);
+  ASSERT_EQ(back.rows.size(), 2u);
+  EXPECT_EQ(back.rows[0].paired_reference, "");
+  EXPECT_FALSE(back.rows[0].paired_difference_m);
+  EXPECT_EQ(back.rows[1].paired_reference, "robocentric");
+  EXPECT_EQ(back.rows[1].paired_difference_m, 0.02);
+  EXPECT_EQ(back.rows[1].paired_ci95_lower_m, -0.01);
+  EXPECT_EQ(back.rows[1].paired_ci95_upper_m, 0.05);
+  EXPECT_EQ(back.rows[1].paired_runs_lower, 7);
+  // A reference without its figures is one error naming the file and line.
+  const std::string text = read_whole_file(path);
+  write_text(path, text.substr(0, text.rfind(",0.02,")) + ",,-0.01,0.05,7\n");
+  expect_error([&] { read_sweep_csv(path); }, "sweep.csv:3: the paired_ columns");
 }
 
 }  // namespace

@@ -127,6 +127,48 @@ TEST(MonteCarlo, QuantilesOfTheRunsMeanErrors) {
   EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
 }
 
+TEST(MonteCarlo, PairedDifferenceOverTheRunsBothFinished) {
+  // Method a: 1, 2, 3, 4 m in runs 0-3; method b: a + 0.1, 0.2, 0.3 in runs 0-2 and run 3 failed.
+  // The runs differ by metres, the methods by decimetres: pairing tells them apart.
+  std::vector<MonteCarloRun> a, b;
+  for (int r = 0; r < 4; ++r) a.push_back(finished(r, 1.0 + r, 0.1, {}, 1.0));
+  for (int r = 0; r < 3; ++r) b.push_back(finished(r, 1.0 + r + 0.1 * (r + 1), 0.1, {}, 1.0));
+  MonteCarloRun failed;
+  failed.index = 3;
+  failed.failed = true;
+  b.push_back(failed);
+  const MethodSummary sa = summarise_runs("a", a), sb = summarise_runs("b", b);
+  const std::optional<PairedDifference> d = paired_difference(sb, sa);
+  ASSERT_TRUE(d);
+  EXPECT_EQ(d->reference, "a");
+  EXPECT_EQ(d->runs, 3);
+  EXPECT_NEAR(d->mean_m, 0.2, 1e-12);
+  EXPECT_NEAR(d->sd_m, 0.1, 1e-12);
+  // t(0.975; 2 DOF) = 4.302653: half width 4.302653 x 0.1 / sqrt(3).
+  EXPECT_NEAR(d->ci95_upper_m - d->mean_m, 4.302653 * 0.1 / std::sqrt(3.0), 1e-6);
+  EXPECT_NEAR(d->mean_m - d->ci95_lower_m, 4.302653 * 0.1 / std::sqrt(3.0), 1e-6);
+  EXPECT_EQ(d->runs_lower, 0);
+  EXPECT_FALSE(d->significant());  // 0.2 +- 0.248 m with three runs
+  const std::optional<PairedDifference> back = paired_difference(sa, sb);
+  ASSERT_TRUE(back);
+  EXPECT_NEAR(back->mean_m, -0.2, 1e-12);
+  EXPECT_EQ(back->runs_lower, 3);
+
+  // Twenty runs of a constant 0.05 m offset plus small noise: significant.
+  std::vector<MonteCarloRun> c, e;
+  for (int r = 0; r < 20; ++r) {
+    c.push_back(finished(r, 1.0 + 0.3 * r, 0.1, {}, 1.0));
+    e.push_back(finished(r, 1.0 + 0.3 * r + 0.05 + 0.01 * ((r % 3) - 1), 0.1, {}, 1.0));
+  }
+  const std::optional<PairedDifference> offset =
+      paired_difference(summarise_runs("e", e), summarise_runs("c", c));
+  ASSERT_TRUE(offset);
+  EXPECT_TRUE(offset->significant());
+  EXPECT_GT(offset->ci95_lower_m, 0.04);
+  // Fewer than two common runs: no interval.
+  EXPECT_FALSE(paired_difference(summarise_runs("x", {a[0]}), sa));
+}
+
 TEST(MonteCarlo, ErrorSpreadOverTheRunsAtEachTime) {
   std::vector<MonteCarloRun> runs;
   for (int r = 0; r < 5; ++r) {

@@ -94,7 +94,8 @@ std::vector<std::string> draw_plot(const PlotInputs& in) {
     for (std::size_t k = 0; k < in.sweep->keys.size(); ++k) {
       std::string stem = in.sweep->keys[k];
       std::replace(stem.begin(), stem.end(), '.', '_');
-      for (const char* metric : {"mean_error", "anees"}) {
+      for (const char* metric : {"mean_error", "anees", "paired_difference", "linearisation"}) {
+        if (!sweep_has_metric(*in.sweep, metric)) continue;
         writer.chart(figures, "sweep_" + stem + "_" + metric + ".png",
                      sweep_chart(*in.sweep, k, metric, options.width_px, options.height_px));
       }

@@ -5,10 +5,12 @@
 #include "app/methods.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 #include "io/text_lines.hpp"
 
@@ -312,11 +314,82 @@ plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& hist
   return chart;
 }
 
+namespace {
+
+/// The sweep figures' y values: per metric, its kinds (one line per method and kind) and the value
+/// with its band of a row.
+struct SweepMetric {
+  std::string y_label, title;
+  std::vector<std::string> kinds;  ///< "" for a metric of one kind
+  bool log_y = false;
+  std::optional<double> value(const io::SweepRow& r, std::size_t kind) const;
+  std::optional<std::pair<double, double>> band(const io::SweepRow& r) const;
+  std::string name;
+};
+
+SweepMetric sweep_metric(const std::string& metric, const io::SweepTable& table) {
+  SweepMetric m;
+  m.name = metric;
+  m.kinds = {""};
+  if (metric == "mean_error") {
+    m.y_label = "mean position error [m]";
+    m.title = "Mean error (dotted: 5-95 % of runs)";
+  } else if (metric == "anees") {
+    m.y_label = "ANEES";
+    m.title = "ANEES";
+    m.log_y = true;
+  } else if (metric == "paired_difference") {
+    std::string reference;
+    for (const io::SweepRow& r : table.rows) {
+      if (!r.paired_reference.empty()) reference = r.paired_reference;
+    }
+    m.y_label = "mean error minus " + method_title(reference) + "'s, same runs [m]";
+    m.title = "Paired difference (dotted: 95 % interval)";
+  } else if (metric == "linearisation") {
+    m.y_label = "linearisation error epsilon";
+    m.title = "Linearisation error";
+    m.kinds = {"match update", "inversion", "pose read-out"};
+    m.log_y = true;
+  } else {
+    throw std::invalid_argument("sweep_chart: unknown metric '" + metric + "'");
+  }
+  return m;
+}
+
+std::optional<double> SweepMetric::value(const io::SweepRow& r, std::size_t kind) const {
+  if (name == "mean_error") return r.mean_error_m;
+  if (name == "anees") return r.anees;
+  if (name == "paired_difference") return r.paired_difference_m;
+  const std::optional<double> v = std::array{r.linearisation_observation, r.linearisation_inversion,
+                                             r.linearisation_pose}[kind];
+  return v && *v > 0.0 ? v : std::nullopt;  // a log axis
+}
+
+std::optional<std::pair<double, double>> SweepMetric::band(const io::SweepRow& r) const {
+  if (name == "mean_error" && r.p05_m && r.p95_m) return std::pair{*r.p05_m, *r.p95_m};
+  if (name == "paired_difference" && r.paired_ci95_lower_m && r.paired_ci95_upper_m) {
+    return std::pair{*r.paired_ci95_lower_m, *r.paired_ci95_upper_m};
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+bool sweep_has_metric(const io::SweepTable& table, const std::string& metric) {
+  const SweepMetric m = sweep_metric(metric, table);
+  for (const io::SweepRow& r : table.rows) {
+    for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
+      if (m.value(r, kind)) return true;
+    }
+  }
+  return false;
+}
+
 plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
                             int width_px, int height_px) {
-  const bool error = metric == "mean_error";
-  plot::ChartSpec chart = empty_chart(table.keys[key], error ? "mean position error [m]" : "ANEES",
-                                      width_px, height_px);
+  const SweepMetric m = sweep_metric(metric, table);
+  plot::ChartSpec chart = empty_chart(table.keys[key], m.y_label, width_px, height_px);
+  chart.log_y = m.log_y;
   // The key's values in first-seen order; their x: the number, else the rank.
   std::vector<std::string> values;
   bool numeric = true;
@@ -338,78 +411,85 @@ plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const 
       ranks += (ranks.empty() ? "" : ", ") + std::to_string(i) + ": " + values[i];
     }
   }
-  chart.title = (error ? "Mean error (dotted: 5-95 % of runs)" : "ANEES") + std::string(" vs ") +
-                table.keys[key].substr(table.keys[key].rfind('.') + 1) +
+  chart.title = m.title + " vs " + table.keys[key].substr(table.keys[key].rfind('.') + 1) +
                 (ranks.empty() ? "" : " (" + ranks + ")");
-  // One line per method and combination of the other keys' values; when each value of this key
-  // is one cell (a list whose other keys move with it), one line per method.
+  // One line per method (and kind) and combination of the other keys' values; when each value of
+  // this key is one cell (a list whose other keys move with it), one line per method (and kind).
   std::set<int> cells;
   for (const io::SweepRow& r : table.rows) cells.insert(r.cell);
   const bool one_cell_per_value = cells.size() == values.size();
-  std::vector<std::string> lines;
-  const auto line_of = [&](const io::SweepRow& r) {
+  const auto line_of = [&](const io::SweepRow& r, std::size_t kind) {
     // The other keys by their last name: "Robocentric SLAM, iekf_iterations=1".
     std::string name = method_title(r.method);
+    if (!m.kinds[kind].empty()) name += ": " + m.kinds[kind];
     for (std::size_t k = 0; k < table.keys.size() && !one_cell_per_value; ++k) {
       if (k != key)
         name += ", " + table.keys[k].substr(table.keys[k].rfind('.') + 1) + "=" + r.values[k];
     }
     return name;
   };
-  for (const io::SweepRow& r : table.rows) {
-    if (std::find(lines.begin(), lines.end(), line_of(r)) == lines.end())
-      lines.push_back(line_of(r));
+  std::vector<std::pair<std::string, std::size_t>> lines;  // name, kind
+  for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
+    for (const io::SweepRow& r : table.rows) {
+      const std::pair line{line_of(r, kind), kind};
+      if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
+    }
   }
   std::map<std::string, int> shade;  // the lines of a method so far: each a darker shade
-  for (const std::string& line : lines) {
+  for (const auto& [line, kind] : lines) {
     std::string method;
     std::vector<std::pair<double, const io::SweepRow*>> points;
     for (const io::SweepRow& r : table.rows) {
-      if (line_of(r) != line) continue;
+      if (line_of(r, kind) != line) continue;
       method = r.method;
       const auto at = std::find(values.begin(), values.end(), r.values[key]) - values.begin();
       points.emplace_back(x_of[static_cast<std::size_t>(at)], &r);
     }
     std::sort(points.begin(), points.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
-    const std::uint32_t rgb = darker(method_colour(method), std::pow(0.6, shade[method]++));
-    plot::Series mid{line, {}, {}, method_style(method), rgb, 2.5f};
-    plot::Series low{"", {}, {}, plot::SeriesStyle::kDottedLine, rgb, 1.5f};
-    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, rgb, 1.5f};
+    plot::Series mid{line, {}, {}, method_style(method), 0, 2.5f};
+    plot::Series low{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
+    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
     for (const auto& [x, r] : points) {
-      const std::optional<double> y = error ? r->mean_error_m : r->anees;
+      const std::optional<double> y = m.value(*r, kind);
       if (!y) continue;
       mid.x.push_back(x);
       mid.y.push_back(*y);
-      if (error && r->p05_m && r->p95_m) {
+      if (const auto band = m.band(*r)) {
         low.x.push_back(x);
-        low.y.push_back(*r->p05_m);
+        low.y.push_back(band->first);
         high.x.push_back(x);
-        high.y.push_back(*r->p95_m);
+        high.y.push_back(band->second);
       }
     }
     if (mid.x.empty()) continue;
-    if (error && !low.x.empty()) {
+    const std::uint32_t rgb = darker(method_colour(method), std::pow(0.6, shade[method]++));
+    mid.rgb = low.rgb = high.rgb = rgb;
+    // A line needs two points (VTK refuses shorter ones); a single value is drawn as its point,
+    // labelled.
+    if (low.x.size() > 1) {
       chart.series.push_back(std::move(low));
       chart.series.push_back(std::move(high));
     }
     plot::Series points_of_mid = mid;
-    points_of_mid.label.clear();
     points_of_mid.style = plot::SeriesStyle::kPoints;
     points_of_mid.width_px = 8.0f;
-    chart.series.push_back(std::move(mid));
+    if (mid.x.size() > 1) {
+      points_of_mid.label.clear();
+      chart.series.push_back(std::move(mid));
+    }
     chart.series.push_back(std::move(points_of_mid));
   }
-  if (!error) {
-    const double x_min = *std::min_element(x_of.begin(), x_of.end());
-    const double x_max = *std::max_element(x_of.begin(), x_of.end());
-    chart.series.push_back({"consistent (3)",
+  const double x_min = *std::min_element(x_of.begin(), x_of.end());
+  const double x_max = *std::max_element(x_of.begin(), x_of.end());
+  if (metric == "anees" || metric == "paired_difference") {
+    const double level = metric == "anees" ? 3.0 : 0.0;
+    chart.series.push_back({metric == "anees" ? "consistent (3)" : "no difference",
                             {x_min, x_max},
-                            {3.0, 3.0},
+                            {level, level},
                             plot::SeriesStyle::kDottedLine,
                             0x888888,
                             2.0f});
-    chart.log_y = true;
   }
   return chart;
 }

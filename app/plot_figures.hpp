@@ -30,9 +30,14 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
 plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
                                          int width_px, int height_px);
 
-/// A sweep: a metric of the cells ("mean_error" with its 5-95 % band over the runs' mean errors,
-/// or "anees") against one swept key, one line per method and per value of the other keys.
-/// Numeric values are placed at their value, others at their rank (named in the title).
+/// A sweep: a metric of the cells against one swept key, one line per method and per value of the
+/// other keys: "mean_error" with its 5-95 % band over the runs' mean errors, "anees",
+/// "paired_difference" (each method's per-run mean error minus the first method's, with its 95 %
+/// interval) or "linearisation" (epsilon of the match update, the inversion and the pose read-out:
+/// a line per method and kind, log axis). Numeric values are placed at their value, others at
+/// their rank (named in the title). std::invalid_argument for another metric.
+/// Whether any row has a value of the metric (the figures drawn are those with data).
+bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
 plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
                             int width_px, int height_px);
 

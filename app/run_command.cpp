@@ -160,6 +160,13 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam
       diagnostics.emplace_back(name, *scale);
     }
   }
+  // The measured linearisation error (trajectory_slam.linearisation_samples > 0).
+  for (const auto& [name, tally] :
+       {std::pair{"linearisation_observation", &slam.totals.linearisation_observation},
+        std::pair{"linearisation_inversion", &slam.totals.linearisation_inversion},
+        std::pair{"linearisation_pose", &slam.totals.linearisation_pose}}) {
+    if (const std::optional<double> mean = tally->mean()) diagnostics.emplace_back(name, *mean);
+  }
   return diagnostics;
 }
 

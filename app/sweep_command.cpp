@@ -75,6 +75,11 @@ io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
         row.paired_ci95_upper_m = s.paired->ci95_upper_m;
         row.paired_runs_lower = s.paired->runs_lower;
       }
+      for (const auto& [name, value] : s.diagnostics) {
+        if (name == "linearisation_observation") row.linearisation_observation = value;
+        if (name == "linearisation_inversion") row.linearisation_inversion = value;
+        if (name == "linearisation_pose") row.linearisation_pose = value;
+      }
       table.rows.push_back(std::move(row));
     }
   }

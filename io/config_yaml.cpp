@@ -181,6 +181,7 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.boolean("joint_update", c.joint_update);
   map.boolean("match_cross_covariance", c.match_cross_covariance);
   map.boolean("update_whole_state", c.update_whole_state);
+  read_count(map, "linearisation_samples", c.linearisation_samples, 0, 1000000);
   read_matching(map.map("matching"), c.matching);
   read_validation(map.map("validation"), c.validation);
   map.finish();

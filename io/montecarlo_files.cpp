@@ -157,6 +157,12 @@ void write_summary_json(const std::string& path, const std::vector<MethodSummary
             << json_optional(s.segments[k].second);
       }
       out << "},\n"
+          << "    \"diagnostics\": {";
+      for (std::size_t k = 0; k < s.diagnostics.size(); ++k) {
+        out << (k ? ", " : "") << json_string(s.diagnostics[k].first) << ": "
+            << json_number(s.diagnostics[k].second);
+      }
+      out << "},\n"
           << "    \"runtime_s\": " << json_number(s.runtime_s) << "\n"
           << "  }";
     }
@@ -212,6 +218,12 @@ std::vector<StoredSummary> read_summary_json(const std::string& path) {
     const JsonObject segments = m.object("segments");
     for (const auto& [segment, window] : segments.value().members) {
       s.segments.emplace_back(segment, segments.number_or_null(segment));
+    }
+    if (has_non_null(m, "diagnostics")) {  // absent from directories of earlier versions
+      const JsonObject diagnostics = m.object("diagnostics");
+      for (const auto& member : diagnostics.value().members) {
+        s.diagnostics.emplace_back(member.first, diagnostics.number(member.first));
+      }
     }
     s.runtime_s = m.number("runtime_s");
     methods.push_back(std::move(stored));

@@ -13,8 +13,9 @@ namespace {
 constexpr const char* kFigureColumns =
     "method,runs,failed,mean_error_m,mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,"
     "nees_in_bounds_fraction,paired_reference,paired_difference_m,paired_ci95_lower_m,"
-    "paired_ci95_upper_m,paired_runs_lower";
-constexpr std::size_t kFigureCount = 14;
+    "paired_ci95_upper_m,paired_runs_lower,linearisation_observation,linearisation_inversion,"
+    "linearisation_pose";
+constexpr std::size_t kFigureCount = 17;
 
 std::string header_of(const std::vector<std::string>& keys) {
   std::string header = "cell";
@@ -51,6 +52,10 @@ void write_sweep_csv(const std::string& path, const SweepTable& table) {
     }
     text += ",";
     if (r.paired_runs_lower) text += std::to_string(*r.paired_runs_lower);
+    for (const auto& v :
+         {r.linearisation_observation, r.linearisation_inversion, r.linearisation_pose}) {
+      append_optional(text, v);
+    }
     text += "\n";
   }
   write_file_atomically(path, [&](std::ostream& out) { out << text; });
@@ -108,6 +113,9 @@ SweepTable read_sweep_csv(const std::string& path) {
       if (lower < 0) fail_field(at(14 + k), f[14 + k], "is not a run count");
       r.paired_runs_lower = static_cast<int>(lower);
     }
+    r.linearisation_observation = optional(15 + k);
+    r.linearisation_inversion = optional(16 + k);
+    r.linearisation_pose = optional(17 + k);
     const bool paired = !r.paired_reference.empty();
     if (paired != (r.paired_difference_m && r.paired_ci95_lower_m && r.paired_ci95_upper_m &&
                    r.paired_runs_lower)) {

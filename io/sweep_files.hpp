@@ -21,6 +21,8 @@ struct SweepRow {
   std::string paired_reference;
   std::optional<double> paired_difference_m, paired_ci95_lower_m, paired_ci95_upper_m;
   std::optional<int> paired_runs_lower;
+  /// The summary's linearisation_* diagnostics (trajectory_slam.linearisation_samples > 0).
+  std::optional<double> linearisation_observation, linearisation_inversion, linearisation_pose;
 };
 
 struct SweepTable {
@@ -31,7 +33,8 @@ struct SweepTable {
 /// Writes sweep.csv atomically: "cell,<keys...>,method,runs,failed,mean_error_m,
 /// mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,nees_in_bounds_fraction,
 /// paired_reference,paired_difference_m,paired_ci95_lower_m,paired_ci95_upper_m,
-/// paired_runs_lower"; an empty field is a missing value.
+/// paired_runs_lower,linearisation_observation,linearisation_inversion,linearisation_pose"; an
+/// empty field is a missing value.
 void write_sweep_csv(const std::string& path, const SweepTable& table);
 /// Reads it back; InputError naming the file and line for a malformed row.
 SweepTable read_sweep_csv(const std::string& path);

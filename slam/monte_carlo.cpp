@@ -126,6 +126,21 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     }
     summary.segments.emplace_back(name, mean_present(means));
   }
+  std::vector<std::pair<std::string, std::pair<double, int>>> diagnostics;  // sum, count
+  for (const MonteCarloRun& run : runs) {
+    if (!run.metrics) continue;
+    for (const auto& [name, value] : run.metrics->diagnostics) {
+      if (!std::isfinite(value)) continue;
+      auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
+                             [&](const auto& d) { return d.first == name; });
+      if (it == diagnostics.end()) it = diagnostics.insert(diagnostics.end(), {name, {0.0, 0}});
+      it->second.first += value;
+      ++it->second.second;
+    }
+  }
+  for (const auto& [name, sum_count] : diagnostics) {
+    summary.diagnostics.emplace_back(name, sum_count.first / sum_count.second);
+  }
   return summary;
 }
 

@@ -85,6 +85,9 @@ struct MethodSummary {
   /// Segment name -> mean over the runs of the segment's mean error (runs where it is null
   /// skipped).
   std::vector<std::pair<std::string, std::optional<double>>> segments;
+  /// metrics.json's diagnostics, each the mean over the finished runs with a finite value, in
+  /// first-seen order.
+  std::vector<std::pair<std::string, double>> diagnostics;
   double runtime_s = 0.0;                 ///< sum of the runs' runtime_s
   std::vector<ErrorSpread> error_spread;  ///< per time the runs sampled, in time order
   std::vector<double> pooled_errors_m;    ///< every run's error samples, for the distribution

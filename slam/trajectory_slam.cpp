@@ -102,6 +102,7 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
     stats.skipped = true;
     ++totals_.skipped;
     finish_step();
+    measure_pose_linearisation();
     return stats;
   }
 
@@ -135,12 +136,51 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   totals_.matched += stats.matched;
   totals_.accepted += stats.accepted;
   finish_step();
+  measure_pose_linearisation();
   return stats;
+}
+
+void TrajectorySlam::measure_pose_linearisation() {
+  if (config_.linearisation_samples < 1) return;
+  const std::size_t k = elements_.size() - 1;
+  Eigen::MatrixXd H;
+  const Pose2 pose_hat = pose_in_start_frame(k, &H);
+  Eigen::VectorXd x_hat(static_cast<Eigen::Index>(3 * elements_.size()));
+  for (std::size_t j = 0; j < elements_.size(); ++j) {
+    x_hat.segment<3>(static_cast<Eigen::Index>(3 * j)) = elements_[j].vector();
+  }
+  const std::vector<Pose2> saved = elements_;
+  const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+    for (std::size_t j = 0; j < elements_.size(); ++j) {
+      elements_[j] = Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
+    }
+    const Pose2 pose = pose_in_start_frame(k, nullptr);
+    elements_ = saved;
+    return pose_difference(pose, pose_hat);
+  };
+  totals_.linearisation_pose.add(linearisation_error(
+      deviation, x_hat, P_, H, propagate(0, H), config_.linearisation_samples, linearisation_rng_));
+}
+
+void TrajectorySlam::measure_inversion_linearisation() {
+  if (config_.linearisation_samples < 1) return;
+  const Pose2 e_hat = elements_.back();
+  const Eigen::Index k = static_cast<Eigen::Index>(3 * (elements_.size() - 1));
+  Eigen::Matrix3d J;
+  const Pose2 inverse_hat = e_hat.inverse(&J);
+  const Eigen::Matrix3d P_e = P_.block<3, 3>(k, k);
+  const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+    return pose_difference(Pose2(Eigen::Vector3d(x)).inverse(), inverse_hat);
+  };
+  totals_.linearisation_inversion.add(
+      linearisation_error(deviation, e_hat.vector(), P_e, J, J * P_e * J.transpose(),
+                          config_.linearisation_samples, linearisation_rng_));
 }
 
 template <class Residual>
 bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Residual& residual,
-                            const Eigen::MatrixXd& R, double gate_chi2, int& window_elements) {
+                            const Eigen::MatrixXd& R, double gate_chi2, bool measure_linearisation,
+                            int& window_elements) {
   // The window: from the start of the group holding the first involved element to b (the newest
   // element), which takes in every element correlated with the ones h depends on.
   const std::size_t first = config_.update_whole_state ? 0 : group_start_[first_involved];
@@ -173,6 +213,23 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
     const Eigen::VectorXd innovation = z_minus_h - H * dx;
     if (iteration == 0 && innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
       return false;  // the observation disagrees with the prediction: leave the state as it was
+    }
+    if (iteration == 0 && measure_linearisation && config_.linearisation_samples > 0) {
+      // epsilon of h at the prior over the involved elements: A (h(X) - h(X^)) = r(X^) - r(X).
+      const Eigen::Index n = m - h_col;
+      const std::vector<Pose2> saved(prior.begin() + (first_involved - first), prior.end());
+      const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+        for (std::size_t j = 0; j < saved.size(); ++j) {
+          elements_[first_involved + j] =
+              Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
+        }
+        const Eigen::VectorXd r = residual(nullptr);
+        std::copy(saved.begin(), saved.end(), elements_.begin() + first_involved);
+        return z_minus_h - r;
+      };
+      totals_.linearisation_observation.add(
+          linearisation_error(deviation, x_prior.tail(n), P_window.bottomRightCorner(n, n),
+                              H_involved, S, config_.linearisation_samples, linearisation_rng_));
     }
     K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
     const Eigen::VectorXd x_new = x_prior + K * innovation;
@@ -369,7 +426,7 @@ bool TrajectorySlam::update_relative_poses(std::size_t b,
   }
   const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
   return update(first_involved(b, z), b, residual, R,
-                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), window_elements);
+                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), true, window_elements);
 }
 
 bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double sigma_rad,
@@ -383,7 +440,8 @@ bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double 
         1, normalize_angle(yaw_world_rad - start_world_.mean.yaw() - pose.yaw()));
   };
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
-  return update(0, b, residual, R, config_.compass_gate_chi2, window_elements);
+  // The chain's yaw is the sum of its elements' yaws: linear, nothing to measure.
+  return update(0, b, residual, R, config_.compass_gate_chi2, false, window_elements);
 }
 
 }  // namespace msislab

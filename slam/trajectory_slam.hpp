@@ -20,9 +20,11 @@
 #include <Eigen/Core>
 #include <array>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
+#include "slam/linearisation_error.hpp"
 #include "slam/match_validation.hpp"
 #include "slam/scan_builder.hpp"
 #include "slam/scan_matching.hpp"
@@ -49,6 +51,10 @@ struct TrajectorySlamConfig {
   /// Update every element instead of the loop's window (the same result at a higher cost; for
   /// checks and timing).
   bool update_whole_state = false;
+  /// Measure the linearisation error epsilon (slam/linearisation_error.hpp) of every accepted
+  /// match's update, of the robocentric inversion and of the newest scan's pose, with this many
+  /// samples each (a study's diagnostic, in metrics.json; it does not change the estimate). 0: off.
+  int linearisation_samples = 0;
   ScanMatchConfig matching;
   MatchValidationConfig validation;  ///< checks a match passes before the update (Sec. below)
 };
@@ -106,6 +112,11 @@ struct SlamTotals {
   int accepted = 0;
   int compass_accepted = 0;
   MatchRejectionCounts rejections;
+  /// epsilon per linearisation, with linearisation_samples > 0: each accepted match update's
+  /// h(X) at the prior (in the innovation covariance), each robocentric inversion (-)e_k (in
+  /// J- P J-^T), and after each step the newest scan's pose in the start frame, the chain's
+  /// read-out (in its propagated covariance, what NEES is scored with).
+  LinearisationTally linearisation_observation, linearisation_inversion, linearisation_pose;
 };
 
 /// An observation z of the pose of the newest scan in the frame of scan `reference`, in the
@@ -163,6 +174,9 @@ class TrajectorySlam {
 
   /// The covariance of a function of elements [first, first + m) with Jacobian J (3 x 3m).
   Eigen::Matrix3d propagate(std::size_t first, const Eigen::MatrixXd& J) const;
+  /// With linearisation_samples > 0: tallies epsilon of inverting the newest element (the
+  /// robocentric inversion, Eq. 11-13), before it is inverted.
+  void measure_inversion_linearisation();
 
   TrajectorySlamConfig config_;
   GaussianPose2 start_world_;
@@ -172,9 +186,13 @@ class TrajectorySlam {
  private:
   /// An observation: the wrapped residual z - h(X) and, with H, its Jacobian with respect to the
   /// elements first..b.
+  /// With measure_linearisation (and linearisation_samples > 0), tallies epsilon of the residual
+  /// at the prior when the update is accepted.
   template <class Residual>
   bool update(std::size_t first, std::size_t b, const Residual& residual, const Eigen::MatrixXd& R,
-              double gate_chi2, int& window_elements);
+              double gate_chi2, bool measure_linearisation, int& window_elements);
+  /// With linearisation_samples > 0: tallies epsilon of the newest scan's pose in the start frame.
+  void measure_pose_linearisation();
   /// The step's validated matches of scan k against the candidates, one update after the other.
   void update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
                            SlamStepStats& stats);
@@ -196,6 +214,7 @@ class TrajectorySlam {
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
   std::vector<std::vector<ScanPoint>> points_;
   SlamTotals totals_;
+  std::mt19937_64 linearisation_rng_{0x6c696e656172ULL};  ///< fixed: the same run, the same bytes
 };
 
 }  // namespace msislab

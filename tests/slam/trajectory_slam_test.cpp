@@ -178,6 +178,34 @@ TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
   }
 }
 
+TEST_P(BothMethods, MeasuringTheLinearisationChangesNoEstimate) {
+  // linearisation_samples draws samples of the state and puts it back: the same estimate to the
+  // bit; epsilon per kind (the inversion only robocentric), small at this noise and larger at
+  // ten times it.
+  const Loop loop = make_loop(4, false);
+  TrajectorySlamConfig measured;
+  measured.linearisation_samples = 50;
+  const auto plain = make_slam(GetParam()), measuring = make_slam(GetParam(), measured);
+  const std::vector<GaussianPose2> a = run(*plain, loop.scans), b = run(*measuring, loop.scans);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].mean.vector(), b[i].mean.vector()) << "scan " << i;
+    EXPECT_EQ(a[i].cov, b[i].cov) << "scan " << i;
+  }
+  const SlamTotals& t = measuring->totals();
+  EXPECT_FALSE(plain->totals().linearisation_pose.mean());
+  EXPECT_EQ(t.linearisation_observation.count, t.accepted);
+  EXPECT_EQ(t.linearisation_pose.count, static_cast<int>(loop.scans.size()));
+  EXPECT_EQ(t.linearisation_inversion.count,
+            GetParam() == "robocentric" ? static_cast<int>(loop.scans.size()) : 0);
+  EXPECT_LT(*t.linearisation_observation.mean(), 0.01);
+  EXPECT_LT(*t.linearisation_pose.mean(), 0.01);
+
+  const Loop noisy = make_loop(4, false, 10.0);
+  const auto noisy_slam = make_slam(GetParam(), measured);
+  run(*noisy_slam, noisy.scans);
+  EXPECT_GT(*noisy_slam->totals().linearisation_pose.mean(), 10.0 * *t.linearisation_pose.mean());
+}
+
 TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   // With the headings known exactly (zero yaw variance in every motion) the relative poses are
   // linear in the translations, so stacking two independent observations in one update (Eq. 8)

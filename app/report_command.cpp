@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <sstream>
 
 #include "app/plot_figures.hpp"
@@ -232,6 +233,110 @@ void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
   figure_list(md, figures_dir, mc.label, "truth", mc.figures);
 }
 
+std::string scientific(const std::optional<double>& value) {
+  if (!value) return "n/a";
+  std::ostringstream out;
+  out << std::setprecision(1) << std::scientific << *value;
+  return out.str();
+}
+
+/// A sweep's sweep.csv as a table: a row per cell, per method its mean error and ANEES, each
+/// further method's paired difference to the first with its 95 % interval, and the linearisation
+/// errors when measured; then the cells where the paired difference is beyond the noise.
+void sweep_section(std::ostringstream& md, const SweepFolder& sweep) {
+  const io::SweepTable& t = sweep.table;
+  const std::string name = fs::path(sweep.dir).lexically_normal().filename().string();
+  std::vector<std::string> methods;
+  std::vector<int> cells;
+  bool linearisation = false;
+  for (const io::SweepRow& r : t.rows) {
+    if (std::find(methods.begin(), methods.end(), r.method) == methods.end())
+      methods.push_back(r.method);
+    if (std::find(cells.begin(), cells.end(), r.cell) == cells.end()) cells.push_back(r.cell);
+    linearisation |= r.linearisation_pose.has_value();
+  }
+  if (methods.empty()) io::fail_file(sweep.dir + "/sweep.csv", "no rows (the sweep has not run)");
+  const auto row_of = [&](int cell, const std::string& method) -> const io::SweepRow* {
+    for (const io::SweepRow& r : t.rows) {
+      if (r.cell == cell && r.method == method) return &r;
+    }
+    return nullptr;
+  };
+  md << "\n## Sweep: `" << name << "`\n\n"
+     << "`" << sweep.dir << "/sweep.csv`, " << cells.size()
+     << " cells. Mean error over the runs; the paired difference is each run's mean error minus "
+     << method_title(methods.front())
+     << "'s on the same simulated data, averaged, with its 95 % interval (docs/formats.md)"
+     << (linearisation ? "; epsilon is the linearisation error (docs/robocentric.md)" : "")
+     << ".\n\n|";
+  std::string rule = "|";
+  for (const std::string& key : t.keys) {
+    md << " " << key.substr(key.rfind('.') + 1) << " |";
+    rule += " ---: |";
+  }
+  for (const std::string& m : methods) {
+    md << " " << method_title(m) << " [m] |";
+    rule += " ---: |";
+  }
+  for (std::size_t i = 1; i < methods.size(); ++i) {
+    md << " " << method_title(methods[i]) << " minus " << method_title(methods.front()) << " [m] |";
+    rule += " ---: |";
+  }
+  md << " ANEES |";
+  rule += " ---: |";
+  if (linearisation) {
+    md << " epsilon: match update | inversion | pose read-out |";
+    rule += " ---: | ---: | ---: |";
+  }
+  md << "\n" << rule << "\n";
+  std::vector<std::string> beyond;
+  for (const int cell : cells) {
+    const io::SweepRow* first = row_of(cell, methods.front());
+    md << "|";
+    for (std::size_t k = 0; k < t.keys.size(); ++k) {
+      md << " " << (first ? first->values[k] : "") << " |";
+    }
+    std::string anees, match, inversion, pose;
+    for (const std::string& m : methods) {
+      const io::SweepRow* r = row_of(cell, m);
+      md << " " << (r ? fixed(r->mean_error_m, 3) : "n/a") << " |";
+      const std::string sep = m == methods.front() ? "" : " / ";
+      anees += sep + (r ? fixed(r->anees, 2) : "n/a");
+      if (!r) continue;
+      match += sep + scientific(r->linearisation_observation);
+      pose += sep + scientific(r->linearisation_pose);
+      if (r->linearisation_inversion) {
+        inversion += (inversion.empty() ? "" : " / ") + scientific(r->linearisation_inversion);
+      }
+    }
+    for (std::size_t i = 1; i < methods.size(); ++i) {
+      const io::SweepRow* r = row_of(cell, methods[i]);
+      if (!r || !r->paired_difference_m) {
+        md << " n/a |";
+        continue;
+      }
+      const bool significant = *r->paired_ci95_lower_m > 0.0 || *r->paired_ci95_upper_m < 0.0;
+      md << " " << (significant ? "**" : "") << fixed(r->paired_difference_m, 3) << " ["
+         << fixed(r->paired_ci95_lower_m, 3) << ", " << fixed(r->paired_ci95_upper_m, 3) << "]"
+         << (significant ? "**" : "") << " |";
+      if (significant) beyond.push_back("cell " + std::to_string(cell) + " (" + methods[i] + ")");
+    }
+    md << " " << anees << " |";
+    if (linearisation) {
+      md << " " << match << " | " << (inversion.empty() ? "n/a" : inversion) << " | " << pose
+         << " |";
+    }
+    md << "\n";
+  }
+  md << "\nPaired differences beyond the Monte Carlo noise (95 % interval without 0, in bold): ";
+  if (beyond.empty()) {
+    md << "none.\n";
+  } else {
+    for (std::size_t i = 0; i < beyond.size(); ++i) md << (i ? ", " : "") << beyond[i];
+    md << ".\n";
+  }
+}
+
 /// Copies `from` to `to` whole; InputError naming the source on failure.
 void copy_figure(const fs::path& from, const fs::path& to) {
   std::error_code ec;
@@ -313,13 +418,15 @@ std::string results_markdown(const ResultsReport& report) {
   for (std::size_t i = 0; i < report.montecarlo.size(); ++i) {
     montecarlo_section(md, report.montecarlo[i], report.figures_dir_name, i == 0);
   }
+  for (const SweepFolder& sweep : report.sweeps) sweep_section(md, sweep);
   return md.str();
 }
 
 ReportOutcome write_report(const ReportOptions& options) {
   if (options.out_path.empty()) throw io::InputError("report: no output page given");
-  if (options.sim_dir.empty() && options.real_dir.empty() && options.montecarlo_dirs.empty()) {
-    throw io::InputError("report: nothing to report (give --sim, --real or --montecarlo)");
+  if (options.sim_dir.empty() && options.real_dir.empty() && options.montecarlo_dirs.empty() &&
+      options.sweep_dirs.empty()) {
+    throw io::InputError("report: nothing to report (give --sim, --real, --montecarlo or --sweep)");
   }
   ResultsReport report;
   const fs::path page = fs::absolute(options.out_path).lexically_normal();
@@ -338,6 +445,9 @@ ReportOutcome write_report(const ReportOptions& options) {
       }
     }
     report.montecarlo.push_back(std::move(mc));
+  }
+  for (const std::string& dir : options.sweep_dirs) {
+    report.sweeps.push_back({dir, io::read_sweep_csv((fs::path(dir) / "sweep.csv").string())});
   }
   const std::string markdown = results_markdown(report);
 

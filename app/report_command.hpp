@@ -1,7 +1,9 @@
-// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR ...]`: the results page
+// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR ...] [--sweep DIR ...]`: the
+// results page
 // (docs/results.md, written by tools/results.sh) from result folders that `msislab run` and
 // `msislab plot` filled and Monte Carlo directories: the paper's Table I on simulated and real
-// data, a Monte Carlo consistency table per directory and the figures, copied beside the page
+// data, a Monte Carlo consistency table per directory, a table per sweep (its cells' mean errors,
+// paired differences, ANEES and linearisation errors) and the figures, copied beside the page
 // (docs/cli.md).
 #pragma once
 
@@ -11,6 +13,7 @@
 
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
+#include "io/sweep_files.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/monte_carlo.hpp"
 
@@ -23,6 +26,8 @@ struct ReportOptions {
   /// Monte Carlo directories (may be none): the first is the consistency test of the page, each
   /// further one (another scenario: the failure cases) gets a section of its own.
   std::vector<std::string> montecarlo_dirs;
+  /// Sweep directories (may be none), each a section with its sweep.csv as a table.
+  std::vector<std::string> sweep_dirs;
 };
 
 /// One folder of results: each method's metrics and the figures `msislab plot` drew.
@@ -43,10 +48,16 @@ struct MonteCarloFolder {
   std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted
 };
 
+struct SweepFolder {
+  std::string dir;  ///< as given; its name titles the section
+  io::SweepTable table;
+};
+
 struct ResultsReport {
   std::optional<ResultFolder> sim;
   std::optional<ResultFolder> real;
   std::vector<MonteCarloFolder> montecarlo;  ///< in the order given
+  std::vector<SweepFolder> sweeps;           ///< in the order given
   std::string figures_dir_name;              ///< where the page links its figures, relative to it
 };
 

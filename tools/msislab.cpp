@@ -82,6 +82,8 @@ void add_report_command(CLI::App& app, msislab::app::ReportOptions& options) {
   report->add_option("--montecarlo", options.montecarlo_dirs,
                      "Monte Carlo directory, plotted; repeat for further scenarios, the page's "
                      "consistency test first");
+  report->add_option("--sweep", options.sweep_dirs,
+                     "Sweep directory (msislab sweep): its sweep.csv as a table; repeatable");
 }
 
 void add_montecarlo_command(CLI::App& app, msislab::app::MonteCarloOptions& options,

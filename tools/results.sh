@@ -7,7 +7,9 @@
 #     keeps its finished runs when this is run again), and its NEES figure;
 #  3. the failure scenarios of issue 12 with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
-#  4. msislab report: writes the page from those folders and copies the figures beside it.
+#  4. msislab report: writes the page from those folders and copies the figures beside it, with
+#     the robocentric study's heading-noise and stress sweeps when tools/robocentric_study.sh
+#     has filled out/study (docs/robocentric.md).
 # Usage: tools/results.sh [--runs N] [--jobs J]     (about 6 minutes on 2 cores with 50 runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -59,5 +61,12 @@ montecarlo scenarios/open_area.yaml 10 "$open_area"
 report=(--sim out/sim --montecarlo "$mc" --montecarlo "$channel" --montecarlo "$open_area")
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
 if [ -f "$stpere/_040825_1735_DVL.log" ]; then report+=(--real out/stpere); fi
+for sweep in heading_noise stress; do
+  if [ -f "out/study/$sweep/sweep.csv" ]; then
+    report+=(--sweep "out/study/$sweep")
+  else
+    echo "== out/study/$sweep not there: run tools/robocentric_study.sh for the study's section"
+  fi
+done
 "$msislab" report docs/results.md "${report[@]}"
 echo "docs/results.md and docs/results/ are up to date; review and commit them."

@@ -14,6 +14,7 @@
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
+#include "io/sweep_files.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -99,7 +100,7 @@ struct Inputs {
     mc = montecarlo_folder(tmp.path() / "mc", 5.0, 18.68);
   }
   ReportOptions options() const {
-    return {tmp.file("docs/results.md"), sim.string(), real.string(), {mc.string()}};
+    return {tmp.file("docs/results.md"), sim.string(), real.string(), {mc.string()}, {}};
   }
 };
 
@@ -217,6 +218,60 @@ TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
   position(page, "## Monte Carlo consistency\n\nNot run.");
 }
 
+TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
+  const TempDir tmp;
+  const fs::path dir = tmp.path() / "heading_noise";
+  fs::create_directories(dir);
+  io::SweepTable table;
+  table.keys = {"scenario.mru.heading_noise_deg"};
+  for (int cell = 0; cell < 2; ++cell) {
+    io::SweepRow rc;
+    rc.cell = cell;
+    rc.values = {cell == 0 ? "1" : "30"};
+    rc.method = "robocentric";
+    rc.runs = 20;
+    rc.mean_error_m = 0.7 + cell;
+    rc.anees = 3.4;
+    rc.linearisation_observation = 1e-4;
+    rc.linearisation_inversion = 2e-4;
+    rc.linearisation_pose = 3e-4;
+    io::SweepRow wc = rc;
+    wc.method = "worldcentric";
+    wc.linearisation_inversion.reset();
+    wc.paired_reference = "robocentric";
+    wc.paired_difference_m = cell == 0 ? 0.0001 : 0.05;
+    wc.paired_ci95_lower_m = cell == 0 ? -0.001 : 0.01;
+    wc.paired_ci95_upper_m = cell == 0 ? 0.001 : 0.09;
+    wc.paired_runs_lower = 3;
+    table.rows.push_back(rc);
+    table.rows.push_back(wc);
+  }
+  io::write_sweep_csv((dir / "sweep.csv").string(), table);
+  ReportOptions options;
+  options.out_path = tmp.file("page.md");
+  options.sweep_dirs = {dir.string()};
+  write_report(options);
+  const std::string page = read_text(options.out_path);
+  EXPECT_NE(page.find("## Sweep: `heading_noise`"), std::string::npos) << page;
+  EXPECT_NE(page.find("| heading_noise_deg | Robocentric SLAM [m] | World-centric SLAM [m] | "
+                      "World-centric SLAM minus Robocentric SLAM [m] | ANEES | epsilon: match "
+                      "update | inversion | pose read-out |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 1 | 0.700 | 0.700 | 0.000 [-0.001, 0.001] | 3.40 / 3.40 | 1.0e-04 / "
+                      "1.0e-04 | 2.0e-04 | 3.0e-04 / 3.0e-04 |"),
+            std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 30 | 1.700 | 1.700 | **0.050 [0.010, 0.090]** |"), std::string::npos)
+      << page;
+  EXPECT_NE(page.find("beyond the Monte Carlo noise (95 % interval without 0, in bold): cell 1 "
+                      "(worldcentric)."),
+            std::string::npos)
+      << page;
+  options.sweep_dirs = {tmp.file("nowhere")};
+  EXPECT_THROW(write_report(options), io::InputError);
+}
+
 TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs");
@@ -243,7 +298,7 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   write_text((in.sim / "robocentric" / "metrics.json").string(), "{\"method\": 3}\n");
   options.montecarlo_dirs.clear();
   expect_error(options, "metrics.json");
-  expect_error(ReportOptions{page, "", "", {}}, "nothing to report");
+  expect_error(ReportOptions{page, "", "", {}, {}}, "nothing to report");
 }
 
 TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {

@@ -418,12 +418,24 @@ plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const 
   std::set<int> cells;
   for (const io::SweepRow& r : table.rows) cells.insert(r.cell);
   const bool one_cell_per_value = cells.size() == values.size();
+  // Another key whose value follows this key's (a filter sigma set with the noise it models)
+  // does not split the lines.
+  std::vector<bool> follows(table.keys.size(), false);
+  for (std::size_t k = 0; k < table.keys.size(); ++k) {
+    std::map<std::string, std::string> value_at;
+    bool determined = true;
+    for (const io::SweepRow& r : table.rows) {
+      const auto [it, inserted] = value_at.emplace(r.values[key], r.values[k]);
+      determined = determined && (inserted || it->second == r.values[k]);
+    }
+    follows[k] = determined;
+  }
   const auto line_of = [&](const io::SweepRow& r, std::size_t kind) {
     // The other keys by their last name: "Robocentric SLAM, iekf_iterations=1".
     std::string name = method_title(r.method);
     if (!m.kinds[kind].empty()) name += ": " + m.kinds[kind];
     for (std::size_t k = 0; k < table.keys.size() && !one_cell_per_value; ++k) {
-      if (k != key)
+      if (k != key && !follows[k])
         name += ", " + table.keys[k].substr(table.keys[k].rfind('.') + 1) + "=" + r.values[k];
     }
     return name;

@@ -240,6 +240,12 @@ std::string scientific(const std::optional<double>& value) {
   return out.str();
 }
 
+/// Metres in millimetres, one decimal, without a "-0.0".
+std::string millimetres(double metres) {
+  const std::string text = fixed(1000.0 * metres, 1);
+  return text == "-0.0" ? "0.0" : text;
+}
+
 /// A sweep's sweep.csv as a table: a row per cell, per method its mean error and ANEES, each
 /// further method's paired difference to the first with its 95 % interval, and the linearisation
 /// errors when measured; then the cells where the paired difference is beyond the noise.
@@ -279,7 +285,8 @@ void sweep_section(std::ostringstream& md, const SweepFolder& sweep) {
     rule += " ---: |";
   }
   for (std::size_t i = 1; i < methods.size(); ++i) {
-    md << " " << method_title(methods[i]) << " minus " << method_title(methods.front()) << " [m] |";
+    md << " " << method_title(methods[i]) << " minus " << method_title(methods.front())
+       << " [mm] |";
     rule += " ---: |";
   }
   md << " ANEES |";
@@ -316,9 +323,9 @@ void sweep_section(std::ostringstream& md, const SweepFolder& sweep) {
         continue;
       }
       const bool significant = *r->paired_ci95_lower_m > 0.0 || *r->paired_ci95_upper_m < 0.0;
-      md << " " << (significant ? "**" : "") << fixed(r->paired_difference_m, 3) << " ["
-         << fixed(r->paired_ci95_lower_m, 3) << ", " << fixed(r->paired_ci95_upper_m, 3) << "]"
-         << (significant ? "**" : "") << " |";
+      md << " " << (significant ? "**" : "") << millimetres(*r->paired_difference_m) << " ["
+         << millimetres(*r->paired_ci95_lower_m) << ", " << millimetres(*r->paired_ci95_upper_m)
+         << "]" << (significant ? "**" : "") << " |";
       if (significant) beyond.push_back("cell " + std::to_string(cell) + " (" + methods[i] + ")");
     }
     md << " " << anees << " |";

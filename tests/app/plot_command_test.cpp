@@ -17,6 +17,7 @@
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"
+#include "io/sweep_files.hpp"
 #include "plot/display.hpp"
 #include "test_support.hpp"
 
@@ -199,37 +200,106 @@ TEST(PlotMonteCarlo, SpreadFigures) {
 }
 
 // A sweep directory: per swept key, the mean error (with its band) and the ANEES against it.
-TEST(PlotSweep, AFigurePerKeyAndMetric) {
-  REQUIRE_X_DISPLAY();
-  const TempDir tmp;
-  const std::string dir = tmp.file("sweep");
-  fs::create_directories(dir);
-  std::string csv =
-      "cell,scenario.mru.heading_noise_deg,slam.trajectory_slam.iekf_iterations,method,runs,failed,"
-      "mean_error_m,mean_error_p05_m,mean_error_p50_m,mean_error_p95_m,anees,"
-      "nees_in_bounds_fraction\n";
+/// A 3 x 2 grid of heading noise and IEKF iterations, robocentric and dead reckoning, with the
+/// paired differences and (robocentric) linearisation errors.
+io::SweepTable grid_table() {
+  io::SweepTable table;
+  table.keys = {"scenario.mru.heading_noise_deg", "slam.trajectory_slam.iekf_iterations"};
   int cell = 0;
   for (const double noise : {0.5, 1.0, 2.0}) {
     for (const int iterations : {1, 5}) {
       for (const auto& [method, scale] : {std::pair{"robocentric", 1.0}, {"deadreckoning", 2.0}}) {
         const double e = scale * noise * (1.0 + 0.1 * iterations);  // no two lines coincide
-        csv += std::to_string(cell) + "," + std::to_string(noise) + "," +
-               std::to_string(iterations) + "," + method + ",20,0," + std::to_string(e) + "," +
-               std::to_string(0.5 * e) + "," + std::to_string(e) + "," + std::to_string(1.5 * e) +
-               "," + std::to_string(2.0 + noise) + ",0.9\n";
+        io::SweepRow r;
+        r.cell = cell;
+        r.values = {std::to_string(noise), std::to_string(iterations)};
+        r.method = method;
+        r.runs = 20;
+        r.mean_error_m = e;
+        r.p05_m = 0.5 * e;
+        r.p50_m = e;
+        r.p95_m = 1.5 * e;
+        r.anees = 2.0 + noise;
+        r.nees_in_bounds_fraction = 0.9;
+        if (scale > 1.0) {
+          r.paired_reference = "robocentric";
+          r.paired_difference_m = e / 2.0;
+          r.paired_ci95_lower_m = e / 4.0;
+          r.paired_ci95_upper_m = 3.0 * e / 4.0;
+          r.paired_runs_lower = 0;
+        } else {
+          r.linearisation_observation = 1e-4 * noise;
+          r.linearisation_inversion = 2e-4 * noise;
+          r.linearisation_pose = 3e-4 * noise * iterations;
+        }
+        table.rows.push_back(r);
       }
       ++cell;
     }
   }
-  write_text(dir + "/sweep.csv", csv);
+  return table;
+}
+
+TEST(PlotSweep, AFigurePerKeyAndMetric) {
+  REQUIRE_X_DISPLAY();
+  const TempDir tmp;
+  const std::string dir = tmp.file("sweep");
+  fs::create_directories(dir);
+  io::write_sweep_csv(dir + "/sweep.csv", grid_table());
   const std::vector<std::string> written = plot({dir, "", 0, 1200, 900, -1});
-  ASSERT_EQ(written.size(), 4u);
+  ASSERT_EQ(written.size(), 8u);  // 2 keys x mean error, ANEES, paired difference, linearisation
   EXPECT_EQ(written[0], dir + "/figures/sweep_scenario_mru_heading_noise_deg_mean_error.png");
-  EXPECT_EQ(written[3], dir + "/figures/sweep_slam_trajectory_slam_iekf_iterations_anees.png");
+  EXPECT_EQ(written[2],
+            dir + "/figures/sweep_scenario_mru_heading_noise_deg_paired_difference.png");
+  EXPECT_EQ(written[7],
+            dir + "/figures/sweep_slam_trajectory_slam_iekf_iterations_linearisation.png");
   for (const std::string& figure : written) {
-    expect_figure(figure, 1200, 900, {method_colour("robocentric"), method_colour("deadreckoning")},
-                  20);
+    const bool paired = figure.find("paired") != std::string::npos;
+    const bool linearisation = figure.find("linearisation") != std::string::npos;
+    std::vector<std::uint32_t> colours;
+    if (!paired) colours.push_back(method_colour("robocentric"));
+    if (!linearisation) colours.push_back(method_colour("deadreckoning"));
+    expect_figure(figure, 1200, 900, colours, 20);
   }
+}
+
+TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
+  io::SweepTable table = grid_table();
+  // Iterations split the lines against the noise: per method 2 lines (and their points).
+  const auto labels = [](const plot::ChartSpec& chart) {
+    std::vector<std::string> out;
+    for (const plot::Series& s : chart.series) {
+      if (!s.label.empty()) out.push_back(s.label);
+    }
+    return out;
+  };
+  EXPECT_EQ(labels(sweep_chart(table, 0, "mean_error", 800, 600)),
+            (std::vector<std::string>{
+                "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
+                "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
+  // A filter sigma set with each noise (its value follows the noise) does not.
+  table.keys.push_back("slam.dead_reckoning.heading_sigma_deg");
+  for (io::SweepRow& r : table.rows) r.values.push_back(r.values[0]);
+  EXPECT_EQ(labels(sweep_chart(table, 0, "mean_error", 800, 600)),
+            (std::vector<std::string>{
+                "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
+                "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
+  // Against the iterations, the noise and the sigma both split them; linearisation errors: a
+  // line per kind, robocentric only.
+  const std::vector<std::string> lines = labels(sweep_chart(table, 1, "linearisation", 800, 600));
+  ASSERT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines[0],
+            "Robocentric SLAM: match update, heading_noise_deg=0.500000, "
+            "heading_sigma_deg=0.500000");
+  EXPECT_EQ(lines[8],
+            "Robocentric SLAM: pose read-out, heading_noise_deg=2.000000, "
+            "heading_sigma_deg=2.000000");
+  EXPECT_TRUE(sweep_has_metric(table, "paired_difference"));
+  table.rows.erase(std::remove_if(table.rows.begin(), table.rows.end(),
+                                  [](const io::SweepRow& r) { return r.method != "robocentric"; }),
+                   table.rows.end());
+  EXPECT_FALSE(sweep_has_metric(table, "paired_difference"));
+  EXPECT_THROW(sweep_chart(table, 0, "speed", 800, 600), std::invalid_argument);
 }
 
 TEST(PlotMonteCarlo, CliPrintsTheFilesItWrote) {

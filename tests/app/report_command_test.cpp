@@ -254,16 +254,15 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
   const std::string page = read_text(options.out_path);
   EXPECT_NE(page.find("## Sweep: `heading_noise`"), std::string::npos) << page;
   EXPECT_NE(page.find("| heading_noise_deg | Robocentric SLAM [m] | World-centric SLAM [m] | "
-                      "World-centric SLAM minus Robocentric SLAM [m] | ANEES | epsilon: match "
+                      "World-centric SLAM minus Robocentric SLAM [mm] | ANEES | epsilon: match "
                       "update | inversion | pose read-out |"),
             std::string::npos)
       << page;
-  EXPECT_NE(page.find("| 1 | 0.700 | 0.700 | 0.000 [-0.001, 0.001] | 3.40 / 3.40 | 1.0e-04 / "
+  EXPECT_NE(page.find("| 1 | 0.700 | 0.700 | 0.1 [-1.0, 1.0] | 3.40 / 3.40 | 1.0e-04 / "
                       "1.0e-04 | 2.0e-04 | 3.0e-04 / 3.0e-04 |"),
             std::string::npos)
       << page;
-  EXPECT_NE(page.find("| 30 | 1.700 | 1.700 | **0.050 [0.010, 0.090]** |"), std::string::npos)
-      << page;
+  EXPECT_NE(page.find("| 30 | 1.700 | 1.700 | **50.0 [10.0, 90.0]** |"), std::string::npos) << page;
   EXPECT_NE(page.find("beyond the Monte Carlo noise (95 % interval without 0, in bold): cell 1 "
                       "(worldcentric)."),
             std::string::npos)

@@ -400,7 +400,10 @@ std::string results_markdown(const ResultsReport& report) {
         "without the Monte Carlo as "
         "out/results.md. The paper (Burguera, Gonzalez, Oliver) reports on the real data a "
         "mean error of **1.15 m** for the robocentric and **2.05 m** for the world-centric "
-        "trajectory (its Table I). Why the two filters agree here: docs/trajectory_slam.md.\n";
+        "trajectory (its Table I). Why the two filters agree here: docs/trajectory_slam.md; "
+        "whether they differ in any regime (heading and DVL noise, revolution period, EKF "
+        "against IEKF, compass, loop length, 20 paired runs a cell): docs/robocentric.md, whose "
+        "sweeps close this page when tools/robocentric_study.sh has filled out/study.\n";
   const auto section = [&](const std::optional<ResultFolder>& folder, const std::string& title,
                            const std::string& truth_name) {
     md << "\n## " << title << "\n\n";

@@ -28,26 +28,15 @@ done
 tools/main.sh
 msislab=build/release/tools/msislab
 
+source tools/run_fresh.sh
 # montecarlo SCENARIO RUNS DIR [--config FILE]: a resumable sweep with every method and its
 # nees.png; one made by an earlier build is stale for this page, so it starts again.
 montecarlo() {
   local scenario="$1" n="$2" dir="$3"
   shift 3
   echo "== Monte Carlo: $n runs of $scenario into $dir"
-  local sweep=("$msislab" montecarlo "$scenario" --runs "$n" --jobs "$jobs"
-    --methods robocentric,worldcentric,deadreckoning --out "$dir" "$@")
-  mkdir -p "$(dirname "$dir")"
-  # stderr shown and kept (pipefail: the pipeline fails when the sweep does; tee has finished)
-  if ! { "${sweep[@]}" 2>&1 1>&3 | tee "$dir.stderr" >&2; } 3>&1; then
-    if grep -q "made by another msislab build" "$dir.stderr"; then
-      echo "== $dir was made by another build: running it again from scratch"
-      rm -rf "$dir"
-      "${sweep[@]}"
-    else
-      exit 2
-    fi
-  fi
-  rm -f "$dir.stderr"
+  run_fresh "$dir" "$msislab" montecarlo "$scenario" --runs "$n" --jobs "$jobs" \
+    --methods robocentric,worldcentric,deadreckoning --out "$dir" "$@"
 }
 # The replica's config, as the main job's: its sonar read from detections like the real data.
 mc="out/montecarlo/stpere_replica_${runs}runs"

@@ -22,6 +22,7 @@ tools/install_deps.sh
 cmake --preset release
 cmake --build --preset release
 msislab=build/release/tools/msislab
+source tools/run_fresh.sh
 # Each sweep and the key its figures are drawn against in docs/robocentric.md.
 sweeps=(heading_noise dvl_noise revolution_period iekf compass loop_length stress)
 declare -A figure_key=(
@@ -35,20 +36,10 @@ start=$(date +%s)
 for name in "${sweeps[@]}"; do
   dir="out/study/$name"
   echo "== sweep $name into $dir"
-  sweep=("$msislab" sweep "studies/robocentric/$name.yaml" --out "$dir" --jobs "$jobs" --no-plot)
-  # stderr shown and kept (pipefail: the pipeline fails when the sweep does; tee has finished)
-  if ! { "${sweep[@]}" 2>&1 1>&3 | tee "$dir.stderr" >&2; } 3>&1; then
-    # out/study is this script's own: a sweep made by another build or from an earlier version of
-    # its sweep file is stale, and starts again.
-    if grep -q "made by another msislab build\|holds the cells of another sweep" "$dir.stderr"; then
-      echo "== $dir was made by another build or sweep file: running it again from scratch"
-      rm -rf "$dir"
-      "${sweep[@]}"
-    else
-      exit 2
-    fi
-  fi
-  rm -f "$dir.stderr"
+  # out/study is this script's own: a sweep made by another build or from an earlier version of
+  # its sweep file is stale, and starts again.
+  run_fresh "$dir" "$msislab" sweep "studies/robocentric/$name.yaml" --out "$dir" --jobs "$jobs" \
+    --no-plot
   "$msislab" plot "$dir" >/dev/null
   key="${figure_key[$name]//./_}"
   for metric in mean_error anees paired_difference linearisation; do

@@ -282,7 +282,9 @@ TEST(ResultReaders, SweepCsvWithPairedColumnsReadsBack) {
   EXPECT_EQ(back.rows[1].paired_runs_lower, 7);
   // A reference without its figures is one error naming the file and line.
   const std::string text = read_whole_file(path);
-  write_text(path, text.substr(0, text.rfind(",0.02,")) + ",,-0.01,0.05,7\n");
+  std::string corrupt = text;
+  corrupt.replace(corrupt.rfind(",0.02,"), 6, ",,");
+  write_text(path, corrupt);
   expect_error([&] { read_sweep_csv(path); }, "sweep.csv:3: the paired_ columns");
 }
 

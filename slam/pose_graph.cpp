@@ -1,0 +1,235 @@
+#include "slam/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <Eigen/Cholesky>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace msislab {
+
+namespace {
+
+/// W with W S W^T = I for a positive definite S: the inverse of its lower Cholesky factor.
+Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
+  const Eigen::LLT<Eigen::MatrixXd> llt(S);
+  if (llt.info() != Eigen::Success) {
+    throw std::invalid_argument("pose graph: an edge covariance is not positive definite");
+  }
+  return llt.matrixL().solve(Eigen::MatrixXd::Identity(S.rows(), S.cols()));
+}
+
+/// r = W A (z (-) ((-)x_i (+) x_j)); dr/dx_i = -W A J_i, dr/dx_j = -W A J_j with J_i, J_j the
+/// Jacobians of between().
+class RelativeCost : public ceres::CostFunction {
+ public:
+  RelativeCost(const Pose2& z, const Eigen::MatrixXd& WA) : z_(z), WA_(WA) {
+    set_num_residuals(static_cast<int>(WA.rows()));
+    mutable_parameter_block_sizes()->assign({3, 3});
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
+    Eigen::Matrix3d J_i, J_j;
+    const Pose2 h = x_i.between(x_j, &J_i, &J_j);
+    const Eigen::Index d = WA_.rows();
+    Eigen::Map<Eigen::VectorXd> r(residuals, d);
+    r = WA_ * pose_difference(z_, h);
+    if (jacobians) {
+      for (int b = 0; b < 2; ++b) {
+        if (!jacobians[b]) continue;
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(jacobians[b], d, 3);
+        J = -WA_ * (b == 0 ? J_i : J_j);
+      }
+    }
+    return true;
+  }
+
+ private:
+  Pose2 z_;
+  Eigen::MatrixXd WA_;
+};
+
+/// r = W (z (-) x_i); dr/dx_i = -W.
+class PriorCost : public ceres::SizedCostFunction<3, 3> {
+ public:
+  PriorCost(const Pose2& z, const Eigen::Matrix3d& W) : z_(z), W_(W) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Pose2 x(parameters[0][0], parameters[0][1], parameters[0][2]);
+    Eigen::Map<Eigen::Vector3d> r(residuals);
+    r = W_ * pose_difference(z_, x);
+    if (jacobians && jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(jacobians[0]);
+      J = -W_;
+    }
+    return true;
+  }
+
+ private:
+  Pose2 z_;
+  Eigen::Matrix3d W_;
+};
+
+/// r = (yaw_z - yaw_i) / sigma, wrapped; dr/dx_i = [0, 0, -1 / sigma].
+class HeadingCost : public ceres::SizedCostFunction<1, 3> {
+ public:
+  HeadingCost(double yaw_rad, double sigma_rad) : yaw_rad_(yaw_rad), sigma_rad_(sigma_rad) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    residuals[0] = normalize_angle(yaw_rad_ - parameters[0][2]) / sigma_rad_;
+    if (jacobians && jacobians[0]) {
+      jacobians[0][0] = 0.0;
+      jacobians[0][1] = 0.0;
+      jacobians[0][2] = -1.0 / sigma_rad_;
+    }
+    return true;
+  }
+
+ private:
+  double yaw_rad_;
+  double sigma_rad_;
+};
+
+/// Dynamic covariance scaling's kernel: rho(s) = s for s <= c^2, else 3 c^2 - 4 c^4 / (c^2 + s)
+/// (rho' = 4 c^4 / (c^2 + s)^2, rho'' = -8 c^4 / (c^2 + s)^3): continuous with its derivative at
+/// the gate.
+class DynamicCovarianceScalingLoss : public ceres::LossFunction {
+ public:
+  explicit DynamicCovarianceScalingLoss(double c2) : c2_(c2) {}
+  void Evaluate(double s, double rho[3]) const override {
+    if (s <= c2_) {
+      rho[0] = s;
+      rho[1] = 1.0;
+      rho[2] = 0.0;
+      return;
+    }
+    const double d = c2_ + s;
+    rho[0] = 3.0 * c2_ - 4.0 * c2_ * c2_ / d;
+    rho[1] = 4.0 * c2_ * c2_ / (d * d);
+    rho[2] = -8.0 * c2_ * c2_ / (d * d * d);
+  }
+
+ private:
+  double c2_;
+};
+
+}  // namespace
+
+struct PoseGraph::Problem {
+  ceres::Problem problem;
+  /// The robust edges, to count the down-weighted ones after a solve.
+  std::vector<ceres::ResidualBlockId> robust;
+
+  Problem() : problem(options()) {}
+  static ceres::Problem::Options options() {
+    ceres::Problem::Options o;
+    // The graph owns its cost functions and losses (the default), and is never shrunk.
+    o.enable_fast_removal = false;
+    return o;
+  }
+};
+
+PoseGraph::PoseGraph(const PoseGraphConfig& config)
+    : config_(config), problem_(std::make_unique<Problem>()) {}
+
+PoseGraph::~PoseGraph() = default;
+
+std::size_t PoseGraph::add_node(const Pose2& initial_world) {
+  poses_.push_back(std::make_unique<Eigen::Vector3d>(initial_world.vector()));
+  problem_->problem.AddParameterBlock(poses_.back()->data(), 3);
+  return poses_.size() - 1;
+}
+
+void PoseGraph::fix_node(std::size_t i) {
+  problem_->problem.SetParameterBlockConstant(poses_.at(i)->data());
+}
+
+void PoseGraph::add_prior(std::size_t i, const GaussianPose2& z_world) {
+  problem_->problem.AddResidualBlock(new PriorCost(z_world.mean, whitening(z_world.cov)), nullptr,
+                                     poses_.at(i)->data());
+}
+
+void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
+                             const Eigen::MatrixXd& observed, bool robust) {
+  const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
+  ceres::LossFunction* loss = nullptr;
+  if (robust && config_.robust_scale_chi2 > 0.0) {
+    if (config_.robust_loss == RobustLoss::kCauchy) {
+      loss = new ceres::CauchyLoss(std::sqrt(config_.robust_scale_chi2));
+    } else {
+      loss = new DynamicCovarianceScalingLoss(config_.robust_scale_chi2);
+    }
+  }
+  const ceres::ResidualBlockId id =
+      problem_->problem.AddResidualBlock(new RelativeCost(z.mean, whitening(S) * observed), loss,
+                                         poses_.at(i)->data(), poses_.at(j)->data());
+  if (loss) problem_->robust.push_back(id);
+}
+
+void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_rad) {
+  if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
+  problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr,
+                                     poses_.at(i)->data());
+}
+
+PoseGraphSolve PoseGraph::solve() {
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.max_num_iterations = config_.max_iterations;
+  options.num_threads = 1;  // runs are parallel across processes; the same bytes every time
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem_->problem, &summary);
+  PoseGraphSolve out;
+  out.converged = summary.termination_type == ceres::CONVERGENCE;
+  out.iterations = static_cast<int>(summary.iterations.size());
+  out.initial_cost = summary.initial_cost;
+  out.final_cost = summary.final_cost;
+  // Down-weighted: beyond the gate, a squared whitened norm above c^2.
+  for (const ceres::ResidualBlockId id : problem_->robust) {
+    double cost = 0.0;  // without the loss: half the squared norm
+    problem_->problem.EvaluateResidualBlock(id, false, &cost, nullptr, nullptr);
+    out.edges_downweighted += 2.0 * cost > config_.robust_scale_chi2;
+  }
+  // Keep the yaws wrapped, so that poses read back as the filters' do.
+  for (const auto& p : poses_) (*p)(2) = normalize_angle((*p)(2));
+  return out;
+}
+
+Pose2 PoseGraph::pose(std::size_t i) const { return Pose2(*poses_.at(i)); }
+
+const ceres::Problem& PoseGraph::problem_for_checks() const { return problem_->problem; }
+
+std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::SPARSE_QR;
+  options.num_threads = 1;
+  ceres::Covariance covariance(options);
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (const std::size_t i : nodes) {
+    std::vector<ceres::ResidualBlockId> edges;
+    problem_->problem.GetResidualBlocksForParameterBlock(poses_.at(i)->data(), &edges);
+    if (edges.empty() && !problem_->problem.IsParameterBlockConstant(poses_.at(i)->data())) {
+      throw std::runtime_error("pose graph: node " + std::to_string(i) + " has no edge");
+    }
+    blocks.emplace_back(poses_.at(i)->data(), poses_.at(i)->data());
+  }
+  if (!covariance.Compute(blocks, &problem_->problem)) {
+    throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
+  }
+  std::vector<Eigen::Matrix3d> out;
+  for (const std::size_t i : nodes) {
+    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C;
+    covariance.GetCovarianceBlock(poses_.at(i)->data(), poses_.at(i)->data(), C.data());
+    out.emplace_back(C);
+  }
+  return out;
+}
+
+}  // namespace msislab

@@ -1,0 +1,103 @@
+// A pose graph over planar poses in the world frame, solved by Ceres (issue 15): the back end of
+// the pose-graph SLAM, beside the paper's filters. Nodes are poses [x, y, yaw]; every edge is a
+// whitened residual on the project's SE(2) type with analytic Jacobians (J1+, J2+, J- of
+// slam/se2, docs/pose_algebra.md):
+//   relative:  r = W A (z (-) h),  h = (-)x_i (+) x_j  (the pose of j seen from i), W A R A^T W^T =
+//   I
+//              (A: the observed directions as orthonormal rows, as in trajectory SLAM's matches);
+//   prior:     r = W (z (-) x_i);
+//   heading:   r = (yaw_z - yaw_i) / sigma   (the compass).
+// Analytic rather than automatic Jacobians: the pose algebra already has them, checked against
+// central differences in tests, and the residuals stay written in the same SE(2) type every filter
+// uses (Ceres' Jets would need a templated copy of it).
+// Match edges may carry a robust loss (dynamic covariance scaling by default, or Cauchy, on the
+// squared whitened norm): a wrong match that slipped past the validation costs little, and the
+// edges it down-weights are counted.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "slam/gaussian_pose.hpp"
+#include "slam/se2.hpp"
+
+namespace ceres {
+class Problem;
+}
+
+namespace msislab {
+
+/// The robust loss on match edges, on the squared whitened norm s with scale c^2:
+/// - dynamic covariance scaling (Agarwal et al., ICRA 2013), as the kernel it amounts to: the
+///   edge's information scaled by min(1, 2 c^2 / (c^2 + s))^2, i.e. rho(s) = s inside the gate
+///   (s <= c^2: a consistent match counts in full, so the covariances stay those of a Gaussian
+///   graph) and rho(s) = 3 c^2 - 4 c^4 / (c^2 + s) beyond it: bounded, an edge far beyond the
+///   gate pulls with a force that vanishes like 1 / s^2;
+/// - Cauchy: rho(s) = c^2 log(1 + s / c^2): unbounded, so a soft graph still gives way to a far
+///   outlier in proportion to the log of the residual it removes, and it discounts consistent
+///   matches too (tests/slam/pose_graph_test.cpp measures both).
+enum class RobustLoss { kDynamicCovarianceScaling, kCauchy };
+
+struct PoseGraphConfig {
+  RobustLoss robust_loss = RobustLoss::kDynamicCovarianceScaling;
+  /// c^2, as a squared whitened norm: the chi-square 99 % gate of 3 DOF (11.34). 0: no robust
+  /// loss.
+  double robust_scale_chi2 = 11.34;
+  int max_iterations = 100;
+};
+
+/// What a solve did.
+struct PoseGraphSolve {
+  bool converged = false;  ///< Ceres reported convergence (not an iteration or time limit)
+  int iterations = 0;
+  double initial_cost = 0.0;
+  double final_cost = 0.0;  ///< Ceres' cost: half the sum of the (robustified) squared residuals
+  /// Robust edges beyond the gate at the solution (squared whitened norm above
+  /// robust_scale_chi2): the matches the loss set aside.
+  int edges_downweighted = 0;
+};
+
+class PoseGraph {
+ public:
+  explicit PoseGraph(const PoseGraphConfig& config = {});
+  ~PoseGraph();
+  PoseGraph(const PoseGraph&) = delete;
+  PoseGraph& operator=(const PoseGraph&) = delete;
+
+  /// Adds a node at its initial (world) pose; returns its index.
+  std::size_t add_node(const Pose2& initial_world);
+  std::size_t nodes() const { return poses_.size(); }
+  /// Holds a node where it is (the gauge; a prior with a singular covariance).
+  void fix_node(std::size_t i);
+  /// z ~ x_i with covariance cov (positive definite).
+  void add_prior(std::size_t i, const GaussianPose2& z_world);
+  /// z ~ A ((-)x_i (+) x_j): the pose of node j seen from node i, in the directions whose
+  /// orthonormal rows A holds (3 x 3 identity: all), z's covariance cov (3 x 3). robust: under
+  /// the robust loss of the config (the matches; odometry is not).
+  void add_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
+                    const Eigen::MatrixXd& observed, bool robust);
+  /// The compass: yaw_world_rad ~ yaw_i with standard deviation sigma_rad.
+  void add_heading(std::size_t i, double yaw_world_rad, double sigma_rad);
+
+  /// Solves from the current poses (warm start: each solve starts where the last ended).
+  PoseGraphSolve solve();
+
+  Pose2 pose(std::size_t i) const;
+  /// The marginal covariances of the given nodes at the current poses (ceres::Covariance over
+  /// the whole graph's information, robust edges at their weight there). Throws
+  /// std::runtime_error when the graph's information is singular (a node without a path to a
+  /// prior or fixed node).
+  std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);
+
+  /// The Ceres problem, for checks (tests compare its residuals' Jacobians with numeric ones).
+  const ceres::Problem& problem_for_checks() const;
+
+ private:
+  struct Problem;
+  PoseGraphConfig config_;
+  std::vector<std::unique_ptr<Eigen::Vector3d>> poses_;  ///< stable addresses for Ceres
+  std::unique_ptr<Problem> problem_;
+};
+
+}  // namespace msislab

@@ -1,0 +1,228 @@
+// The Ceres pose graph (slam/pose_graph): the residuals' analytic Jacobians against central
+// differences, odometry alone giving the propagated covariance, a small loop closed, a wrong
+// loop-closure edge held off by the robust loss (and counted), and the covariances checked
+// against the truth by NEES over seeded graphs.
+#include "slam/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "slam/gaussian_pose.hpp"
+#include "slam/scan_matching.hpp"
+
+namespace msislab {
+namespace {
+
+/// A square loop of side 8 m, a node every 2 m (16 nodes, the last at the start again).
+std::vector<Pose2> square_loop() {
+  std::vector<Pose2> truth;
+  for (int side = 0; side < 4; ++side) {
+    const Pose2 corner = side == 0 ? Pose2(0, 0, 0)
+                                   : Pose2(side == 1 || side == 2 ? 8.0 : 0.0,
+                                           side >= 2 ? 8.0 : 0.0, side * M_PI / 2);
+    for (int k = 0; k < 4; ++k) truth.push_back(corner.compose(Pose2(2.0 * k, 0.0, 0.0)));
+  }
+  truth.push_back(Pose2(0, 0, 2 * M_PI));
+  return truth;
+}
+
+const Eigen::Matrix3d kOdometryCov =
+    Eigen::Vector3d(0.05 * 0.05, 0.05 * 0.05, 0.02 * 0.02).asDiagonal();
+
+/// A graph of the truth's nodes with noisy odometry between consecutive ones (node 0 fixed at
+/// the truth), started from the odometry's dead reckoning; the noisy motions in `motions`.
+void odometry_graph(PoseGraph& graph, const std::vector<Pose2>& truth, std::mt19937& rng) {
+  std::normal_distribution<double> n01;
+  const Eigen::Matrix3d L = kOdometryCov.llt().matrixL();
+  Pose2 dead_reckoning = truth[0];
+  graph.add_node(truth[0]);
+  graph.fix_node(0);
+  for (std::size_t k = 1; k < truth.size(); ++k) {
+    const Eigen::Vector3d noise = L * Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    const Pose2 z(truth[k - 1].between(truth[k]).vector() + noise);
+    dead_reckoning = dead_reckoning.compose(z);
+    graph.add_node(dead_reckoning);
+    graph.add_relative(k - 1, k, {z, kOdometryCov}, Eigen::Matrix3d::Identity(), false);
+  }
+}
+
+TEST(PoseGraph, ResidualJacobiansMatchCentralDifferences) {
+  // Every edge kind, at an arbitrary point; Ceres' own gradient checker compares the analytic
+  // Jacobians with numeric ones.
+  PoseGraph graph;
+  graph.add_node(Pose2(1.0, -2.0, 0.7));
+  graph.add_node(Pose2(4.0, 1.5, 2.9));
+  Eigen::Matrix3d cov;
+  cov << 0.04, 0.01, 0.002, 0.01, 0.09, -0.001, 0.002, -0.001, 0.01;
+  Eigen::MatrixXd two_rows(2, 3);
+  two_rows << 0.6, 0.8, 0.0, 0.0, 0.0, 1.0;
+  // (Residual angles away from +-pi, where the wrap makes any finite difference jump.)
+  graph.add_relative(0, 1, {Pose2(2.0, 3.0, 2.0), cov}, Eigen::Matrix3d::Identity(), true);
+  graph.add_relative(0, 1, {Pose2(2.0, 3.0, 2.5), cov}, two_rows, false);
+  graph.add_prior(1, {Pose2(3.5, 1.0, 3.1), cov});
+  graph.add_heading(0, -3.0, 0.05);
+  const ceres::Problem& problem = graph.problem_for_checks();
+  std::vector<ceres::ResidualBlockId> blocks;
+  problem.GetResidualBlocks(&blocks);
+  ASSERT_EQ(blocks.size(), 4u);
+  ceres::NumericDiffOptions numeric;
+  numeric.relative_step_size = 1e-7;
+  for (const ceres::ResidualBlockId id : blocks) {
+    const ceres::CostFunction* cost = problem.GetCostFunctionForResidualBlock(id);
+    std::vector<double*> parameters;
+    problem.GetParameterBlocksForResidualBlock(id, &parameters);
+    const std::vector<const ceres::Manifold*>* no_manifolds = nullptr;
+    ceres::GradientChecker checker(cost, no_manifolds, numeric);
+    ceres::GradientChecker::ProbeResults results;
+    EXPECT_TRUE(checker.Probe(parameters.data(), 1e-6, &results)) << results.error_log;
+  }
+}
+
+TEST(PoseGraph, OdometryAloneGivesThePropagatedCovariance) {
+  // A chain from a fixed node: the solution is the dead reckoning, its covariance the
+  // first-order propagation through the compositions (what the filters compute).
+  std::mt19937 rng(1);
+  const std::vector<Pose2> truth = square_loop();
+  PoseGraph graph;
+  odometry_graph(graph, truth, rng);
+  std::vector<Pose2> before;
+  for (std::size_t k = 0; k < graph.nodes(); ++k) before.push_back(graph.pose(k));
+  const PoseGraphSolve solve = graph.solve();
+  EXPECT_TRUE(solve.converged);
+  EXPECT_LT(solve.final_cost, 1e-12);
+  GaussianPose2 propagated{truth[0], Eigen::Matrix3d::Zero()};
+  const std::vector<Eigen::Matrix3d> covariances = graph.covariances({1, 5, 16});
+  for (std::size_t k = 1; k < graph.nodes(); ++k) {
+    EXPECT_LT(pose_difference(graph.pose(k), before[k]).norm(), 1e-9);
+    propagated = compose(propagated, {before[k - 1].between(before[k]), kOdometryCov});
+    const std::size_t at = k == 1 ? 0 : k == 5 ? 1 : k == 16 ? 2 : 3;
+    if (at < 3) {
+      EXPECT_LT((covariances[at] - propagated.cov).norm(), 1e-6 * propagated.cov.norm()) << k;
+    }
+  }
+}
+
+TEST(PoseGraph, ALoopClosureBringsTheEndBack) {
+  std::mt19937 rng(2);
+  const std::vector<Pose2> truth = square_loop();
+  PoseGraph open_loop, closed;
+  odometry_graph(open_loop, truth, rng);
+  rng.seed(2);
+  odometry_graph(closed, truth, rng);
+  // The last node seen from the first: the truth with a 2 cm match.
+  const Eigen::Matrix3d match_cov =
+      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
+  closed.add_relative(0, truth.size() - 1, {truth[0].between(truth.back()), match_cov},
+                      Eigen::Matrix3d::Identity(), true);
+  const PoseGraphSolve solve = closed.solve();
+  EXPECT_TRUE(solve.converged);
+  EXPECT_EQ(solve.edges_downweighted, 0);
+  const double open_m = (open_loop.pose(16).translation() - truth[16].translation()).norm();
+  const double closed_m = (closed.pose(16).translation() - truth[16].translation()).norm();
+  EXPECT_GT(open_m, 0.1);
+  EXPECT_LT(closed_m, 0.05);
+  // The middle of the loop moves too, and less than the end did.
+  EXPECT_LT((closed.pose(8).translation() - truth[8].translation()).norm(), open_m);
+}
+
+TEST(PoseGraph, AWrongLoopClosureIsHeldOffByTheRobustLoss) {
+  // A loop closure 3 m and 30 deg off the truth, claimed with a 2 cm covariance. Without a
+  // robust loss it drags the loop's end by metres from where the graph without it puts it; with
+  // the default loss (dynamic covariance scaling) the end moves less than 5 cm, and the edge is
+  // counted as down-weighted. Cauchy's unbounded loss still gives way by decimetres on this soft
+  // loop.
+  const std::vector<Pose2> truth = square_loop();
+  const Eigen::Matrix3d match_cov =
+      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
+  const Pose2 wrong = truth[0].between(truth.back()).compose(Pose2(3.0, 0.0, 0.5));
+  const auto end_of = [&](bool with_wrong_edge, bool robust, int* downweighted,
+                          RobustLoss loss = RobustLoss::kDynamicCovarianceScaling) {
+    std::mt19937 rng(3);
+    PoseGraphConfig config;
+    config.robust_loss = loss;
+    PoseGraph graph(config);
+    odometry_graph(graph, truth, rng);
+    graph.add_relative(0, 4, {truth[0].between(truth[4]), match_cov}, Eigen::Matrix3d::Identity(),
+                       robust);
+    if (with_wrong_edge) {
+      graph.add_relative(0, truth.size() - 1, {wrong, match_cov}, Eigen::Matrix3d::Identity(),
+                         robust);
+    }
+    *downweighted = graph.solve().edges_downweighted;
+    return graph.pose(16).translation();
+  };
+  int downweighted = -1;
+  const Eigen::Vector2d without = end_of(false, true, &downweighted);
+  EXPECT_EQ(downweighted, 0);
+  const Eigen::Vector2d plain = end_of(true, false, &downweighted);
+  EXPECT_EQ(downweighted, 0);  // no robust edges to count
+  const Eigen::Vector2d robust = end_of(true, true, &downweighted);
+  EXPECT_EQ(downweighted, 1);
+  const Eigen::Vector2d cauchy = end_of(true, true, &downweighted, RobustLoss::kCauchy);
+  EXPECT_EQ(downweighted, 1);
+  EXPECT_GT((plain - without).norm(), 1.0);
+  EXPECT_LT((robust - without).norm(), 0.05);
+  EXPECT_GT((cauchy - without).norm(), 0.1);
+  EXPECT_LT((cauchy - without).norm(), (plain - without).norm());
+}
+
+TEST(PoseGraph, CovariancesAreConsistentWithTheTruth) {
+  // 200 seeded loops, odometry and a 3-row loop closure drawn from their covariances, a compass
+  // on every fourth node: the NEES of three nodes averaged over the graphs lies inside the 95 %
+  // chi-square bounds for 200 x 3 DOF (field notes).
+  const std::vector<Pose2> truth = square_loop();
+  const Eigen::Matrix3d match_cov =
+      Eigen::Vector3d(0.03 * 0.03, 0.03 * 0.03, 0.01 * 0.01).asDiagonal();
+  const Eigen::Matrix3d L_match = match_cov.llt().matrixL();
+  const int graphs = 200;
+  std::mt19937 rng(4);
+  std::normal_distribution<double> n01;
+  std::vector<double> nees_sum(3, 0.0);
+  const std::vector<std::size_t> nodes = {4, 10, 16};
+  for (int g = 0; g < graphs; ++g) {
+    PoseGraph graph;
+    odometry_graph(graph, truth, rng);
+    const Eigen::Vector3d noise = L_match * Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    graph.add_relative(0, 16, {Pose2(truth[0].between(truth[16]).vector() + noise), match_cov},
+                       Eigen::Matrix3d::Identity(), true);
+    for (std::size_t k = 4; k < truth.size(); k += 4) {
+      graph.add_heading(k, truth[k].yaw() + 0.02 * n01(rng), 0.02);
+    }
+    graph.solve();
+    const std::vector<Eigen::Matrix3d> P = graph.covariances(nodes);
+    for (std::size_t n = 0; n < nodes.size(); ++n) {
+      const Eigen::Vector3d e = pose_difference(graph.pose(nodes[n]), truth[nodes[n]]);
+      nees_sum[n] += e.dot(P[n].ldlt().solve(e));
+    }
+  }
+  const auto [lower, upper] = average_chi2_bounds(graphs, 3);
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    const double mean = nees_sum[n] / graphs;
+    EXPECT_GT(mean, lower) << "node " << nodes[n];
+    EXPECT_LT(mean, upper) << "node " << nodes[n];
+  }
+}
+
+TEST(PoseGraph, BadInputIsRefused) {
+  PoseGraph graph;
+  graph.add_node(Pose2());
+  graph.add_node(Pose2(1, 0, 0));
+  EXPECT_THROW(graph.add_relative(0, 1, {Pose2(), Eigen::Matrix3d::Zero()},
+                                  Eigen::Matrix3d::Identity(), false),
+               std::invalid_argument);
+  EXPECT_THROW(graph.add_heading(0, 0.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(graph.add_prior(5, {Pose2(), Eigen::Matrix3d::Identity()}), std::out_of_range);
+  // Node 1 has no edge, then no path to a prior: its covariance is undefined either way.
+  graph.add_prior(0, {Pose2(), Eigen::Matrix3d::Identity()});
+  EXPECT_THROW(graph.covariances({1}), std::runtime_error);
+  graph.add_node(Pose2(2, 0, 0));
+  graph.add_relative(1, 2, {Pose2(1, 0, 0), Eigen::Matrix3d::Identity()},
+                     Eigen::Matrix3d::Identity(), false);
+  EXPECT_THROW(graph.covariances({1}), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace msislab

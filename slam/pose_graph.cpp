@@ -98,25 +98,42 @@ class HeadingCost : public ceres::SizedCostFunction<1, 3> {
 
 /// Dynamic covariance scaling's kernel: rho(s) = s for s <= c^2, else 3 c^2 - 4 c^4 / (c^2 + s)
 /// (rho' = 4 c^4 / (c^2 + s)^2, rho'' = -8 c^4 / (c^2 + s)^3): continuous with its derivative at
-/// the gate.
+/// the gate. c^2 is read from the graph at each evaluation (the graduated start changes it).
 class DynamicCovarianceScalingLoss : public ceres::LossFunction {
  public:
-  explicit DynamicCovarianceScalingLoss(double c2) : c2_(c2) {}
+  explicit DynamicCovarianceScalingLoss(const double* c2) : c2_(c2) {}
   void Evaluate(double s, double rho[3]) const override {
-    if (s <= c2_) {
+    const double c2 = *c2_;
+    if (s <= c2) {
       rho[0] = s;
       rho[1] = 1.0;
       rho[2] = 0.0;
       return;
     }
-    const double d = c2_ + s;
-    rho[0] = 3.0 * c2_ - 4.0 * c2_ * c2_ / d;
-    rho[1] = 4.0 * c2_ * c2_ / (d * d);
-    rho[2] = -8.0 * c2_ * c2_ / (d * d * d);
+    const double d = c2 + s;
+    rho[0] = 3.0 * c2 - 4.0 * c2 * c2 / d;
+    rho[1] = 4.0 * c2 * c2 / (d * d);
+    rho[2] = -8.0 * c2 * c2 / (d * d * d);
   }
 
  private:
-  double c2_;
+  const double* c2_;
+};
+
+/// Cauchy: rho(s) = c^2 log(1 + s / c^2), rho' = 1 / (1 + s / c^2), rho'' = -rho'^2 / c^2.
+class CauchyLoss : public ceres::LossFunction {
+ public:
+  explicit CauchyLoss(const double* c2) : c2_(c2) {}
+  void Evaluate(double s, double rho[3]) const override {
+    const double c2 = *c2_;
+    const double w = 1.0 / (1.0 + s / c2);
+    rho[0] = c2 * std::log1p(s / c2);
+    rho[1] = w;
+    rho[2] = -w * w / c2;
+  }
+
+ private:
+  const double* c2_;
 };
 
 }  // namespace
@@ -125,6 +142,8 @@ struct PoseGraph::Problem {
   ceres::Problem problem;
   /// The robust edges, to count the down-weighted ones after a solve.
   std::vector<ceres::ResidualBlockId> robust;
+  /// c^2 of the robust losses now: the configured one, or more during a graduated start.
+  double c2 = 0.0;
 
   Problem() : problem(options()) {}
   static ceres::Problem::Options options() {
@@ -136,7 +155,9 @@ struct PoseGraph::Problem {
 };
 
 PoseGraph::PoseGraph(const PoseGraphConfig& config)
-    : config_(config), problem_(std::make_unique<Problem>()) {}
+    : config_(config), problem_(std::make_unique<Problem>()) {
+  problem_->c2 = config_.robust_scale_chi2;
+}
 
 PoseGraph::~PoseGraph() = default;
 
@@ -161,9 +182,9 @@ void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& 
   ceres::LossFunction* loss = nullptr;
   if (robust && config_.robust_scale_chi2 > 0.0) {
     if (config_.robust_loss == RobustLoss::kCauchy) {
-      loss = new ceres::CauchyLoss(std::sqrt(config_.robust_scale_chi2));
+      loss = new CauchyLoss(&problem_->c2);
     } else {
-      loss = new DynamicCovarianceScalingLoss(config_.robust_scale_chi2);
+      loss = new DynamicCovarianceScalingLoss(&problem_->c2);
     }
   }
   const ceres::ResidualBlockId id =
@@ -185,11 +206,20 @@ PoseGraphSolve PoseGraph::solve() {
   options.num_threads = 1;  // runs are parallel across processes; the same bytes every time
   options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
+  // Graduated start: first with the losses' scale widened, so that matches far from the current
+  // (drifted) estimate still pull it their way, then at the configured scale.
+  if (!problem_->robust.empty() && config_.robust_start_factor > 1.0) {
+    problem_->c2 = config_.robust_scale_chi2 * config_.robust_start_factor;
+    ceres::Solve(options, &problem_->problem, &summary);
+  }
+  problem_->c2 = config_.robust_scale_chi2;
+  const double initial_cost =
+      problem_->robust.empty() || config_.robust_start_factor <= 1.0 ? -1.0 : summary.initial_cost;
   ceres::Solve(options, &problem_->problem, &summary);
   PoseGraphSolve out;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
   out.iterations = static_cast<int>(summary.iterations.size());
-  out.initial_cost = summary.initial_cost;
+  out.initial_cost = initial_cost >= 0.0 ? initial_cost : summary.initial_cost;
   out.final_cost = summary.final_cost;
   // Down-weighted: beyond the gate, a squared whitened norm above c^2.
   for (const ceres::ResidualBlockId id : problem_->robust) {

@@ -44,15 +44,19 @@ struct PoseGraphConfig {
   /// c^2, as a squared whitened norm: the chi-square 99 % gate of 3 DOF (11.34). 0: no robust
   /// loss.
   double robust_scale_chi2 = 11.34;
+  /// Graduated start: each solve first runs with c^2 times this, then at c^2, so that a loop
+  /// closure found after a long drift (its edge far beyond the gate at the drifted estimate) pulls
+  /// the graph before the kernel judges it. 1: one solve at c^2.
+  double robust_start_factor = 100.0;
   int max_iterations = 100;
 };
 
 /// What a solve did.
 struct PoseGraphSolve {
-  bool converged = false;  ///< Ceres reported convergence (not an iteration or time limit)
-  int iterations = 0;
-  double initial_cost = 0.0;
-  double final_cost = 0.0;  ///< Ceres' cost: half the sum of the (robustified) squared residuals
+  bool converged = false;     ///< Ceres reported convergence (not an iteration or time limit)
+  int iterations = 0;         ///< of the last stage
+  double initial_cost = 0.0;  ///< before the first stage
+  double final_cost = 0.0;    ///< Ceres' cost: half the sum of the (robustified) squared residuals
   /// Robust edges beyond the gate at the solution (squared whitened norm above
   /// robust_scale_chi2): the matches the loss set aside.
   int edges_downweighted = 0;

@@ -28,6 +28,7 @@
 #include "slam/match_validation.hpp"
 #include "slam/scan_builder.hpp"
 #include "slam/scan_matching.hpp"
+#include "slam/scan_slam.hpp"
 
 namespace msislab {
 
@@ -127,22 +128,21 @@ struct RelativePoseObservation {
   Eigen::MatrixXd observed = Eigen::MatrixXd::Identity(3, 3);
 };
 
-class TrajectorySlam {
+class TrajectorySlam : public ScanSlam {
  public:
   TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world);
-  virtual ~TrajectorySlam() = default;
 
   /// Adds a scan (its points in its own frame, its motion from the previous scan's frame) and
   /// closes the loops it finds. A scan with a non-finite motion is chained with a zero motion of
   /// very large covariance (the filter loses track instead of failing); non-finite points are
   /// dropped.
-  SlamStepStats add_scan(const Scan& scan);
+  SlamStepStats add_scan(const Scan& scan) override;
 
-  std::size_t scans() const { return elements_.size(); }
-  const SlamTotals& totals() const { return totals_; }
+  std::size_t scans() const override { return elements_.size(); }
+  const SlamTotals& totals() const override { return totals_; }
 
   /// The world pose of scan i with its covariance.
-  virtual GaussianPose2 scan_pose_world(std::size_t i) const = 0;
+  GaussianPose2 scan_pose_world(std::size_t i) const override = 0;
   /// h(X) for scans a < b: the pose of scan b in scan a's frame; with H, its Jacobian with
   /// respect to the state elements a+1..b (3 x 3(b-a)).
   virtual Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const = 0;

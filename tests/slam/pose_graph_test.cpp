@@ -129,15 +129,17 @@ TEST(PoseGraph, ALoopClosureBringsTheEndBack) {
 }
 
 TEST(PoseGraph, AWrongLoopClosureIsHeldOffByTheRobustLoss) {
-  // A loop closure 3 m and 30 deg off the truth, claimed with a 2 cm covariance. Without a
-  // robust loss it drags the loop's end by metres from where the graph without it puts it; with
-  // the default loss (dynamic covariance scaling) the end moves less than 5 cm, and the edge is
-  // counted as down-weighted. Cauchy's unbounded loss still gives way by decimetres on this soft
-  // loop.
+  // Two loop closures of the last node, both claimed with a 2 cm covariance: the right one and
+  // one 1 m and 6 deg off, the kind of wrong match the front end's gate lets through when the
+  // odometry is uncertain. Without a robust loss the graph settles halfway between them; with
+  // the default loss (dynamic covariance scaling, after its graduated start) the end stays
+  // within 5 cm of where the right closure alone puts it, and the wrong edge is counted as
+  // down-weighted; Cauchy's unbounded loss gives way by centimetres more.
   const std::vector<Pose2> truth = square_loop();
   const Eigen::Matrix3d match_cov =
       Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
-  const Pose2 wrong = truth[0].between(truth.back()).compose(Pose2(3.0, 0.0, 0.5));
+  const Pose2 right = truth[0].between(truth.back());
+  const Pose2 wrong = right.compose(Pose2(1.0, 0.0, 0.1));
   const auto end_of = [&](bool with_wrong_edge, bool robust, int* downweighted,
                           RobustLoss loss = RobustLoss::kDynamicCovarianceScaling) {
     std::mt19937 rng(3);
@@ -145,7 +147,7 @@ TEST(PoseGraph, AWrongLoopClosureIsHeldOffByTheRobustLoss) {
     config.robust_loss = loss;
     PoseGraph graph(config);
     odometry_graph(graph, truth, rng);
-    graph.add_relative(0, 4, {truth[0].between(truth[4]), match_cov}, Eigen::Matrix3d::Identity(),
+    graph.add_relative(0, truth.size() - 1, {right, match_cov}, Eigen::Matrix3d::Identity(),
                        robust);
     if (with_wrong_edge) {
       graph.add_relative(0, truth.size() - 1, {wrong, match_cov}, Eigen::Matrix3d::Identity(),
@@ -162,11 +164,10 @@ TEST(PoseGraph, AWrongLoopClosureIsHeldOffByTheRobustLoss) {
   const Eigen::Vector2d robust = end_of(true, true, &downweighted);
   EXPECT_EQ(downweighted, 1);
   const Eigen::Vector2d cauchy = end_of(true, true, &downweighted, RobustLoss::kCauchy);
-  EXPECT_EQ(downweighted, 1);
-  EXPECT_GT((plain - without).norm(), 1.0);
+  EXPECT_GT((plain - without).norm(), 0.4);
   EXPECT_LT((robust - without).norm(), 0.05);
-  EXPECT_GT((cauchy - without).norm(), 0.1);
   EXPECT_LT((cauchy - without).norm(), (plain - without).norm());
+  EXPECT_GT((cauchy - without).norm(), (robust - without).norm());
 }
 
 TEST(PoseGraph, CovariancesAreConsistentWithTheTruth) {

@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "slam/pose_graph_slam.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 
@@ -89,7 +90,7 @@ std::unique_ptr<TrajectorySlam> make_slam(const std::string& method,
   return std::make_unique<WorldCentricSlam>(config, GaussianPose2{});
 }
 
-std::vector<GaussianPose2> run(TrajectorySlam& slam, const std::vector<Scan>& scans) {
+std::vector<GaussianPose2> run(ScanSlam& slam, const std::vector<Scan>& scans) {
   for (const Scan& scan : scans) slam.add_scan(scan);
   std::vector<GaussianPose2> poses;
   for (std::size_t i = 0; i < slam.scans(); ++i) poses.push_back(slam.scan_pose_world(i));
@@ -294,6 +295,40 @@ TEST_P(BothMethods, CorrelatedMatchesMoveTheStateLessThanIndependentOnes) {
   // Independent < half-correlated < one observation.
   EXPECT_LT(trace[0], trace[1]);
   EXPECT_LT(trace[1], trace[2]);
+}
+
+TEST(PoseGraphSlam, ClosesTheLoopLikeTheFilters) {
+  // The same scans through the pose graph: it accepts as many matches as the filter (the same
+  // front end, a wider prediction), ends the second lap near the truth, and its smoothed
+  // trajectory is no worse than what it knew online.
+  const Loop loop = make_loop(1, false);
+  PoseGraphSlam graph(TrajectorySlamConfig{}, PoseGraphSlamConfig{}, GaussianPose2{});
+  RoboCentricSlam filter(TrajectorySlamConfig{}, GaussianPose2{});
+  const std::vector<GaussianPose2> smoothed = run(graph, loop.scans);
+  const std::vector<GaussianPose2> filtered = run(filter, loop.scans);
+  std::vector<Pose2> odometry, smoothed_poses, filtered_poses;
+  Pose2 dead_reckoning;
+  for (const Scan& scan : loop.scans)
+    odometry.push_back(dead_reckoning = dead_reckoning + scan.motion.mean);
+  for (const GaussianPose2& p : smoothed) smoothed_poses.push_back(p.mean);
+  for (const GaussianPose2& p : filtered) filtered_poses.push_back(p.mean);
+  EXPECT_GT(graph.totals().accepted, static_cast<int>(loop.scans.size()));
+  EXPECT_GE(graph.totals().accepted, filter.totals().accepted - 2);
+  EXPECT_EQ(graph.matches_downweighted(), 0);
+  const double graph_m = final_error_m(smoothed_poses, loop.truth);
+  EXPECT_LT(graph_m, 0.5 * final_error_m(odometry, loop.truth));
+  EXPECT_LT(graph_m, 2.0 * final_error_m(filtered_poses, loop.truth) + 0.05);
+  const std::optional<std::vector<GaussianPose2>> online = graph.online_poses();
+  ASSERT_TRUE(online && online->size() == loop.scans.size());
+  double online_sum = 0.0, smoothed_sum = 0.0;
+  for (std::size_t k = 0; k < loop.truth.size(); ++k) {
+    online_sum += ((*online)[k].mean.translation() - loop.truth[k].translation()).norm();
+    smoothed_sum += (smoothed[k].mean.translation() - loop.truth[k].translation()).norm();
+  }
+  EXPECT_LE(smoothed_sum, online_sum + 0.01 * static_cast<double>(loop.truth.size()));
+  // Online, the newest scan's pose is the smoothed one at its own step: the last ones agree.
+  EXPECT_LT(pose_difference(online->back().mean, smoothed.back().mean).norm(), 1e-6);
+  EXPECT_FALSE(filter.online_poses());
 }
 
 TEST(TrajectorySlam, FiltersAgreeInTheLinearLimit) {

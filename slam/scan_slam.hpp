@@ -1,0 +1,36 @@
+// What every scan-based SLAM back end offers the commands (the paper's two filters and the pose
+// graph): scans in, each step's matches and counts out, and the scans' world poses with their
+// covariances. `msislab run` drives any of them the same way (app/methods registers them).
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "slam/gaussian_pose.hpp"
+#include "slam/scan_builder.hpp"
+
+namespace msislab {
+
+struct SlamStepStats;
+struct SlamTotals;
+
+class ScanSlam {
+ public:
+  virtual ~ScanSlam() = default;
+  /// Adds a scan (its points in its own frame, its motion from the previous scan's frame) and
+  /// closes the loops it finds.
+  virtual SlamStepStats add_scan(const Scan& scan) = 0;
+  virtual std::size_t scans() const = 0;
+  virtual const SlamTotals& totals() const = 0;
+  /// The world pose of scan i with its covariance, as known after the last scan (for the
+  /// filters, their final estimate of the whole trajectory; for the pose graph, its smoothed
+  /// solution).
+  virtual GaussianPose2 scan_pose_world(std::size_t i) const = 0;
+  /// The world pose of each scan as it was known when that scan was added (the online
+  /// estimate), where the back end tells it apart from scan_pose_world; nullopt for the filters,
+  /// whose trajectory is written from their final estimate.
+  virtual std::optional<std::vector<GaussianPose2>> online_poses() const { return std::nullopt; }
+};
+
+}  // namespace msislab

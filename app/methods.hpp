@@ -11,14 +11,15 @@
 
 #include "plot/chart.hpp"
 #include "slam/gaussian_pose.hpp"
-#include "slam/trajectory_slam.hpp"
+#include "slam/scan_slam.hpp"
+#include "slam/slam_config.hpp"
 
 namespace msislab::app {
 
 enum class MethodKind {
   kIntegration,     ///< DVL velocities integrated with the MRU heading, no filter
   kDeadReckoning,   ///< the DVL + MRU EKF; also places the scans by it when there is sonar data
-  kTrajectorySlam,  ///< dead reckoning, then a trajectory SLAM over its scans
+  kTrajectorySlam,  ///< dead reckoning, then a SLAM back end over its scans (filter or graph)
 };
 
 struct MethodInfo {
@@ -27,9 +28,8 @@ struct MethodInfo {
   std::uint32_t colour = 0x000000;
   plot::SeriesStyle style = plot::SeriesStyle::kLine;  ///< where methods are compared
   MethodKind kind = MethodKind::kDeadReckoning;
-  /// kTrajectorySlam: the filter, from its config and start pose.
-  std::function<std::unique_ptr<TrajectorySlam>(const TrajectorySlamConfig&, const GaussianPose2&)>
-      make_slam;
+  /// kTrajectorySlam: the back end, from the SLAM config and the start pose.
+  std::function<std::unique_ptr<ScanSlam>(const SlamConfig&, const GaussianPose2&)> make_slam;
 };
 
 /// Every method, in the order tables list them (the paper's two filters, then the baselines).

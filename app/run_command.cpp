@@ -29,7 +29,8 @@ namespace {
 void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
   io::create_output_dir(out_dir);
   std::error_code ec;
-  for (const char* stale : {"scans.csv", "matches.csv", "map.ply", "nees.csv"}) {
+  for (const char* stale :
+       {"scans.csv", "matches.csv", "map.ply", "nees.csv", "trajectory_smoothed.tum"}) {
     fs::remove(fs::path(out_dir) / stale, ec);
   }
   if (!writes_metrics) fs::remove(fs::path(out_dir) / "metrics.json", ec);
@@ -39,8 +40,12 @@ void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
 namespace {
 
 struct SlamRun {
-  std::vector<PlacedScan> scans;  ///< with their corrected world poses
+  std::vector<PlacedScan> scans;  ///< with their corrected world poses (online, where it differs)
   std::vector<StampedPose> trajectory;
+  /// A back end with an online estimate (the pose graph): its smoothed trajectory and scans.
+  std::optional<std::vector<StampedPose>> smoothed_trajectory;
+  std::optional<std::vector<StampedPose>> smoothed_scan_poses;
+  std::optional<int> matches_downweighted;
   SlamTotals totals;
   std::vector<MatchRecord> matches;                  ///< every candidate match of every step
   std::vector<StampedPose> dead_reckoning_at_scans;  ///< the scans' poses before the SLAM
@@ -55,28 +60,38 @@ std::vector<PlacedScan> dead_reckoning_scans(const SonarInput& sonar, const RunI
                      {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
 }
 
-/// Trajectory SLAM (robocentric or world-centric) over the dataset's scans, and the corrected
-/// trajectory.
+/// A SLAM back end over the dataset's scans, and the corrected trajectory: from the final
+/// estimate of every scan (the filters), or from each scan's pose when it was added with the
+/// smoothed one beside it (the pose graph).
 SlamRun run_trajectory_slam(const MethodInfo& method, const SonarInput& sonar, const RunInputs& in,
                             const std::vector<StampedPose>& dead_reckoning) {
   SlamRun run;
   run.scans = dead_reckoning_scans(sonar, in);
-  const std::unique_ptr<TrajectorySlam> slam =
-      method.make_slam(in.config.trajectory_slam, in.start.pose);
+  const std::unique_ptr<ScanSlam> slam = method.make_slam(in.config, in.start.pose);
   for (const PlacedScan& placed : run.scans) {
     SlamStepStats step = slam->add_scan(placed.scan);
     run.matches.insert(run.matches.end(), std::make_move_iterator(step.matches.begin()),
                        std::make_move_iterator(step.matches.end()));
   }
-  run.totals = slam->totals();
   std::vector<StampedPose> dr_at_scans;
-  std::vector<GaussianPose2> corrected;
+  std::vector<GaussianPose2> final_poses;
   for (std::size_t i = 0; i < run.scans.size(); ++i) {
     dr_at_scans.push_back(run.scans[i].centre_world);
-    corrected.push_back(slam->scan_pose_world(i));
-    run.scans[i].centre_world.pose = corrected.back();
+    final_poses.push_back(slam->scan_pose_world(i));
   }
+  run.totals = slam->totals();
+  run.matches_downweighted = slam->matches_downweighted();
+  const std::optional<std::vector<GaussianPose2>> online = slam->online_poses();
+  const std::vector<GaussianPose2>& corrected = online ? *online : final_poses;
+  for (std::size_t i = 0; i < run.scans.size(); ++i) run.scans[i].centre_world.pose = corrected[i];
   run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
+  if (online) {
+    run.smoothed_trajectory = correct_trajectory(dead_reckoning, dr_at_scans, final_poses);
+    run.smoothed_scan_poses.emplace();
+    for (std::size_t i = 0; i < run.scans.size(); ++i) {
+      run.smoothed_scan_poses->push_back({run.scans[i].scan.t_s, final_poses[i]});
+    }
+  }
   run.dead_reckoning_at_scans = std::move(dr_at_scans);
   return run;
 }
@@ -150,6 +165,9 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam
         counts.rejected[static_cast<std::size_t>(reason)]);
   }
   diagnostics.emplace_back("matches_direction_dropped", counts.direction_dropped);
+  if (slam.matches_downweighted) {
+    diagnostics.emplace_back("matches_downweighted", *slam.matches_downweighted);
+  }
   // How long the consecutive matches make the motion, against the truth (docs/formats.md).
   const auto [matched, dead_reckoning] = consecutive_translations(slam);
   for (const auto& [name, translations] :
@@ -241,6 +259,19 @@ MethodResult run_method(const std::string& name, const RunInputs& in, SharedInpu
       metrics.anees = average_nees(result.nees);
     }
     if (slam) metrics.diagnostics = slam_diagnostics(*slam, truth, metrics.matches_accepted);
+    if (slam && slam->smoothed_trajectory) {
+      // The smoothed trajectory scored beside the online one (docs/formats.md).
+      const std::optional<ErrorStats> smoothed =
+          error_stats(position_errors(*slam->smoothed_trajectory, truth.positions));
+      if (smoothed) {
+        metrics.diagnostics.emplace_back("smoothed_mean_error_m", smoothed->mean_m);
+        metrics.diagnostics.emplace_back("smoothed_final_error_m", smoothed->final_m);
+      }
+      if (const std::optional<double> anees =
+              average_nees(scan_nees(*slam->smoothed_scan_poses, truth))) {
+        metrics.diagnostics.emplace_back("smoothed_anees", *anees);
+      }
+    }
     if (method.kind == MethodKind::kDeadReckoning) {
       metrics.diagnostics = {{"dvl_used", dr.dvl_used},
                              {"dvl_rejected", dr.dvl_rejected},
@@ -252,6 +283,7 @@ MethodResult run_method(const std::string& name, const RunInputs& in, SharedInpu
   }
   if (has_scans) result.scans = *scans;
   if (slam) result.matches = match_rows(*slam, truth);
+  if (slam) result.smoothed_trajectory = slam->smoothed_trajectory;
   return result;
 }
 
@@ -260,6 +292,10 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
   prepare_out_dir(out_dir, result.metrics.has_value());
   const fs::path out(out_dir);
   io::write_trajectory_tum((out / "trajectory.tum").string(), result.trajectory, result.depth_m);
+  if (result.smoothed_trajectory) {
+    io::write_trajectory_tum((out / "trajectory_smoothed.tum").string(),
+                             *result.smoothed_trajectory, result.depth_m);
+  }
   if (result.scans) {
     io::write_scans_csv((out / "scans.csv").string(), *result.scans);
     if (write_map) io::write_points_ply((out / "map.ply").string(), world_points(*result.scans));

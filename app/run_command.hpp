@@ -37,6 +37,9 @@ struct MethodResult {
   double t_first_truth_s = 0.0;
   std::optional<std::vector<PlacedScan>> scans;      ///< with sonar data
   std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
+  /// A back end with an online estimate (the pose graph): the smoothed trajectory, written as
+  /// trajectory_smoothed.tum and scored as metrics.json's smoothed_* diagnostics.
+  std::optional<std::vector<StampedPose>> smoothed_trajectory;
 };
 
 /// What several methods on one dataset can share, filled by the first that needs it: the sonar
@@ -54,10 +57,10 @@ struct SharedInputs {
 MethodResult run_method(const std::string& method, const RunInputs& in,
                         SharedInputs* shared = nullptr);
 
-/// Writes a result directory (docs/formats.md): trajectory.tum, scans.csv, map.ply (with
-/// write_map), matches.csv, metrics.json and nees.csv, as far as the result has them, each
-/// atomically; result files of an earlier run it does not rewrite are removed. dataset_label is
-/// recorded in metrics.json as the dataset.
+/// Writes a result directory (docs/formats.md): trajectory.tum, trajectory_smoothed.tum, scans.csv,
+/// map.ply (with write_map), matches.csv, metrics.json and nees.csv, as far as the result has them,
+/// each atomically; result files of an earlier run it does not rewrite are removed. dataset_label
+/// is recorded in metrics.json as the dataset.
 void write_method_result(const std::string& out_dir, const MethodResult& result,
                          const std::string& dataset_label, bool write_map = true);
 

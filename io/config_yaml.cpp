@@ -187,6 +187,26 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.finish();
 }
 
+void read_pose_graph(YamlMap map, PoseGraphSlamConfig& c) {
+  std::string loss;
+  if (map.text("robust_loss", loss)) {
+    if (loss == "dcs") {
+      c.graph.robust_loss = RobustLoss::kDynamicCovarianceScaling;
+    } else if (loss == "cauchy") {
+      c.graph.robust_loss = RobustLoss::kCauchy;
+    } else {
+      map.fail("robust_loss", "unknown loss '" + loss + "' (dcs, cauchy)");
+    }
+  }
+  map.number("robust_scale_chi2", c.graph.robust_scale_chi2);
+  if (c.graph.robust_scale_chi2 < 0.0) map.fail("robust_scale_chi2", "must be >= 0 (0: no loss)");
+  map.number("robust_start_factor", c.graph.robust_start_factor);
+  if (c.graph.robust_start_factor < 1.0) map.fail("robust_start_factor", "must be >= 1");
+  read_count(map, "max_iterations", c.graph.max_iterations, 1, 100000);
+  read_count(map, "solve_every", c.solve_every, 1, 1000000);
+  map.finish();
+}
+
 }  // namespace
 
 std::vector<TimeSegment> read_segments(YamlMap map) {
@@ -264,6 +284,7 @@ SlamConfig slam_config_from_yaml(const YAML::Node& node, const std::string& path
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
   read_trajectory_slam(root.map("trajectory_slam"), config.trajectory_slam);
+  read_pose_graph(root.map("pose_graph"), config.pose_graph);
   config.segments = read_segments(root.map("segments"));
   root.finish();
   return config;

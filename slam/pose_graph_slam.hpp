@@ -42,7 +42,7 @@ class PoseGraphSlam : public ScanSlam {
   GaussianPose2 scan_pose_world(std::size_t i) const override;
   std::optional<std::vector<GaussianPose2>> online_poses() const override { return online_; }
   /// Matches the robust loss set aside at the last solve (beyond the gate there).
-  int matches_downweighted() const { return downweighted_; }
+  std::optional<int> matches_downweighted() const override { return downweighted_; }
 
  private:
   /// Solves the graph (const: the smoothed solution is a cache of the same graph, and solving

@@ -31,6 +31,9 @@ class ScanSlam {
   /// estimate), where the back end tells it apart from scan_pose_world; nullopt for the filters,
   /// whose trajectory is written from their final estimate.
   virtual std::optional<std::vector<GaussianPose2>> online_poses() const { return std::nullopt; }
+  /// Matches a robust back end set aside (beyond its gate at its last solution); nullopt for
+  /// the filters, whose gate rejects before the update.
+  virtual std::optional<int> matches_downweighted() const { return std::nullopt; }
 };
 
 }  // namespace msislab

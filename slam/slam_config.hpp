@@ -6,6 +6,7 @@
 #include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/evaluation.hpp"
+#include "slam/pose_graph_slam.hpp"
 #include "slam/trajectory_slam.hpp"
 
 namespace msislab {
@@ -13,8 +14,9 @@ namespace msislab {
 struct SlamConfig {
   DeadReckoningConfig dead_reckoning;
   SegmentationConfig segmentation;
-  TrajectorySlamConfig trajectory_slam;
-  std::vector<TimeSegment> segments;  ///< named windows scored separately in metrics.json
+  TrajectorySlamConfig trajectory_slam;  ///< the filters, and the front end of every SLAM method
+  PoseGraphSlamConfig pose_graph;        ///< the pose-graph back end (method posegraph)
+  std::vector<TimeSegment> segments;     ///< named windows scored separately in metrics.json
 };
 
 }  // namespace msislab

@@ -20,14 +20,15 @@ TEST(Methods, EveryMethodHasADistinctNameTitleAndColour) {
     EXPECT_EQ(m.kind == MethodKind::kTrajectorySlam, static_cast<bool>(m.make_slam)) << m.name;
     EXPECT_EQ(find_method(m.name), &m);
   }
-  EXPECT_EQ(method_names(), (std::vector<std::string>{"robocentric", "worldcentric",
+  EXPECT_EQ(method_names(), (std::vector<std::string>{"robocentric", "worldcentric", "posegraph",
                                                       "deadreckoning", "integration"}));
-  // The two filters differ in how they store the trajectory, and the registry builds each.
+  // The registry builds each back end: the two filters and the pose graph.
   const GaussianPose2 start;
-  for (const char* name : {"robocentric", "worldcentric"}) {
-    const auto slam = method_info(name).make_slam(TrajectorySlamConfig{}, start);
+  for (const char* name : {"robocentric", "worldcentric", "posegraph"}) {
+    const auto slam = method_info(name).make_slam(SlamConfig{}, start);
     ASSERT_NE(slam, nullptr) << name;
-    EXPECT_TRUE(slam->elements().empty());
+    EXPECT_EQ(slam->scans(), 0u);
+    EXPECT_EQ(slam->online_poses().has_value(), std::string(name) == "posegraph");
   }
 }
 
@@ -38,7 +39,7 @@ TEST(Methods, AnUnknownMethodIsOneClearErrorOrShownAsNamed) {
   } catch (const io::InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               "--methods 'ekf': not available in this build (available: robocentric, "
-              "worldcentric, deadreckoning, integration)");
+              "worldcentric, posegraph, deadreckoning, integration)");
   }
   EXPECT_EQ(find_method("ekf"), nullptr);
   // A result of a method this build does not know still plots and tabulates.

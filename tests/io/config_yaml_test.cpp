@@ -262,6 +262,30 @@ TEST(SlamConfigYaml, JointUpdateKeys) {
                          "trajectory_slam.joint_update");
 }
 
+TEST(SlamConfigYaml, PoseGraphKeys) {
+  const TempDir dir;
+  const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
+  EXPECT_EQ(defaults.pose_graph.graph.robust_loss, RobustLoss::kDynamicCovarianceScaling);
+  EXPECT_EQ(defaults.pose_graph.solve_every, 1);
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "pose_graph:\n"
+                                                   "  robust_loss: cauchy\n"
+                                                   "  robust_scale_chi2: 0\n"
+                                                   "  robust_start_factor: 1\n"
+                                                   "  max_iterations: 20\n"
+                                                   "  solve_every: 5\n"));
+  EXPECT_EQ(c.pose_graph.graph.robust_loss, RobustLoss::kCauchy);
+  EXPECT_EQ(c.pose_graph.graph.robust_scale_chi2, 0.0);
+  EXPECT_EQ(c.pose_graph.graph.robust_start_factor, 1.0);
+  EXPECT_EQ(c.pose_graph.graph.max_iterations, 20);
+  EXPECT_EQ(c.pose_graph.solve_every, 5);
+  expect_bad_slam_config("pose_graph:\n  robust_loss: huber\n", 2, "pose_graph.robust_loss");
+  expect_bad_slam_config("pose_graph:\n  robust_start_factor: 0.5\n", 2,
+                         "pose_graph.robust_start_factor");
+  expect_bad_slam_config("pose_graph:\n  solve_every: 0\n", 2, "pose_graph.solve_every");
+  expect_bad_slam_config("pose_graph:\n  solve_evry: 2\n", 2, "pose_graph.solve_evry");
+}
+
 TEST(SlamConfigYaml, HeadingSigmaDegreesBecomeRadians) {
   const TempDir dir;
   for (const double deg : {0.5, 1.0, 10.0, 180.0}) {

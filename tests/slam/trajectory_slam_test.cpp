@@ -315,6 +315,7 @@ TEST(PoseGraphSlam, ClosesTheLoopLikeTheFilters) {
   EXPECT_GT(graph.totals().accepted, static_cast<int>(loop.scans.size()));
   EXPECT_GE(graph.totals().accepted, filter.totals().accepted - 2);
   EXPECT_EQ(graph.matches_downweighted(), 0);
+  EXPECT_FALSE(filter.matches_downweighted());
   const double graph_m = final_error_m(smoothed_poses, loop.truth);
   EXPECT_LT(graph_m, 0.5 * final_error_m(odometry, loop.truth));
   EXPECT_LT(graph_m, 2.0 * final_error_m(filtered_poses, loop.truth) + 0.05);

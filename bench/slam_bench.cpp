@@ -2,11 +2,13 @@
 // state holds N scans, timing the scans added after that (each matched against up to 3 earlier
 // scans and updated), for both filters; with the update restricted to the loop's window (the
 // default) or over the whole state, and with or without the per-scan compass update (which
-// involves every element). items_per_second is scans per second at that state size.
+// involves every element). items_per_second is scans per second at that state size. The pose
+// graph's step time on the same scans, up to 2,000 scans (issue 15), closes the file.
 #include <benchmark/benchmark.h>
 
 #include <random>
 
+#include "slam/pose_graph_slam.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 
@@ -95,5 +97,36 @@ void step_args(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK_TEMPLATE(BM_Step, RoboCentricSlam)->Apply(step_args);
 BENCHMARK_TEMPLATE(BM_Step, WorldCentricSlam)->Apply(step_args);
+
+/// The pose graph (issue 15) on the same scans: step time (match, solve, the newest scan's
+/// covariance) against graph size, up to a long mission of 2,000 scans. Args: scans in the graph,
+/// solve_every.
+void BM_PoseGraphStep(benchmark::State& state) {
+  const auto graph_scans = static_cast<std::size_t>(state.range(0));
+  PoseGraphSlamConfig config;
+  config.solve_every = static_cast<int>(state.range(1));
+  const std::size_t timed = 10;
+  const std::vector<Scan> scans = loop_scans(graph_scans + timed);
+  for (auto _ : state) {
+    state.PauseTiming();
+    PoseGraphSlam slam(TrajectorySlamConfig{}, config, GaussianPose2{});
+    for (std::size_t k = 0; k < graph_scans; ++k) slam.add_scan(scans[k]);
+    state.ResumeTiming();
+    for (std::size_t k = graph_scans; k < scans.size(); ++k) {
+      benchmark::DoNotOptimize(slam.add_scan(scans[k]));
+    }
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(timed));
+}
+BENCHMARK(BM_PoseGraphStep)
+    ->ArgNames({"scans", "solve_every"})
+    ->Args({100, 1})
+    ->Args({500, 1})
+    ->Args({500, 10})
+    ->Args({1000, 1})
+    ->Args({2000, 1})
+    ->Args({2000, 10})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, then
 #  1. simulates the default scenario (scenarios/stpere_replica.yaml) and runs robocentric and
-#     world-centric trajectory SLAM, dead reckoning and the plain-integration reference on it,
+#     world-centric trajectory SLAM, the pose graph, dead reckoning and the plain-integration reference on it,
 #     scored against the exact simulation truth;
 #  2. runs them on the real St. Pere dataset (when ../shared/datasets/stpere is there), scored
 #     against GPS;
@@ -17,7 +17,7 @@ cmake --preset release
 cmake --build --preset release
 
 msislab=build/release/tools/msislab
-methods=(robocentric worldcentric deadreckoning integration)
+methods=(robocentric worldcentric posegraph deadreckoning integration)
 
 echo "== Simulating scenarios/stpere_replica.yaml"
 "$msislab" simulate scenarios/stpere_replica.yaml --out out/sim/stpere_replica

@@ -3,7 +3,7 @@
 #  1. tools/main.sh: builds, simulates the St. Pere replica, runs every method on it and on the
 #     real St. Pere dataset (when present), scores and plots them;
 #  2. the Monte Carlo consistency test: N seeded runs (default 50) of scenarios/stpere_replica.yaml
-#     with robocentric and world-centric SLAM and dead reckoning (resumable: an interrupted sweep
+#     with robocentric and world-centric SLAM, the pose graph and dead reckoning (resumable: an interrupted sweep
 #     keeps its finished runs when this is run again), and its NEES figure;
 #  3. the failure scenarios of issue 12 with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
@@ -36,7 +36,7 @@ montecarlo() {
   shift 3
   echo "== Monte Carlo: $n runs of $scenario into $dir"
   run_fresh "$dir" "$msislab" montecarlo "$scenario" --runs "$n" --jobs "$jobs" \
-    --methods robocentric,worldcentric,deadreckoning --out "$dir" "$@"
+    --methods robocentric,worldcentric,posegraph,deadreckoning --out "$dir" "$@"
 }
 # The replica's config, as the main job's: its sonar read from detections like the real data.
 mc="out/montecarlo/stpere_replica_${runs}runs"

@@ -115,6 +115,16 @@ void table_one(std::ostringstream& md, const ResultFolder& folder, const std::st
        << (std::abs(rc->errors.mean_m - wc->errors.mean_m) < 0.01 ? " (the same within 1 cm)" : "")
        << ".\n";
   }
+  // A back end with an online estimate (the pose graph): its smoothed trajectory beside it.
+  for (const RunMetrics& m : folder.results) {
+    const auto smoothed =
+        std::find_if(m.diagnostics.begin(), m.diagnostics.end(),
+                     [](const auto& d) { return d.first == "smoothed_mean_error_m"; });
+    if (smoothed == m.diagnostics.end()) continue;
+    md << "- " << method_title(m.method) << ": " << fixed(smoothed->second, 2)
+       << " m mean error smoothed (trajectory_smoothed.tum), " << fixed(m.errors.mean_m, 2)
+       << " m online (the table, docs/pose_graph.md).\n";
+  }
   if (rc && dr) {
     md << "- Robocentric SLAM against dead reckoning: " << fixed(rc->errors.mean_m, 2)
        << " against " << fixed(dr->errors.mean_m, 2) << " m mean error ("
@@ -137,6 +147,8 @@ std::vector<std::pair<std::string, std::string>> figure_captions(const std::stri
           {"robocentric.png", "(c) Robocentric SLAM against the " + truth +
                                   ", 2-sigma ellipses of the scan poses and the map points"},
           {"errors.png", "(d) Position error against time, every method"},
+          {"posegraph.png", "The pose graph (online) against the " + truth +
+                                ", 2-sigma ellipses of the scan poses and the map points"},
           {"integration.png", "Plain DVL integration against the " + truth},
           {"acoustic_image.png", "One revolution of the raw sonar log (acoustic image)"},
           {"nees.png", "Run-averaged NEES of the scan pose per scan step, with the 95% bounds"},

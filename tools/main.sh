@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, then
 #  1. simulates the default scenario (scenarios/stpere_replica.yaml) and runs robocentric and
-#     world-centric trajectory SLAM, the pose graph, dead reckoning and the plain-integration reference on it,
-#     scored against the exact simulation truth;
+#     world-centric trajectory SLAM, the pose graph, dead reckoning and the plain-integration
+#     reference on it, scored against the exact simulation truth;
 #  2. runs them on the real St. Pere dataset (when ../shared/datasets/stpere is there), scored
 #     against GPS;
 #  3. re-scores every result with msislab eval (prints its mean error and ANEES);

@@ -3,8 +3,8 @@
 #  1. tools/main.sh: builds, simulates the St. Pere replica, runs every method on it and on the
 #     real St. Pere dataset (when present), scores and plots them;
 #  2. the Monte Carlo consistency test: N seeded runs (default 50) of scenarios/stpere_replica.yaml
-#     with robocentric and world-centric SLAM, the pose graph and dead reckoning (resumable: an interrupted sweep
-#     keeps its finished runs when this is run again), and its NEES figure;
+#     with robocentric and world-centric SLAM, the pose graph and dead reckoning (resumable: an
+#     interrupted sweep keeps its finished runs when this is run again), and its NEES figure;
 #  3. the failure scenarios of issue 12 with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
 #  4. msislab report: writes the page from those folders and copies the figures beside it, with

@@ -218,6 +218,26 @@ TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
   position(page, "## Monte Carlo consistency\n\nNot run.");
 }
 
+TEST(ReportCommand, ThePoseGraphsSmoothedErrorBesideItsOnlineOne) {
+  const TempDir tmp;
+  RunMetrics graph = metrics("posegraph", 2.63, std::nullopt, 4.47);
+  graph.diagnostics = {{"matches_downweighted", 0}, {"smoothed_mean_error_m", 2.716}};
+  const fs::path real =
+      result_folder(tmp.path() / "real", {metrics("robocentric", 2.84, std::nullopt, 4.47), graph},
+                    {"posegraph.png"});
+  ReportOptions options;
+  options.out_path = tmp.file("page.md");
+  options.real_dir = real.string();
+  write_report(options);
+  const std::string page = read_text(options.out_path);
+  position(page, "| Robocentric SLAM | **2.84** |");
+  position(page, "| Pose graph (Ceres) | **2.63** |");  // the registry's order
+  position(page,
+           "- Pose graph (Ceres): 2.72 m mean error smoothed (trajectory_smoothed.tum), "
+           "2.63 m online");
+  position(page, "**The pose graph (online) against the GPS track, 2-sigma ellipses");
+}
+
 TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
   const TempDir tmp;
   const fs::path dir = tmp.path() / "heading_noise";

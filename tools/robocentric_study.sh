@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Regenerates the robocentric study (docs/robocentric.md, issue 14) in one command: builds, then
-# runs every sweep of studies/robocentric/ (20 seeded runs per cell of the marina loop,
-# robocentric and world-centric SLAM on the same simulated data) into out/study/<sweep>, draws
-# each sweep's figures (msislab plot) and copies those against its main key, with each
-# sweep.csv, into docs/robocentric/. Resumable: a sweep interrupted keeps its finished runs when this is run
-# again; one made by another build or sweep file is run again from scratch.
-# Usage: tools/robocentric_study.sh [--jobs J]     (about 18 minutes on 2 cores)
+# runs every sweep of studies/robocentric/ (20 seeded runs per cell of the marina loop, both
+# filters on the same simulated data) into out/study/<sweep>, draws each sweep's figures and
+# copies those against its main key, with each sweep.csv, into docs/robocentric/. Resumable: an
+# interrupted sweep keeps its finished runs when this is run again; one made by another build or
+# sweep file is run again from scratch.
+# Usage: tools/robocentric_study.sh [--jobs J]     (about 11 minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -119,6 +119,11 @@ double chi2_survival(double x, int dof) {
   return q;
 }
 
+double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
+  if (d == 3) return gate_3dof;
+  return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<int>(d));
+}
+
 double chi2_quantile(double p, int dof) {
   // The survival function decreases in x: bisection for Q(x) = 1 - p.
   double lo = 0.0, hi = 2.0 * dof + 50.0;

@@ -9,23 +9,6 @@
 
 namespace msislab {
 
-namespace {
-
-/// A motion whose covariance says "unknown" (as trajectory SLAM's): 100 m and pi rad.
-GaussianPose2 unknown_motion() {
-  return {Pose2(), Eigen::Vector3d(1e4, 1e4, M_PI * M_PI).asDiagonal()};
-}
-
-std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
-  std::vector<ScanPoint> finite;
-  for (const ScanPoint& p : points) {
-    if (p.p_m.allFinite() && p.cov.allFinite()) finite.push_back(p);
-  }
-  return finite;
-}
-
-}  // namespace
-
 PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
                              const PoseGraphSlamConfig& config, const GaussianPose2& start_world)
     : front_end_(front_end), config_(config), graph_(std::make_unique<PoseGraph>(config.graph)) {

@@ -3,6 +3,8 @@
 // covariances. `msislab run` drives any of them the same way (app/methods registers them).
 #pragma once
 
+#include <Eigen/Core>
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <vector>
@@ -14,6 +16,22 @@ namespace msislab {
 
 struct SlamStepStats;
 struct SlamTotals;
+
+/// A motion whose covariance says "unknown" (100 m and pi rad standard deviation): what a back
+/// end chains for a scan whose motion is not finite, losing track instead of failing.
+inline GaussianPose2 unknown_motion() {
+  return {Pose2(), Eigen::Vector3d(1e4, 1e4, M_PI * M_PI).asDiagonal()};
+}
+
+/// The scan's points with finite coordinates and covariances.
+inline std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
+  std::vector<ScanPoint> finite;
+  finite.reserve(points.size());
+  for (const ScanPoint& p : points) {
+    if (p.p_m.allFinite() && p.cov.allFinite()) finite.push_back(p);
+  }
+  return finite;
+}
 
 class ScanSlam {
  public:

@@ -13,27 +13,6 @@ namespace msislab {
 
 namespace {
 
-/// A motion whose covariance says "unknown": 100 m and pi rad standard deviation.
-GaussianPose2 unknown_motion() {
-  return {Pose2(), Eigen::Vector3d(1e4, 1e4, M_PI * M_PI).asDiagonal()};
-}
-
-std::vector<ScanPoint> finite_points(const std::vector<ScanPoint>& points) {
-  std::vector<ScanPoint> finite;
-  finite.reserve(points.size());
-  for (const ScanPoint& p : points) {
-    if (p.p_m.allFinite() && p.cov.allFinite()) finite.push_back(p);
-  }
-  return finite;
-}
-
-/// The innovation gate for d observed directions at the tail probability of the configured
-/// 3-DOF gate (chi-square, 99 % by default): 3 DOF keeps the configured value.
-double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
-  if (d == 3) return gate_3dof;
-  return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<int>(d));
-}
-
 /// The first state element observations of scan b involve: the smallest reference + 1.
 std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservation>& z) {
   std::size_t first = b;

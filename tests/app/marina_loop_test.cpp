@@ -1,11 +1,11 @@
 // The CI end-to-end SLAM test (issue 6): `msislab montecarlo` on scenarios/marina_loop.yaml (a
 // 546 s, 39-scan loop in the marina basin, no real data needed), 5 seeded runs (seeds 1-5) of
-// robocentric, world-centric and dead reckoning. It asserts the SLAM error, its gain over dead
-// reckoning, and that the robocentric scan-pose NEES averaged over the runs stays inside its 95%
-// chi-square bounds for most scans. Measured figures beside each tolerance: this directory's 5
-// runs, then the range over the 8 blocks of 5 runs of seeds 1-40 (docs/trajectory_slam.md), both
-// measured with one-way spIC association; with the reciprocal default these 5 runs give 0.720 m,
-// ANEES 3.32 and 94.9% of the scans in bounds.
+// robocentric, world-centric, the pose graph and dead reckoning. It asserts the SLAM error, its
+// gain over dead reckoning, and that the robocentric scan-pose NEES averaged over the runs stays
+// inside its 95% chi-square bounds for most scans. Measured figures beside each tolerance: this
+// directory's 5 runs, then the range over the 8 blocks of 5 runs of seeds 1-40
+// (docs/trajectory_slam.md), both measured with one-way spIC association; with the reciprocal
+// default these 5 runs give 0.720 m, ANEES 3.32 and 94.9% of the scans in bounds.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -64,7 +64,7 @@ TEST(MarinaLoop, SlamBeatsDeadReckoningAndRobocentricNeesStaysInBounds) {
   options.scenario_path = std::string(MSISLAB_SOURCE_DIR) + "/scenarios/marina_loop.yaml";
   options.runs = kRuns;
   options.out_dir = tmp.file("mc");
-  options.methods = {"robocentric", "worldcentric", "deadreckoning"};
+  options.methods = {"robocentric", "worldcentric", "posegraph", "deadreckoning"};
   options.jobs = 2;
   std::ostringstream log;
   const MonteCarloOutcome outcome = montecarlo(options, {log, false});
@@ -78,6 +78,20 @@ TEST(MarinaLoop, SlamBeatsDeadReckoningAndRobocentricNeesStaysInBounds) {
   }
   expect_errors(outcome);
   expect_consistent(find(outcome, "robocentric"));
+
+  // The pose graph on the same scans (issue 15): online 0.602 m, smoothed 0.634 m, ANEES 1.92
+  // (its online covariances a little wide), 79.5 % of the scans in bounds.
+  const MethodSummary& graph = find(outcome, "posegraph");
+  const double graph_m = graph.mean_error_m.value_or(NAN);
+  EXPECT_LT(graph_m, 1.0);
+  EXPECT_LT(graph_m, 0.4 * find(outcome, "deadreckoning").mean_error_m.value_or(NAN));
+  double smoothed_m = NAN;
+  for (const auto& [name, value] : graph.diagnostics) {
+    if (name == "smoothed_mean_error_m") smoothed_m = value;
+  }
+  EXPECT_LT(smoothed_m, 1.0);
+  EXPECT_GT(graph.anees.value_or(0.0), 1.0);
+  EXPECT_LT(graph.anees.value_or(INFINITY), 4.5);
 }
 
 }  // namespace

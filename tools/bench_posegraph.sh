@@ -37,7 +37,8 @@ for method in posegraph robocentric; do
     runtime=$(sed -n 's/.*"runtime_s": \([0-9.e+-]*\).*/\1/p' "$out/$method/metrics.json")
     times+=("$runtime")
     awk -v m="$method" -v r="$runtime" -v s="$start" -v e="$end" -v i="$i" 'BEGIN {
-      printf "%s run %d: %.2f s (metrics.json runtime_s), whole command %.2f s wall\n", m, i, r, e - s }'
+      printf "%s run %d: %.2f s (metrics.json runtime_s), whole command %.2f s wall\n",
+        m, i, r, e - s }'
   done
   printf '%s\n' "${times[@]}" | sort -g | awk -v m="$method" '
     { v[NR] = $1 } END {

@@ -144,14 +144,6 @@ struct PoseGraph::Problem {
   std::vector<ceres::ResidualBlockId> robust;
   /// c^2 of the robust losses now: the configured one, or more during a graduated start.
   double c2 = 0.0;
-
-  Problem() : problem(options()) {}
-  static ceres::Problem::Options options() {
-    ceres::Problem::Options o;
-    // The graph owns its cost functions and losses (the default), and is never shrunk.
-    o.enable_fast_removal = false;
-    return o;
-  }
 };
 
 PoseGraph::PoseGraph(const PoseGraphConfig& config)
@@ -213,13 +205,9 @@ PoseGraphSolve PoseGraph::solve() {
     ceres::Solve(options, &problem_->problem, &summary);
   }
   problem_->c2 = config_.robust_scale_chi2;
-  const double initial_cost =
-      problem_->robust.empty() || config_.robust_start_factor <= 1.0 ? -1.0 : summary.initial_cost;
   ceres::Solve(options, &problem_->problem, &summary);
   PoseGraphSolve out;
   out.converged = summary.termination_type == ceres::CONVERGENCE;
-  out.iterations = static_cast<int>(summary.iterations.size());
-  out.initial_cost = initial_cost >= 0.0 ? initial_cost : summary.initial_cost;
   out.final_cost = summary.final_cost;
   // Down-weighted: beyond the gate, a squared whitened norm above c^2.
   for (const ceres::ResidualBlockId id : problem_->robust) {

@@ -53,10 +53,8 @@ struct PoseGraphConfig {
 
 /// What a solve did.
 struct PoseGraphSolve {
-  bool converged = false;     ///< Ceres reported convergence (not an iteration or time limit)
-  int iterations = 0;         ///< of the last stage
-  double initial_cost = 0.0;  ///< before the first stage
-  double final_cost = 0.0;    ///< Ceres' cost: half the sum of the (robustified) squared residuals
+  bool converged = false;   ///< Ceres reported convergence (not an iteration or time limit)
+  double final_cost = 0.0;  ///< Ceres' cost: half the sum of the (robustified) squared residuals
   /// Robust edges beyond the gate at the solution (squared whitened norm above
   /// robust_scale_chi2): the matches the loss set aside.
   int edges_downweighted = 0;

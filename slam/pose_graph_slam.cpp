@@ -1,7 +1,6 @@
 #include "slam/pose_graph_slam.hpp"
 
 #include <Eigen/Cholesky>
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -46,18 +45,12 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   } else {
     // Associate (paper Eq. 3-4): past scans whose estimated centre lies within gamma.
     const Pose2 newest = graph_->pose(node);
-    std::vector<std::pair<double, std::size_t>> candidates;
-    for (std::size_t j = 0; j + static_cast<std::size_t>(front_end_.min_scan_gap) <= k; ++j) {
-      const double d = (graph_->pose(j + 1).translation() - newest.translation()).norm();
-      if (d < front_end_.association_distance_m &&
-          static_cast<int>(points_[j].size()) >= front_end_.matching.min_inliers) {
-        candidates.emplace_back(d, j);
-      }
+    std::vector<double> distances_m(k);
+    for (std::size_t j = 0; j < k; ++j) {
+      distances_m[j] = (graph_->pose(j + 1).translation() - newest.translation()).norm();
     }
-    std::sort(candidates.begin(), candidates.end());
-    if (static_cast<int>(candidates.size()) > front_end_.max_matches_per_scan) {
-      candidates.resize(static_cast<std::size_t>(front_end_.max_matches_per_scan));
-    }
+    const std::vector<std::pair<double, std::size_t>> candidates =
+        nearest_candidates(distances_m, points_, front_end_);
     stats.candidates = static_cast<int>(candidates.size());
     for (const auto& [distance_m, j] : candidates) {
       // The prediction: the graph's relative pose, with the odometry chain's covariance.
@@ -84,18 +77,8 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
           ++stats.accepted;
         }
       }
-      MatchRecord record;
-      record.scan = k;
-      record.reference = j;
-      record.distance_m = distance_m;
-      record.valid = m.match.valid;
-      record.rejection = m.rejection;
-      record.observed = m.observed;
-      record.restarts = m.restarts;
-      record.z = m.match.estimate;
-      record.predicted = predicted;
-      record.nis = nis;
-      stats.matches.push_back(std::move(record));
+      stats.matches.push_back(record_of(j, k, m, predicted, nis));
+      stats.matches.back().distance_m = distance_m;
       stats.rejections.count(m);
       totals_.rejections.count(m);
     }

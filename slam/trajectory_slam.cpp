@@ -20,6 +20,8 @@ std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservat
   return first;
 }
 
+}  // namespace
+
 MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
                       const GaussianPose2& predicted, double nis) {
   MatchRecord record;
@@ -35,7 +37,23 @@ MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
   return record;
 }
 
-}  // namespace
+std::vector<std::pair<double, std::size_t>> nearest_candidates(
+    const std::vector<double>& distances_m, const std::vector<std::vector<ScanPoint>>& points,
+    const TrajectorySlamConfig& config) {
+  const std::size_t k = points.size() - 1;
+  std::vector<std::pair<double, std::size_t>> candidates;
+  for (std::size_t j = 0; j + static_cast<std::size_t>(config.min_scan_gap) <= k; ++j) {
+    if (distances_m[j] < config.association_distance_m &&
+        static_cast<int>(points[j].size()) >= config.matching.min_inliers) {
+      candidates.emplace_back(distances_m[j], j);
+    }
+  }
+  std::sort(candidates.begin(), candidates.end());
+  if (static_cast<int>(candidates.size()) > config.max_matches_per_scan) {
+    candidates.resize(static_cast<std::size_t>(config.max_matches_per_scan));
+  }
+  return candidates;
+}
 
 void MatchRejectionCounts::count(const ValidatedMatch& match) {
   if (match.rejection == MatchRejection::kNone) {
@@ -86,18 +104,8 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   }
 
   // Associate (paper Eq. 3-4): past scans within gamma, nearest first.
-  const std::vector<double> distances_m = distances_to_newest();
-  std::vector<std::pair<double, std::size_t>> candidates;
-  for (std::size_t j = 0; j + static_cast<std::size_t>(config_.min_scan_gap) <= k; ++j) {
-    if (distances_m[j] < config_.association_distance_m &&
-        static_cast<int>(points_[j].size()) >= config_.matching.min_inliers) {
-      candidates.emplace_back(distances_m[j], j);
-    }
-  }
-  std::sort(candidates.begin(), candidates.end());
-  if (static_cast<int>(candidates.size()) > config_.max_matches_per_scan) {
-    candidates.resize(static_cast<std::size_t>(config_.max_matches_per_scan));
-  }
+  const std::vector<std::pair<double, std::size_t>> candidates =
+      nearest_candidates(distances_to_newest(), points_, config_);
   stats.candidates = static_cast<int>(candidates.size());
 
   // Observe and update (Eq. 5-10): one match after the other, or all together (Eq. 8).

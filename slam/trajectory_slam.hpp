@@ -21,6 +21,7 @@
 #include <array>
 #include <limits>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "slam/gaussian_pose.hpp"
@@ -89,6 +90,18 @@ struct MatchRecord {
   /// not reach the gate). The joint update gates sets of matches; this is each one's own share.
   double nis = std::numeric_limits<double>::quiet_NaN();
 };
+
+/// A candidate match's record before the distance is set: scan k against scan j, as validated,
+/// with the prediction it was made from and its NIS (NaN when it did not reach the gate).
+MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
+                      const GaussianPose2& predicted, double nis);
+
+/// Data association (paper Eq. 3-4), shared by every back end: the past scans j <= k - min_scan_gap
+/// (k the newest, points.size() - 1) whose distance to the newest lies below gamma and which
+/// have enough points to match, nearest first, at most max_matches_per_scan, as (distance, j).
+std::vector<std::pair<double, std::size_t>> nearest_candidates(
+    const std::vector<double>& distances_m, const std::vector<std::vector<ScanPoint>>& points,
+    const TrajectorySlamConfig& config);
 
 /// What one step did.
 struct SlamStepStats {

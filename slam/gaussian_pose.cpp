@@ -19,4 +19,17 @@ GaussianPose2 invert(const GaussianPose2& x_ab) {
   return x_ba;
 }
 
+GaussianPose2 between(const Pose2& x_ab, const Pose2& x_ac,
+                      const Eigen::Matrix<double, 6, 6>& joint_cov) {
+  Eigen::Matrix3d J_ab;
+  Eigen::Matrix3d J_ac;
+  GaussianPose2 x_bc;
+  x_bc.mean = x_ab.between(x_ac, &J_ab, &J_ac);
+  Eigen::Matrix<double, 3, 6> J;
+  J << J_ab, J_ac;
+  const Eigen::Matrix3d cov = J * joint_cov * J.transpose();
+  x_bc.cov = 0.5 * (cov + cov.transpose());
+  return x_bc;
+}
+
 }  // namespace msislab

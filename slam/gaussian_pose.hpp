@@ -19,6 +19,12 @@ GaussianPose2 compose(const GaussianPose2& x_ab, const GaussianPose2& x_bc);
 /// x_ba = (-) x_ab.
 GaussianPose2 invert(const GaussianPose2& x_ab);
 
+/// x_bc = (-) x_ab (+) x_ac for x_ab and x_ac with joint covariance joint_cov (6 x 6: x_ab's
+/// components, then x_ac's): P_bc = J P J^T with J = [J_ab J_ac] of Pose2::between. The cross
+/// terms take out what the two poses share (two poses on one chain: the part before their fork).
+GaussianPose2 between(const Pose2& x_ab, const Pose2& x_ac,
+                      const Eigen::Matrix<double, 6, 6>& joint_cov);
+
 /// A Gaussian pose at a time: one sample of a trajectory.
 struct StampedPose {
   double t_s = 0.0;    ///< log time, Unix seconds

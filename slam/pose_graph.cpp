@@ -224,30 +224,73 @@ Pose2 PoseGraph::pose(std::size_t i) const { return Pose2(*poses_.at(i)); }
 
 const ceres::Problem& PoseGraph::problem_for_checks() const { return problem_->problem; }
 
-std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
+namespace {
+
+using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+using Poses = std::vector<std::unique_ptr<Eigen::Vector3d>>;
+
+ceres::Covariance::Options covariance_options() {
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::SPARSE_QR;
   options.num_threads = 1;
-  ceres::Covariance covariance(options);
-  std::vector<std::pair<const double*, const double*>> blocks;
+  return options;
+}
+
+/// Computes the covariance blocks `pairs` (node indices) over the whole graph's information.
+void compute_covariance(ceres::Covariance& covariance, ceres::Problem& problem, const Poses& poses,
+                        const std::vector<std::size_t>& nodes,
+                        const std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
   for (const std::size_t i : nodes) {
     std::vector<ceres::ResidualBlockId> edges;
-    problem_->problem.GetResidualBlocksForParameterBlock(poses_.at(i)->data(), &edges);
-    if (edges.empty() && !problem_->problem.IsParameterBlockConstant(poses_.at(i)->data())) {
+    problem.GetResidualBlocksForParameterBlock(poses.at(i)->data(), &edges);
+    if (edges.empty() && !problem.IsParameterBlockConstant(poses.at(i)->data())) {
       throw std::runtime_error("pose graph: node " + std::to_string(i) + " has no edge");
     }
-    blocks.emplace_back(poses_.at(i)->data(), poses_.at(i)->data());
   }
-  if (!covariance.Compute(blocks, &problem_->problem)) {
+  std::vector<std::pair<const double*, const double*>> blocks;
+  for (const auto& [a, b] : pairs) blocks.emplace_back(poses.at(a)->data(), poses.at(b)->data());
+  if (!covariance.Compute(blocks, &problem)) {
     throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
   }
+}
+
+}  // namespace
+
+std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
+  ceres::Covariance covariance(covariance_options());
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (const std::size_t i : nodes) pairs.emplace_back(i, i);
+  compute_covariance(covariance, problem_->problem, poses_, nodes, pairs);
   std::vector<Eigen::Matrix3d> out;
   for (const std::size_t i : nodes) {
-    Eigen::Matrix<double, 3, 3, Eigen::RowMajor> C;
+    RowMatrix3d C;
     covariance.GetCovarianceBlock(poses_.at(i)->data(), poses_.at(i)->data(), C.data());
     out.emplace_back(C);
   }
   return out;
 }
+
+Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes) {
+  ceres::Covariance covariance(covariance_options());
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < nodes.size(); ++a) {
+    for (std::size_t b = a; b < nodes.size(); ++b) pairs.emplace_back(nodes[a], nodes[b]);
+  }
+  compute_covariance(covariance, problem_->problem, poses_, nodes, pairs);
+  const auto n = static_cast<Eigen::Index>(nodes.size());
+  Eigen::MatrixXd C(3 * n, 3 * n);
+  for (Eigen::Index a = 0; a < n; ++a) {
+    for (Eigen::Index b = a; b < n; ++b) {
+      RowMatrix3d block;
+      covariance.GetCovarianceBlock(poses_.at(nodes[a])->data(), poses_.at(nodes[b])->data(),
+                                    block.data());
+      C.block<3, 3>(3 * a, 3 * b) = block;
+      C.block<3, 3>(3 * b, 3 * a) = block.transpose();
+    }
+  }
+  return C;
+}
+
+void PoseGraph::set_pose(std::size_t i, const Pose2& world) { *poses_.at(i) = world.vector(); }
 
 }  // namespace msislab

@@ -1,6 +1,7 @@
 #include "slam/pose_graph_slam.hpp"
 
 #include <Eigen/Cholesky>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -10,15 +11,78 @@ namespace msislab {
 
 PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
                              const PoseGraphSlamConfig& config, const GaussianPose2& start_world)
-    : front_end_(front_end), config_(config), graph_(std::make_unique<PoseGraph>(config.graph)) {
+    : front_end_(front_end),
+      config_(config),
+      graph_(std::make_unique<PoseGraph>(config.graph)),
+      start_cov_(start_world.cov) {
   graph_->add_node(start_world.mean);
   // The start pose: a prior with its covariance, or held where it is when that is singular.
   if (Eigen::LLT<Eigen::Matrix3d>(start_world.cov).info() == Eigen::Success) {
     graph_->add_prior(0, start_world);
   } else {
     graph_->fix_node(0);
+    start_cov_.setZero();
   }
 }
+
+namespace {
+
+/// The nodes a scan may touch (the newest last) as the graph knows them: their means and joint
+/// covariance. Every edge the scan adds (odometry, compass, matches) involves only these nodes, so
+/// an EKF update of this small joint gives exactly their marginal in the grown graph, to first
+/// order: the filters' prediction and innovation, without solving the graph or computing its
+/// covariance again for each match.
+struct LocalBelief {
+  std::vector<std::size_t> nodes;
+  std::vector<Pose2> means;
+  Eigen::MatrixXd cov;
+
+  Eigen::Index newest() const { return static_cast<Eigen::Index>(nodes.size()) - 1; }
+
+  /// Block c of the pose of the newest node seen from node c, with its Jacobian H (3 x 3n).
+  GaussianPose2 predict(Eigen::Index c, Eigen::MatrixXd* H) const {
+    const Eigen::Index t = newest();
+    Eigen::Matrix3d J_c, J_t;
+    const Pose2 h = means[c].between(means[t], &J_c, &J_t);
+    H->setZero(3, cov.cols());
+    H->block<3, 3>(0, 3 * c) = J_c;
+    H->block<3, 3>(0, 3 * t) = J_t;
+    const Eigen::Matrix3d P = *H * cov * H->transpose();
+    return {h, 0.5 * (P + P.transpose())};
+  }
+
+  /// The iterated EKF update (paper Eq. 9-10), as the filters do it: X_{i+1} = X^ + K_i (z -
+  /// h(X_i) - H_i (X^ - X_i)), K_i = P H_i^T (H_i P H_i^T + R)^-1, then P = (I - K H) P at the
+  /// last linearisation. residual(H) gives z (-) h at the current means and sets H.
+  template <class Residual>
+  void update(const Residual& residual, const Eigen::MatrixXd& R, int iterations) {
+    const std::vector<Pose2> prior = means;
+    Eigen::VectorXd x_prior(cov.rows());
+    for (std::size_t i = 0; i < prior.size(); ++i)
+      x_prior.segment<3>(3 * index(i)) = prior[i].vector();
+    Eigen::MatrixXd H, K, PHt;
+    for (int iteration = 0; iteration < std::max(1, iterations); ++iteration) {
+      const Eigen::VectorXd z_minus_h = residual(&H);
+      Eigen::VectorXd dx(cov.rows());  // X^ - X_i, angles wrapped
+      for (std::size_t i = 0; i < prior.size(); ++i) {
+        dx.segment<3>(3 * index(i)) = pose_difference(prior[i], means[i]);
+      }
+      PHt.noalias() = cov * H.transpose();
+      const Eigen::MatrixXd S = H * PHt + R;
+      K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
+      const Eigen::VectorXd x_new = x_prior + K * (z_minus_h - H * dx);
+      for (std::size_t i = 0; i < means.size(); ++i) {
+        means[i] = Pose2(Eigen::Vector3d(x_new.segment<3>(3 * index(i))));
+      }
+    }
+    cov.noalias() -= K * PHt.transpose();
+    cov = 0.5 * (cov + cov.transpose());
+  }
+
+  static Eigen::Index index(std::size_t i) { return static_cast<Eigen::Index>(i); }
+};
+
+}  // namespace
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   smoothed_.clear();
@@ -27,16 +91,37 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   const GaussianPose2 motion = motion_ok ? scan.motion : unknown_motion();
   const std::size_t k = motions_.size();
   const std::size_t node = k + 1;
-  graph_->add_node(graph_->pose(node - 1).compose(motion.mean));
+
+  // The odometry edge (Eq. 2): the newest node's belief is the previous one's composed with the
+  // motion, exact for its marginal since nothing else touches it yet.
+  const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
+  GaussianPose2 newest = compose(previous, motion);
+  graph_->add_node(newest.mean);
   graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
   motions_.push_back(motion);
   points_.push_back(finite_points(scan.points));
   ++totals_.scans;
+
+  // The compass, before association as the filters do, behind the same gate.
   if (front_end_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
       scan.compass_sigma_rad > 0.0) {
-    graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
-    stats.compass_accepted = true;
-    ++totals_.compass_accepted;
+    LocalBelief belief{{node}, {newest.mean}, newest.cov};
+    const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
+      *H = Eigen::RowVector3d(0.0, 0.0, 1.0);
+      return Eigen::VectorXd::Constant(
+          1, normalize_angle(scan.compass_yaw_world_rad - belief.means[0].yaw()));
+    };
+    const Eigen::MatrixXd R =
+        Eigen::MatrixXd::Constant(1, 1, scan.compass_sigma_rad * scan.compass_sigma_rad);
+    const double r = normalize_angle(scan.compass_yaw_world_rad - newest.mean.yaw());
+    if (r * r / (newest.cov(2, 2) + R(0, 0)) <= front_end_.compass_gate_chi2) {
+      belief.update(residual, R, 1);  // linear in the yaw: one step is exact
+      newest = {belief.means[0], belief.cov};
+      graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+      graph_->set_pose(node, newest.mean);
+      stats.compass_accepted = true;
+      ++totals_.compass_accepted;
+    }
   }
 
   if (!motion_ok || static_cast<int>(points_[k].size()) < front_end_.matching.min_inliers) {
@@ -44,44 +129,14 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     ++totals_.skipped;
   } else {
     // Associate (paper Eq. 3-4): past scans whose estimated centre lies within gamma.
-    const Pose2 newest = graph_->pose(node);
     std::vector<double> distances_m(k);
     for (std::size_t j = 0; j < k; ++j) {
-      distances_m[j] = (graph_->pose(j + 1).translation() - newest.translation()).norm();
+      distances_m[j] = (graph_->pose(j + 1).translation() - newest.mean.translation()).norm();
     }
     const std::vector<std::pair<double, std::size_t>> candidates =
         nearest_candidates(distances_m, points_, front_end_);
     stats.candidates = static_cast<int>(candidates.size());
-    for (const auto& [distance_m, j] : candidates) {
-      // The prediction: the graph's relative pose, with the odometry chain's covariance.
-      GaussianPose2 chain{Pose2(), Eigen::Matrix3d::Zero()};
-      for (std::size_t i = j + 1; i <= k; ++i) chain = compose(chain, motions_[i]);
-      const GaussianPose2 predicted{graph_->pose(j + 1).between(newest), chain.cov};
-      ValidatedMatch m = match_and_validate(points_[j], points_[k], predicted, front_end_.matching,
-                                            front_end_.validation);
-      stats.matched += m.match.valid;
-      double nis = std::numeric_limits<double>::quiet_NaN();
-      if (m.rejection == MatchRejection::kNone) {
-        const Eigen::MatrixXd& A = m.observed;
-        const Eigen::VectorXd r = A * pose_difference(m.match.estimate.mean, predicted.mean);
-        const Eigen::MatrixXd S = A * (predicted.cov + m.match.estimate.cov) * A.transpose();
-        nis = r.dot(S.ldlt().solve(r));
-        const double gate =
-            A.rows() == 3 ? front_end_.innovation_gate_chi2
-                          : chi2_quantile(1.0 - chi2_survival(front_end_.innovation_gate_chi2, 3),
-                                          static_cast<int>(A.rows()));
-        if (nis > gate) {
-          m.rejection = MatchRejection::kInnovation;
-        } else {
-          graph_->add_relative(j + 1, node, m.match.estimate, A, true);
-          ++stats.accepted;
-        }
-      }
-      stats.matches.push_back(record_of(j, k, m, predicted, nis));
-      stats.matches.back().distance_m = distance_m;
-      stats.rejections.count(m);
-      totals_.rejections.count(m);
-    }
+    if (!candidates.empty()) newest = match(k, candidates, stats);
     totals_.candidates += stats.candidates;
     totals_.matched += stats.matched;
     totals_.accepted += stats.accepted;
@@ -89,8 +144,71 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
     solve();
   }
-  online_.push_back({graph_->pose(node), graph_->covariances({node}).front()});
+  online_.push_back({graph_->pose(node), newest.cov});
   return stats;
+}
+
+GaussianPose2 PoseGraphSlam::match(std::size_t k,
+                                   const std::vector<std::pair<double, std::size_t>>& candidates,
+                                   SlamStepStats& stats) {
+  const std::size_t node = k + 1;
+  LocalBelief belief;
+  for (const auto& candidate : candidates) belief.nodes.push_back(candidate.second + 1);
+  belief.nodes.push_back(node);
+  for (const std::size_t i : belief.nodes) belief.means.push_back(graph_->pose(i));
+  belief.cov = graph_->joint_covariance(belief.nodes);
+
+  // Predictions (Eq. 5): one after the other, each from the belief the earlier matches of this
+  // scan left (the filters' default), or all from the belief before them (joint_update).
+  std::vector<GaussianPose2> joint_predictions;
+  Eigen::MatrixXd H;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    joint_predictions.push_back(belief.predict(static_cast<Eigen::Index>(c), &H));
+  }
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    const std::size_t j = candidates[c].second;
+    const GaussianPose2 predicted = front_end_.joint_update
+                                        ? joint_predictions[c]
+                                        : belief.predict(static_cast<Eigen::Index>(c), &H);
+    ValidatedMatch m = match_and_validate(points_[j], points_[k], predicted, front_end_.matching,
+                                          front_end_.validation);
+    stats.matched += m.match.valid;
+    double nis = std::numeric_limits<double>::quiet_NaN();
+    if (m.rejection == MatchRejection::kNone) {
+      const Eigen::MatrixXd& A = m.observed;
+      const Eigen::VectorXd r = A * pose_difference(m.match.estimate.mean, predicted.mean);
+      const Eigen::MatrixXd S = A * (predicted.cov + m.match.estimate.cov) * A.transpose();
+      nis = r.dot(S.ldlt().solve(r));
+      const double gate =
+          A.rows() == 3 ? front_end_.innovation_gate_chi2
+                        : chi2_quantile(1.0 - chi2_survival(front_end_.innovation_gate_chi2, 3),
+                                        static_cast<int>(A.rows()));
+      if (nis > gate) {
+        m.rejection = MatchRejection::kInnovation;
+      } else {
+        graph_->add_relative(j + 1, node, m.match.estimate, A, true);
+        ++stats.accepted;
+        // The update (Eq. 6-10).
+        const auto residual = [&](Eigen::MatrixXd* H_match) -> Eigen::VectorXd {
+          const Pose2 h = belief.predict(static_cast<Eigen::Index>(c), &H).mean;
+          *H_match = A * H;
+          return A * pose_difference(m.match.estimate.mean, h);
+        };
+        belief.update(residual, A * m.match.estimate.cov * A.transpose(),
+                      front_end_.iekf_iterations);
+      }
+    }
+    stats.matches.push_back(record_of(j, k, m, predicted, nis));
+    stats.matches.back().distance_m = candidates[c].first;
+    stats.rejections.count(m);
+    totals_.rejections.count(m);
+  }
+  // The updated means start the next solve.
+  for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
+    graph_->set_pose(belief.nodes[i], belief.means[i]);
+  }
+  const Eigen::Index t = belief.newest();
+  return {belief.means.back(), belief.cov.block<3, 3>(3 * t, 3 * t)};
 }
 
 void PoseGraphSlam::solve() const { downweighted_ = graph_->solve().edges_downweighted; }

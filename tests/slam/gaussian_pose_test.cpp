@@ -133,6 +133,34 @@ TEST(GaussianPose2, InvertThenComposeMatchesBetweenJacobians) {
   }
 }
 
+TEST(GaussianPose2, BetweenCorrelatedPosesTakesOutWhatTheyShare) {
+  // Independent poses: the same as inverting and composing. Two poses on one chain, x_ac =
+  // x_ab (+) x_bc: the joint covariance of x_ab and x_ac gives back exactly x_bc's own
+  // covariance, whatever x_ab's was.
+  std::mt19937 rng(45);
+  for (int i = 0; i < 50; ++i) {
+    const GaussianPose2 x_ab = random_gaussian_pose(rng);
+    const GaussianPose2 x_bc = random_gaussian_pose(rng);
+    Eigen::Matrix<double, 6, 6> independent = Eigen::Matrix<double, 6, 6>::Zero();
+    independent.topLeftCorner<3, 3>() = x_ab.cov;
+    independent.bottomRightCorner<3, 3>() = x_bc.cov;
+    const GaussianPose2 direct = compose(invert(x_ab), x_bc);
+    const GaussianPose2 joint = between(x_ab.mean, x_bc.mean, independent);
+    EXPECT_LE(pose_difference(joint.mean, direct.mean).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LE(max_abs(joint.cov - direct.cov), 1e-12 * max_abs(direct.cov));
+
+    Eigen::Matrix3d J1;
+    Eigen::Matrix3d J2;
+    const Pose2 x_ac = x_ab.mean.compose(x_bc.mean, &J1, &J2);
+    Eigen::Matrix<double, 6, 6> chain;
+    chain << x_ab.cov, x_ab.cov * J1.transpose(), J1 * x_ab.cov,
+        J1 * x_ab.cov * J1.transpose() + J2 * x_bc.cov * J2.transpose();
+    const GaussianPose2 back = between(x_ab.mean, x_ac, chain);
+    EXPECT_LE(pose_difference(back.mean, x_bc.mean).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_LE(max_abs(back.cov - x_bc.cov), 1e-9 * max_abs(x_bc.cov));
+  }
+}
+
 TEST(GaussianPose2, ClosedFormYawUncertaintyBecomesLateralUncertainty) {
   // Heading error sigma on x_ab = [0, 0, 0] moves a point d ahead by d * sigma sideways (y).
   const double sigma_yaw_rad = 0.01;

@@ -12,7 +12,7 @@
 #include "app/fidelity_table.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::app {
 

@@ -8,7 +8,7 @@
 
 #include "app/fidelity_statistics.hpp"
 #include "plot/chart.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::app {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "io/stpere_logs.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::app {
 

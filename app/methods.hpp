@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "plot/chart.hpp"
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/scan_slam.hpp"
 #include "slam/slam_config.hpp"
 

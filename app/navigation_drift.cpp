@@ -8,7 +8,7 @@
 #include "app/navigation_statistics.hpp"
 #include "sim/navigation_sensors.hpp"
 #include "slam/evaluation.hpp"
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab::app {
 

@@ -8,7 +8,7 @@
 #include "app/truth.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab::app {
 

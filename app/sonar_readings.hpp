@@ -7,7 +7,7 @@
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "slam/beam_segmentation.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {

@@ -8,7 +8,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab::io {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "io/stpere_logs.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::io {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "io/yaml_fields.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "slam/evaluation.hpp"
 
 namespace msislab::io {

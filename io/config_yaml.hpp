@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "slam/slam_config.hpp"
 
 namespace msislab::io {

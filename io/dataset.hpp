@@ -9,7 +9,7 @@
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 

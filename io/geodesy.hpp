@@ -6,7 +6,7 @@
 #include <memory>
 #include <utility>
 
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::io {
 

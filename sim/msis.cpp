@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "sim/sonar_physics.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::sim {
 

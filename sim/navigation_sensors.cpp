@@ -4,7 +4,7 @@
 #include <random>
 
 #include "sim/random.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::sim {
 

@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "sim/mesh.hpp"
-#include "slam/calibration.hpp"
-#include "slam/detection_model.hpp"
-#include "slam/evaluation.hpp"
+#include "geometry/calibration.hpp"
+#include "sim/detection_model.hpp"
+#include "geometry/time_segment.hpp"
 
 namespace msislab::sim {
 
@@ -133,7 +133,7 @@ struct Scenario {
   MruConfig mru;
   GpsConfig gps;
   /// The detector that turns each simulated profile into *_detections.csv.gz, as the real
-  /// dataset's were made (slam/detection_model).
+  /// dataset's were made (sim/detection_model).
   DetectionModelConfig detections;
   std::vector<TimeSegment> segments;
 };

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "sim/scenario.hpp"
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab::sim {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab {
 

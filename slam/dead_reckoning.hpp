@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/navigation.hpp"
 
 namespace msislab {

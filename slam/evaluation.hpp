@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
+#include "geometry/time_segment.hpp"
 
 namespace msislab {
 
@@ -50,13 +51,6 @@ std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors);
 /// The p-quantile (0 <= p <= 1) by linear interpolation between order statistics: position
 /// h = (n - 1) p in the sorted sample. NaN for an empty sample.
 double quantile(std::vector<double> values, double p);
-
-/// A named time window, in seconds from the first truth stamp: [begin_s, end_s).
-struct TimeSegment {
-  std::string name;
-  double begin_s = 0.0;
-  double end_s = 0.0;
-};
 
 /// Mean error inside a segment (t0_s is the first truth stamp); nullopt when no sample falls in it.
 std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors, double t0_s,

@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/scan_builder.hpp"
 #include "slam/scan_matching.hpp"
 

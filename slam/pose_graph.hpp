@@ -1,7 +1,7 @@
 // A pose graph over planar poses in the world frame, solved by Ceres (issue 15): the back end of
 // the pose-graph SLAM, beside the paper's filters. Nodes are poses [x, y, yaw]; every edge is a
 // whitened residual on the project's SE(2) type with analytic Jacobians (J1+, J2+, J- of
-// slam/se2, docs/pose_algebra.md):
+// geometry/se2, docs/pose_algebra.md):
 //   relative:  r = W A (z (-) h),  h = (-)x_i (+) x_j  (the pose of j seen from i), W A R A^T W^T =
 //   I
 //              (A: the observed directions as orthonormal rows, as in trajectory SLAM's matches);
@@ -19,8 +19,8 @@
 #include <memory>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
-#include "slam/se2.hpp"
+#include "geometry/gaussian_pose.hpp"
+#include "geometry/se2.hpp"
 
 namespace ceres {
 class Problem;
@@ -92,7 +92,7 @@ class PoseGraph {
   /// prior or fixed node).
   std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);
   /// The joint marginal covariance of the given (distinct) nodes, 3n x 3n in their order (one
-  /// ceres::Covariance). With between() of slam/gaussian_pose, what the graph knows of the pose
+  /// ceres::Covariance). With between() of geometry/gaussian_pose, what the graph knows of the pose
   /// of one node seen from another, which the odometry chain alone overstates once loops close.
   /// Throws as covariances() does.
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes);

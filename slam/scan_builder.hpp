@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "slam/beam_segmentation.hpp"
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 
 namespace msislab {
 

@@ -13,7 +13,7 @@
 #include <array>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/line_normals.hpp"
 #include "slam/scan_builder.hpp"
 

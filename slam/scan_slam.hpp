@@ -9,7 +9,7 @@
 #include <optional>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/scan_builder.hpp"
 
 namespace msislab {

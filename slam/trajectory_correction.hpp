@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 
 namespace msislab {
 

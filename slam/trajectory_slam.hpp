@@ -24,7 +24,7 @@
 #include <utility>
 #include <vector>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/linearisation_error.hpp"
 #include "slam/match_validation.hpp"
 #include "slam/scan_builder.hpp"

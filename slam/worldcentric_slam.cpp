@@ -1,6 +1,6 @@
 #include "slam/worldcentric_slam.hpp"
 
-#include "slam/pose_chain.hpp"
+#include "geometry/pose_chain.hpp"
 
 namespace msislab {
 

@@ -23,10 +23,10 @@
 #include "sim/marina_trace.hpp"
 #include "sim/polygon_triangulation.hpp"
 #include "sim/scene_builder.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace {
 

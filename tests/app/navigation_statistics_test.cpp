@@ -8,7 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab::app {
 namespace {

@@ -29,7 +29,7 @@
 #include "io/scenario_yaml.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "slam/detection_model.hpp"
+#include "sim/detection_model.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {

@@ -13,7 +13,7 @@
 
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 #include "test_support.hpp"
 
 namespace msislab::testing {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
 namespace msislab::sim {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab {
 namespace {

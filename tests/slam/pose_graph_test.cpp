@@ -12,7 +12,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 #include "slam/scan_matching.hpp"
 
 namespace msislab {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab {
 

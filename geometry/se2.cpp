@@ -1,4 +1,4 @@
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 #include <cmath>
 

@@ -1,6 +1,6 @@
 // Chain composition: the result equals step-by-step composition, and every analytic Jacobian
 // matches central finite differences, for chains of 1 to 12 motions with yaws across the wrap.
-#include "slam/pose_chain.hpp"
+#include "geometry/pose_chain.hpp"
 
 #include <gtest/gtest.h>
 

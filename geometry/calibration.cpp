@@ -1,6 +1,6 @@
-#include "slam/calibration.hpp"
+#include "geometry/calibration.hpp"
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab {
 

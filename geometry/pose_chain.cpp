@@ -1,4 +1,4 @@
-#include "slam/pose_chain.hpp"
+#include "geometry/pose_chain.hpp"
 
 namespace msislab {
 

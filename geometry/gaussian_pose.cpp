@@ -1,4 +1,4 @@
-#include "slam/gaussian_pose.hpp"
+#include "geometry/gaussian_pose.hpp"
 
 namespace msislab {
 

@@ -2,7 +2,7 @@
 // by half a window each side, the range ramp cuts a flat profile where ramp + threshold reaches
 // it, the threshold is strict, the minimum range drops near bins, and the window shrinks at the
 // profile's ends. Every answer is exact (integers).
-#include "slam/detection_model.hpp"
+#include "sim/detection_model.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "slam/se2.hpp"
+#include "geometry/se2.hpp"
 
 namespace msislab {
 

@@ -1,4 +1,4 @@
-#include "slam/detection_model.hpp"
+#include "sim/detection_model.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -10,9 +10,9 @@
 
 #include "app/fidelity_statistics.hpp"
 #include "app/fidelity_table.hpp"
+#include "geometry/calibration.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
-#include "geometry/calibration.hpp"
 
 namespace msislab::app {
 

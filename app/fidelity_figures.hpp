@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/fidelity_statistics.hpp"
-#include "plot/chart.hpp"
 #include "geometry/calibration.hpp"
+#include "plot/chart.hpp"
 
 namespace msislab::app {
 

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "plot/chart.hpp"
 #include "geometry/gaussian_pose.hpp"
+#include "plot/chart.hpp"
 #include "slam/scan_slam.hpp"
 #include "slam/slam_config.hpp"
 

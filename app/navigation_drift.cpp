@@ -6,9 +6,9 @@
 #include <functional>
 
 #include "app/navigation_statistics.hpp"
+#include "geometry/se2.hpp"
 #include "sim/navigation_sensors.hpp"
 #include "slam/evaluation.hpp"
-#include "geometry/se2.hpp"
 
 namespace msislab::app {
 

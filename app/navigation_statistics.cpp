@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "app/truth.hpp"
+#include "geometry/se2.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
-#include "geometry/se2.hpp"
 
 namespace msislab::app {
 

@@ -3,11 +3,11 @@
 #pragma once
 
 #include "app/truth.hpp"
+#include "geometry/calibration.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "slam/beam_segmentation.hpp"
-#include "geometry/calibration.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {

@@ -6,9 +6,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "geometry/se2.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "geometry/se2.hpp"
 
 namespace msislab::io {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/stpere_logs.hpp"
 #include "geometry/calibration.hpp"
+#include "io/stpere_logs.hpp"
 
 namespace msislab::io {
 

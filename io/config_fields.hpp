@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "io/yaml_fields.hpp"
 #include "geometry/calibration.hpp"
+#include "io/yaml_fields.hpp"
 #include "slam/evaluation.hpp"
 
 namespace msislab::io {

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "geometry/calibration.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "geometry/calibration.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "sim/sonar_physics.hpp"
 #include "geometry/calibration.hpp"
+#include "sim/sonar_physics.hpp"
 
 namespace msislab::sim {
 

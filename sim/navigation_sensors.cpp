@@ -3,8 +3,8 @@
 #include <cmath>
 #include <random>
 
-#include "sim/random.hpp"
 #include "geometry/calibration.hpp"
+#include "sim/random.hpp"
 
 namespace msislab::sim {
 

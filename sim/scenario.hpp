@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "sim/mesh.hpp"
 #include "geometry/calibration.hpp"
-#include "sim/detection_model.hpp"
 #include "geometry/time_segment.hpp"
+#include "sim/detection_model.hpp"
+#include "sim/mesh.hpp"
 
 namespace msislab::sim {
 

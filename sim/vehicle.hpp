@@ -5,8 +5,8 @@
 
 #include <vector>
 
-#include "sim/scenario.hpp"
 #include "geometry/se2.hpp"
+#include "sim/scenario.hpp"
 
 namespace msislab::sim {
 

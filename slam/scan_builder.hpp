@@ -9,8 +9,8 @@
 #include <limits>
 #include <vector>
 
-#include "slam/beam_segmentation.hpp"
 #include "geometry/gaussian_pose.hpp"
+#include "slam/beam_segmentation.hpp"
 
 namespace msislab {
 

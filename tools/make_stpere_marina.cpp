@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/calibration.hpp"
+#include "geometry/se2.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/mesh_io.hpp"
@@ -23,10 +25,8 @@
 #include "sim/marina_trace.hpp"
 #include "sim/polygon_triangulation.hpp"
 #include "sim/scene_builder.hpp"
-#include "geometry/calibration.hpp"
 #include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
-#include "geometry/se2.hpp"
 
 namespace {
 

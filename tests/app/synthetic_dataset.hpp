@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "geometry/calibration.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "geometry/calibration.hpp"
 #include "test_support.hpp"
 
 namespace msislab::testing {

@@ -1,6 +1,6 @@
 // Tests of the first-order covariance propagation of compounding and inversion
-// (geometry/gaussian_pose.hpp): the result equals J P J^T with the pose Jacobians, stays symmetric and
-// positive semi-definite, keeps zero covariance at zero, and matches a Monte Carlo estimate.
+// (geometry/gaussian_pose.hpp): the result equals J P J^T with the pose Jacobians, stays symmetric
+// and positive semi-definite, keeps zero covariance at zero, and matches a Monte Carlo estimate.
 // Tolerances: J P J^T agreement to 1e-12 relative (analytic Jacobians) or 1e-6 relative
 // (finite-difference Jacobians, step 1e-6); Monte Carlo covariance (200,000 samples, yaw sigma
 // <= 0.03 rad so the linearisation holds) within 3% of sqrt(P_ii P_jj) per entry.

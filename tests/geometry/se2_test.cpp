@@ -1,5 +1,5 @@
-// Tests of the SE(2) pose algebra (geometry/se2.hpp): angle wrapping, every analytic Jacobian against
-// central finite differences, the group identities of (+) and (-), and yaw wrap-around.
+// Tests of the SE(2) pose algebra (geometry/se2.hpp): angle wrapping, every analytic Jacobian
+// against central finite differences, the group identities of (+) and (-), and yaw wrap-around.
 // Tolerances: finite differences use a step of 1e-6 and must match the analytic Jacobian to 1e-6
 // (relative to max(1, |J|)); exact identities hold to 1e-9 m / rad for translations up to 20 m.
 #include "geometry/se2.hpp"

@@ -50,7 +50,8 @@ void expect_bad_slam_config(const std::string& text, int line, const std::string
   expect_input_error([](const std::string& p) { read_slam_config(p); }, path, line, key);
 }
 
-// The St. Pere values of geometry/calibration.hpp and the dataset README, written out independently.
+// The St. Pere values of geometry/calibration.hpp and the dataset README, written out
+// independently.
 void expect_stpere_calibration(const Calibration& c) {
   EXPECT_EQ(c.mru.yaw_offset_deg, 86.0);
   EXPECT_EQ(c.dvl.yaw_deg, 293.5);

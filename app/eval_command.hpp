@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "app/truth.hpp"
+#include "eval/evaluation.hpp"
 #include "io/results.hpp"
-#include "slam/evaluation.hpp"
 
 namespace msislab::app {
 

@@ -13,7 +13,7 @@
 #include "io/detections.hpp"
 #include "slam/scan_sequence.hpp"
 
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 
 namespace msislab::app {
 

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "eval/monte_carlo.hpp"
 #include "io/montecarlo_files.hpp"
-#include "slam/monte_carlo.hpp"
 
 namespace msislab::app {
 

@@ -6,9 +6,9 @@
 #include <functional>
 
 #include "app/navigation_statistics.hpp"
+#include "eval/evaluation.hpp"
 #include "geometry/se2.hpp"
 #include "sim/navigation_sensors.hpp"
-#include "slam/evaluation.hpp"
 
 namespace msislab::app {
 

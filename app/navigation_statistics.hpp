@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "app/noise_model_fit.hpp"
+#include "eval/evaluation.hpp"
 #include "slam/dead_reckoning.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 
 namespace msislab::app {

@@ -12,10 +12,10 @@
 
 #include "app/image_command.hpp"
 #include "app/truth.hpp"
+#include "eval/evaluation.hpp"
 #include "io/result_readers.hpp"
 #include "io/results.hpp"
 #include "io/sweep_files.hpp"
-#include "slam/evaluation.hpp"
 
 namespace msislab::app {
 

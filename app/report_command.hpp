@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
+#include "eval/monte_carlo.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
 #include "io/sweep_files.hpp"
-#include "slam/evaluation.hpp"
-#include "slam/monte_carlo.hpp"
 
 namespace msislab::app {
 

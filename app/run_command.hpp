@@ -8,8 +8,8 @@
 
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
+#include "eval/evaluation.hpp"
 #include "io/results.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {

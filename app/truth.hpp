@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "io/dataset.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 #include "slam/slam_config.hpp"
 

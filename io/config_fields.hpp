@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "io/yaml_fields.hpp"
-#include "slam/evaluation.hpp"
 
 namespace msislab::io {
 

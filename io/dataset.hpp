@@ -6,11 +6,11 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 
 namespace msislab::io {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/monte_carlo.hpp"
+#include "eval/monte_carlo.hpp"
 
 namespace msislab::io {
 

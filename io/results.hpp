@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 #include "slam/scan_sequence.hpp"
 #include "slam/trajectory_slam.hpp"
 

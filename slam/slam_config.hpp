@@ -3,9 +3,9 @@
 
 #include <vector>
 
+#include "geometry/time_segment.hpp"
 #include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/pose_graph_slam.hpp"
 #include "slam/trajectory_slam.hpp"
 

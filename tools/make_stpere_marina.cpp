@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "geometry/se2.hpp"
 #include "io/dataset.hpp"
@@ -25,7 +26,6 @@
 #include "sim/marina_trace.hpp"
 #include "sim/polygon_triangulation.hpp"
 #include "sim/scene_builder.hpp"
-#include "slam/evaluation.hpp"
 #include "slam/navigation.hpp"
 
 namespace {

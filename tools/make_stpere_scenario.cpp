@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/mesh_io.hpp"
 #include "sim/vehicle.hpp"
-#include "slam/evaluation.hpp"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <random>
 
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 
 namespace msislab {
 namespace {

@@ -1,5 +1,5 @@
 // Trajectory scoring: interpolation, error statistics, segments and pose NEES.
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 
 #include <gtest/gtest.h>
 

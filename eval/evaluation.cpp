@@ -1,4 +1,4 @@
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 
 #include <limits>
 

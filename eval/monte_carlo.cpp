@@ -1,4 +1,4 @@
-#include "slam/monte_carlo.hpp"
+#include "eval/monte_carlo.hpp"
 
 #include <boost/math/distributions/students_t.hpp>
 

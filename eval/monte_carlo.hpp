@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "slam/evaluation.hpp"
+#include "eval/evaluation.hpp"
 
 namespace msislab {
 

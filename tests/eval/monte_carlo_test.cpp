@@ -1,7 +1,7 @@
 // Monte Carlo statistics: per-scan NEES averaged over runs of different lengths with the bounds for
 // that number of runs, the in-bounds fraction (about 95% for consistent chi-square samples), and
 // the summary of finished, failed and missing runs.
-#include "slam/monte_carlo.hpp"
+#include "eval/monte_carlo.hpp"
 
 #include <gtest/gtest.h>
 

@@ -39,7 +39,7 @@ struct LocalBelief {
 
   Eigen::Index newest() const { return static_cast<Eigen::Index>(nodes.size()) - 1; }
 
-  /// Block c of the pose of the newest node seen from node c, with its Jacobian H (3 x 3n).
+  /// The pose of the newest node seen from the belief's node c, with its Jacobian H (3 x 3n).
   GaussianPose2 predict(Eigen::Index c, Eigen::MatrixXd* H) const {
     const Eigen::Index t = newest();
     Eigen::Matrix3d J_c, J_t;
@@ -58,8 +58,9 @@ struct LocalBelief {
   void update(const Residual& residual, const Eigen::MatrixXd& R, int iterations) {
     const std::vector<Pose2> prior = means;
     Eigen::VectorXd x_prior(cov.rows());
-    for (std::size_t i = 0; i < prior.size(); ++i)
+    for (std::size_t i = 0; i < prior.size(); ++i) {
       x_prior.segment<3>(3 * index(i)) = prior[i].vector();
+    }
     Eigen::MatrixXd H, K, PHt;
     for (int iteration = 0; iteration < std::max(1, iterations); ++iteration) {
       const Eigen::VectorXd z_minus_h = residual(&H);

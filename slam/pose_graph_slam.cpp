@@ -105,24 +105,10 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
 
   // The compass, before association as the filters do, behind the same gate.
   if (front_end_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
-      scan.compass_sigma_rad > 0.0) {
-    LocalBelief belief{{node}, {newest.mean}, newest.cov};
-    const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
-      *H = Eigen::RowVector3d(0.0, 0.0, 1.0);
-      return Eigen::VectorXd::Constant(
-          1, normalize_angle(scan.compass_yaw_world_rad - belief.means[0].yaw()));
-    };
-    const Eigen::MatrixXd R =
-        Eigen::MatrixXd::Constant(1, 1, scan.compass_sigma_rad * scan.compass_sigma_rad);
-    const double r = normalize_angle(scan.compass_yaw_world_rad - newest.mean.yaw());
-    if (r * r / (newest.cov(2, 2) + R(0, 0)) <= front_end_.compass_gate_chi2) {
-      belief.update(residual, R, 1);  // linear in the yaw: one step is exact
-      newest = {belief.means[0], belief.cov};
-      graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
-      graph_->set_pose(node, newest.mean);
-      stats.compass_accepted = true;
-      ++totals_.compass_accepted;
-    }
+      scan.compass_sigma_rad > 0.0 &&
+      update_compass(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad, newest)) {
+    stats.compass_accepted = true;
+    ++totals_.compass_accepted;
   }
 
   if (!motion_ok || static_cast<int>(points_[k].size()) < front_end_.matching.min_inliers) {
@@ -147,6 +133,23 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   }
   online_.push_back({graph_->pose(node), newest.cov});
   return stats;
+}
+
+bool PoseGraphSlam::update_compass(std::size_t node, double yaw_world_rad, double sigma_rad,
+                                   GaussianPose2& newest) {
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
+  const double r = normalize_angle(yaw_world_rad - newest.mean.yaw());
+  if (r * r / (newest.cov(2, 2) + R(0, 0)) > front_end_.compass_gate_chi2) return false;
+  LocalBelief belief{{node}, {newest.mean}, newest.cov};
+  const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
+    *H = Eigen::RowVector3d(0.0, 0.0, 1.0);
+    return Eigen::VectorXd::Constant(1, normalize_angle(yaw_world_rad - belief.means[0].yaw()));
+  };
+  belief.update(residual, R, 1);  // linear in the yaw: one step is exact
+  newest = {belief.means[0], belief.cov};
+  graph_->add_heading(node, yaw_world_rad, sigma_rad);
+  graph_->set_pose(node, newest.mean);
+  return true;
 }
 
 GaussianPose2 PoseGraphSlam::match(std::size_t k,

@@ -54,6 +54,10 @@ class PoseGraphSlam : public ScanSlam {
   /// Solves the graph (const: the smoothed solution is a cache of the same graph, and solving
   /// a solved graph leaves it where it is).
   void solve() const;
+  /// The compass on the newest node (its belief `newest`, updated in place) behind the filters'
+  /// gate; adds the heading edge when it passes.
+  bool update_compass(std::size_t node, double yaw_world_rad, double sigma_rad,
+                      GaussianPose2& newest);
   /// Matches scan k against the candidates, adds the accepted matches as edges, and returns
   /// the newest node's belief after them.
   GaussianPose2 match(std::size_t k, const std::vector<std::pair<double, std::size_t>>& candidates,

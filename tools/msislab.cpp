@@ -374,7 +374,7 @@ void run_fidelity(const msislab::app::FidelityOptions& options, int argc, char**
 int main(int argc, char** argv) {
   CLI::App app{"msislab: a testbed for underwater SLAM with a mechanically scanned imaging sonar"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "msislab 0.1.0");
+  app.set_version_flag("--version", "msislab " MSISLAB_VERSION);  // project(VERSION) in CMake
   msislab::app::RunOptions run_options;
   add_run_command(app, run_options);
   msislab::app::EvalOptions eval_options;

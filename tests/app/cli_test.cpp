@@ -37,6 +37,14 @@ TEST(Cli, HelpListsTheRunCommand) {
   EXPECT_NE(result.out.find("run"), std::string::npos) << result.out;
 }
 
+TEST(Cli, VersionIsTheProjectsVersion) {
+  // MSISLAB_VERSION comes from project(VERSION) in CMakeLists.txt, for the executable and here.
+  const TempDir tmp;
+  const CliResult r = run_msislab("--version", tmp);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out, std::string("msislab ") + MSISLAB_VERSION + "\n");
+}
+
 TEST(Cli, RunHelpDescribesItsOptions) {
   const TempDir tmp;
   const CliResult result = run_msislab("run --help", tmp);

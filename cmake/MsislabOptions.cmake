@@ -8,3 +8,16 @@ function(msislab_target_options target)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
 endfunction()
+
+# msislab_core_library(<name> <sources...>): the installed library msislab_<name> (msislab::<name>
+# in this tree and to find_package(msislab) users), headers included as "<dir>/<file>.hpp" from
+# the source tree here and from include/msislab once installed; the language standard and
+# warnings of every target.
+function(msislab_core_library name)
+  add_library(msislab_${name} ${ARGN})
+  target_include_directories(msislab_${name} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                             $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}/msislab>)
+  set_target_properties(msislab_${name} PROPERTIES EXPORT_NAME ${name})
+  add_library(msislab::${name} ALIAS msislab_${name})
+  msislab_target_options(msislab_${name})
+endfunction()

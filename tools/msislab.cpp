@@ -369,37 +369,138 @@ void run_fidelity(const msislab::app::FidelityOptions& options, int argc, char**
   std::cout << std::flush;
 }
 
+/// Every subcommand's options, filled by CLI11 when the command line is parsed.
+struct Options {
+  msislab::app::RunOptions run;
+  msislab::app::EvalOptions eval;
+  msislab::app::SimulateOptions simulate;
+  msislab::app::MonteCarloOptions montecarlo;
+  msislab::app::MergeOptions merge;
+  bool montecarlo_no_plot = false;
+  SweepCli sweep;
+  msislab::app::ImageOptions image;
+  msislab::app::ScansOptions scans;
+  msislab::app::SegmentOptions segment;
+  msislab::app::PlotOptions plot;
+  msislab::app::ReportOptions report;
+  msislab::app::FidelityOptions fidelity;
+};
+
+void add_commands(CLI::App& app, Options& o) {
+  add_run_command(app, o.run);
+  add_eval_command(app, o.eval);
+  add_simulate_command(app, o.simulate);
+  add_montecarlo_command(app, o.montecarlo, o.merge, o.montecarlo_no_plot);
+  add_sweep_command(app, o.sweep);
+  add_image_command(app, o.image);
+  add_scans_command(app, o.scans);
+  add_segment_command(app, o.segment);
+  add_plot_command(app, o.plot);
+  add_report_command(app, o.report);
+  add_fidelity_command(app, o.fidelity);
+}
+
+void run_simulate(const msislab::app::SimulateOptions& options) {
+  const msislab::app::SimulateSummary s = msislab::app::simulate(options);
+  std::cout << std::fixed << std::setprecision(2) << "wrote " << options.out_dir << ": " << s.beams
+            << " beams (" << s.rays_per_beam << " rays each), " << s.dvl_samples
+            << " DVL samples over " << s.duration_s << " s; simulated in " << s.render_s << " s ("
+            << s.duration_s / std::max(s.render_s, 1e-9) << "x real time), " << s.total_s
+            << " s in all" << std::endl;
+}
+
+void run_scans(const msislab::app::ScansOptions& options) {
+  const msislab::app::ScansSummary s = msislab::app::build_scans_command(options);
+  std::cout << "wrote " << options.out_dir << ": " << s.scans << " scans, " << s.points
+            << " points from " << s.beams_with_readings << " of " << s.beams << " beams ("
+            << s.source << ")";
+  if (s.compensated_error_m) {
+    std::cout << std::fixed << std::setprecision(3)
+              << "; reading placement error against the truth: " << *s.compensated_error_m
+              << " m compensated, " << *s.uncompensated_error_m << " m uncompensated";
+  }
+  std::cout << std::endl;
+}
+
+void run_run(const msislab::app::RunOptions& options) {
+  const msislab::app::RunOutcome outcome = msislab::app::run(options);
+  std::cout << "wrote " << options.out_dir << "/trajectory.tum (" << outcome.trajectory.size()
+            << " poses)";
+  if (outcome.metrics) {
+    std::cout << std::fixed << std::setprecision(3) << "; mean error "
+              << outcome.metrics->errors.mean_m << " m against " << outcome.metrics->truth
+              << ", metrics.json";
+  }
+  std::cout << std::endl;
+}
+
+void run_eval(const msislab::app::EvalOptions& options) {
+  const msislab::app::EvalOutcome outcome = msislab::app::evaluate(options);
+  std::cout << std::fixed << std::setprecision(3) << "wrote " << options.result_dir
+            << "/metrics.json: mean error " << outcome.metrics.errors.mean_m << " m against "
+            << outcome.metrics.truth;
+  if (outcome.metrics.anees) {
+    std::cout << ", ANEES " << *outcome.metrics.anees << " over " << outcome.nees_rows
+              << " scans (nees.csv)";
+  }
+  std::cout << std::endl;
+}
+
+/// `montecarlo` or `montecarlo merge`; the exit status (128 + the signal when stopped).
+int run_montecarlo(CLI::App& montecarlo, const Options& o) {
+  if (montecarlo.got_subcommand("merge")) {
+    print_montecarlo(msislab::app::merge_montecarlo(o.merge), o.merge.out_dir, true);
+    if (!o.montecarlo_no_plot) draw_figures("montecarlo", o.merge.out_dir);
+    return 0;
+  }
+  check_montecarlo_options(o.montecarlo, montecarlo);
+  const msislab::app::MonteCarloOutcome outcome =
+      msislab::app::montecarlo(o.montecarlo, {std::cerr, isatty(STDERR_FILENO) == 1});
+  if (outcome.interrupted != 0) {
+    std::cerr << "montecarlo: stopped by " << sigabbrev_np(outcome.interrupted)
+              << "; every worker ended, the finished runs are kept in " << o.montecarlo.out_dir
+              << "; run the same command to resume" << std::endl;
+    return 128 + outcome.interrupted;
+  }
+  print_montecarlo(outcome, o.montecarlo.out_dir, false);
+  if (!o.montecarlo_no_plot && o.montecarlo.shard.empty()) {
+    draw_figures("montecarlo", o.montecarlo.out_dir);
+  }
+  return 0;
+}
+
+/// Runs the one subcommand given; its exit status.
+int run_command(CLI::App& app, Options& o, int argc, char** argv) {
+  if (app.got_subcommand("simulate")) run_simulate(o.simulate);
+  if (app.got_subcommand("scans")) run_scans(o.scans);
+  if (app.got_subcommand("image")) {
+    msislab::app::draw_image(o.image);
+    std::cout << "wrote " << o.image.out_path << std::endl;
+  }
+  if (app.got_subcommand("plot")) run_plot(o.plot, argc, argv);
+  if (app.got_subcommand("fidelity")) run_fidelity(o.fidelity, argc, argv);
+  if (app.got_subcommand("segment"))
+    std::cout << msislab::app::segment(o.segment).markdown << std::flush;
+  if (app.got_subcommand("run")) run_run(o.run);
+  if (app.got_subcommand("report")) {
+    const msislab::app::ReportOutcome outcome = msislab::app::write_report(o.report);
+    std::cout << "wrote " << o.report.out_path << " and " << outcome.figures.size()
+              << " figures beside it" << std::endl;
+  }
+  if (app.got_subcommand("eval")) run_eval(o.eval);
+  if (app.got_subcommand("sweep")) return run_sweep_command(o.sweep);
+  if (app.got_subcommand("montecarlo")) return run_montecarlo(*app.get_subcommand("montecarlo"), o);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"msislab: a testbed for underwater SLAM with a mechanically scanned imaging sonar"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "msislab " MSISLAB_VERSION);  // project(VERSION) in CMake
-  msislab::app::RunOptions run_options;
-  add_run_command(app, run_options);
-  msislab::app::EvalOptions eval_options;
-  add_eval_command(app, eval_options);
-  msislab::app::SimulateOptions simulate_options;
-  add_simulate_command(app, simulate_options);
-  msislab::app::MonteCarloOptions montecarlo_options;
-  msislab::app::MergeOptions merge_options;
-  bool montecarlo_no_plot = false;
-  add_montecarlo_command(app, montecarlo_options, merge_options, montecarlo_no_plot);
-  SweepCli sweep_cli;
-  add_sweep_command(app, sweep_cli);
-  msislab::app::ImageOptions image_options;
-  add_image_command(app, image_options);
-  msislab::app::ScansOptions scans_options;
-  add_scans_command(app, scans_options);
-  msislab::app::SegmentOptions segment_options;
-  add_segment_command(app, segment_options);
-  msislab::app::PlotOptions plot_options;
-  add_plot_command(app, plot_options);
-  msislab::app::ReportOptions report_options;
-  add_report_command(app, report_options);
-  msislab::app::FidelityOptions fidelity_options;
-  add_fidelity_command(app, fidelity_options);
-
+  Options options;
+  add_commands(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -408,91 +509,10 @@ int main(int argc, char** argv) {
     std::cerr << "msislab: " << e.what() << " (see msislab --help)\n";
     return kBadInput;
   }
-
   try {
-    if (app.got_subcommand("simulate")) {
-      const msislab::app::SimulateSummary s = msislab::app::simulate(simulate_options);
-      std::cout << std::fixed << std::setprecision(2) << "wrote " << simulate_options.out_dir
-                << ": " << s.beams << " beams (" << s.rays_per_beam << " rays each), "
-                << s.dvl_samples << " DVL samples over " << s.duration_s << " s; simulated in "
-                << s.render_s << " s (" << s.duration_s / std::max(s.render_s, 1e-9)
-                << "x real time), " << s.total_s << " s in all" << std::endl;
-    }
-    if (app.got_subcommand("scans")) {
-      const msislab::app::ScansSummary s = msislab::app::build_scans_command(scans_options);
-      std::cout << "wrote " << scans_options.out_dir << ": " << s.scans << " scans, " << s.points
-                << " points from " << s.beams_with_readings << " of " << s.beams << " beams ("
-                << s.source << ")";
-      if (s.compensated_error_m) {
-        std::cout << std::fixed << std::setprecision(3)
-                  << "; reading placement error against the truth: " << *s.compensated_error_m
-                  << " m compensated, " << *s.uncompensated_error_m << " m uncompensated";
-      }
-      std::cout << std::endl;
-    }
-    if (app.got_subcommand("image")) {
-      msislab::app::draw_image(image_options);
-      std::cout << "wrote " << image_options.out_path << std::endl;
-    }
-    if (app.got_subcommand("plot")) run_plot(plot_options, argc, argv);
-    if (app.got_subcommand("fidelity")) run_fidelity(fidelity_options, argc, argv);
-    if (app.got_subcommand("segment")) {
-      std::cout << msislab::app::segment(segment_options).markdown << std::flush;
-    }
-    if (app.got_subcommand("run")) {
-      const msislab::app::RunOutcome outcome = msislab::app::run(run_options);
-      std::cout << "wrote " << run_options.out_dir << "/trajectory.tum ("
-                << outcome.trajectory.size() << " poses)";
-      if (outcome.metrics) {
-        std::cout << std::fixed << std::setprecision(3) << "; mean error "
-                  << outcome.metrics->errors.mean_m << " m against " << outcome.metrics->truth
-                  << ", metrics.json";
-      }
-      std::cout << std::endl;
-    }
-    if (app.got_subcommand("report")) {
-      const msislab::app::ReportOutcome outcome = msislab::app::write_report(report_options);
-      std::cout << "wrote " << report_options.out_path << " and " << outcome.figures.size()
-                << " figures beside it" << std::endl;
-    }
-    if (app.got_subcommand("eval")) {
-      const msislab::app::EvalOutcome outcome = msislab::app::evaluate(eval_options);
-      std::cout << std::fixed << std::setprecision(3) << "wrote " << eval_options.result_dir
-                << "/metrics.json: mean error " << outcome.metrics.errors.mean_m << " m against "
-                << outcome.metrics.truth;
-      if (outcome.metrics.anees) {
-        std::cout << ", ANEES " << *outcome.metrics.anees << " over " << outcome.nees_rows
-                  << " scans (nees.csv)";
-      }
-      std::cout << std::endl;
-    }
-    if (app.got_subcommand("sweep")) return run_sweep_command(sweep_cli);
-    if (app.got_subcommand("montecarlo")) {
-      CLI::App* montecarlo = app.get_subcommand("montecarlo");
-      if (montecarlo->got_subcommand("merge")) {
-        print_montecarlo(msislab::app::merge_montecarlo(merge_options), merge_options.out_dir,
-                         true);
-        if (!montecarlo_no_plot) draw_figures("montecarlo", merge_options.out_dir);
-      } else {
-        check_montecarlo_options(montecarlo_options, *montecarlo);
-        const msislab::app::MonteCarloOutcome outcome =
-            msislab::app::montecarlo(montecarlo_options, {std::cerr, isatty(STDERR_FILENO) == 1});
-        if (outcome.interrupted != 0) {
-          std::cerr << "montecarlo: stopped by " << sigabbrev_np(outcome.interrupted)
-                    << "; every worker ended, the finished runs are kept in "
-                    << montecarlo_options.out_dir << "; run the same command to resume"
-                    << std::endl;
-          return 128 + outcome.interrupted;
-        }
-        print_montecarlo(outcome, montecarlo_options.out_dir, false);
-        if (!montecarlo_no_plot && montecarlo_options.shard.empty()) {
-          draw_figures("montecarlo", montecarlo_options.out_dir);
-        }
-      }
-    }
+    return run_command(app, options, argc, argv);
   } catch (const msislab::io::InputError& e) {
     std::cerr << "msislab: " << e.what() << "\n";
     return kBadInput;
   }
-  return 0;
 }

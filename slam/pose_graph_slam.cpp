@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "slam/iterated_ekf.hpp"
 #include "slam/match_validation.hpp"
 
 namespace msislab {
@@ -51,36 +52,25 @@ struct LocalBelief {
     return {h, 0.5 * (P + P.transpose())};
   }
 
-  /// The iterated EKF update (paper Eq. 9-10), as the filters do it: X_{i+1} = X^ + K_i (z -
-  /// h(X_i) - H_i (X^ - X_i)), K_i = P H_i^T (H_i P H_i^T + R)^-1, then P = (I - K H) P at the
-  /// last linearisation. residual(H) gives z (-) h at the current means and sets H.
+  /// The filters' iterated EKF update (slam/iterated_ekf.hpp) of the whole belief behind their
+  /// NIS gate (infinite: none); residual(H) gives z (-) h at the current means and sets H.
+  /// False, and the belief unchanged, when the gate rejects the observation.
   template <class Residual>
-  void update(const Residual& residual, const Eigen::MatrixXd& R, int iterations) {
-    const std::vector<Pose2> prior = means;
-    Eigen::VectorXd x_prior(cov.rows());
-    for (std::size_t i = 0; i < prior.size(); ++i) {
-      x_prior.segment<3>(3 * index(i)) = prior[i].vector();
-    }
-    Eigen::MatrixXd H, K, PHt;
-    for (int iteration = 0; iteration < std::max(1, iterations); ++iteration) {
-      const Eigen::VectorXd z_minus_h = residual(&H);
-      Eigen::VectorXd dx(cov.rows());  // X^ - X_i, angles wrapped
-      for (std::size_t i = 0; i < prior.size(); ++i) {
-        dx.segment<3>(3 * index(i)) = pose_difference(prior[i], means[i]);
-      }
-      PHt.noalias() = cov * H.transpose();
-      const Eigen::MatrixXd S = H * PHt + R;
-      K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
-      const Eigen::VectorXd x_new = x_prior + K * (z_minus_h - H * dx);
-      for (std::size_t i = 0; i < means.size(); ++i) {
-        means[i] = Pose2(Eigen::Vector3d(x_new.segment<3>(3 * index(i))));
-      }
+  bool update(const Residual& residual, const Eigen::MatrixXd& R, int iterations,
+              double gate_chi2 = std::numeric_limits<double>::infinity()) {
+    Eigen::MatrixXd K, PHt;
+    const auto gate = [&](const Eigen::VectorXd&, const Eigen::VectorXd&,
+                          const Eigen::VectorXd& innovation, const Eigen::MatrixXd& S) {
+      return innovation.dot(S.ldlt().solve(innovation)) <= gate_chi2;
+    };
+    if (!iterated_ekf_update(means.begin(), means.size(), cov, residual, R, iterations, gate, K,
+                             PHt)) {
+      return false;
     }
     cov.noalias() -= K * PHt.transpose();
     cov = 0.5 * (cov + cov.transpose());
+    return true;
   }
-
-  static Eigen::Index index(std::size_t i) { return static_cast<Eigen::Index>(i); }
 };
 
 }  // namespace
@@ -137,15 +127,14 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
 
 bool PoseGraphSlam::update_compass(std::size_t node, double yaw_world_rad, double sigma_rad,
                                    GaussianPose2& newest) {
-  const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
-  const double r = normalize_angle(yaw_world_rad - newest.mean.yaw());
-  if (r * r / (newest.cov(2, 2) + R(0, 0)) > front_end_.compass_gate_chi2) return false;
   LocalBelief belief{{node}, {newest.mean}, newest.cov};
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     *H = Eigen::RowVector3d(0.0, 0.0, 1.0);
     return Eigen::VectorXd::Constant(1, normalize_angle(yaw_world_rad - belief.means[0].yaw()));
   };
-  belief.update(residual, R, 1);  // linear in the yaw: one step is exact
+  // Linear in the yaw: one step is exact.
+  const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
+  if (!belief.update(residual, R, 1, front_end_.compass_gate_chi2)) return false;
   newest = {belief.means[0], belief.cov};
   graph_->add_heading(node, yaw_world_rad, sigma_rad);
   graph_->set_pose(node, newest.mean);
@@ -166,7 +155,7 @@ GaussianPose2 PoseGraphSlam::match(std::size_t k,
   // scan left (the filters' default), or all from the belief before them (joint_update).
   std::vector<GaussianPose2> joint_predictions;
   Eigen::MatrixXd H;
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
+  for (std::size_t c = 0; front_end_.joint_update && c < candidates.size(); ++c) {
     joint_predictions.push_back(belief.predict(static_cast<Eigen::Index>(c), &H));
   }
   for (std::size_t c = 0; c < candidates.size(); ++c) {

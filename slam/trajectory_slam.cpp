@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <limits>
 
+#include "slam/iterated_ekf.hpp"
+
 namespace msislab {
 
 namespace {
@@ -178,33 +180,25 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   const Eigen::Index d = R.rows();
   const auto P_window = P_.block(f, f, m, m);
 
-  // Iterated EKF (paper Eq. 9-10): X_{i+1} = X^ + K_i (z - h(X_i) - H_i (X^ - X_i)),
-  // K_i = P H_i^T (H_i P H_i^T + R)^-1; then P = (I - K H) P at the last linearisation.
-  const std::vector<Pose2> prior(elements_.begin() + static_cast<long>(first),
-                                 elements_.begin() + static_cast<long>(b) + 1);
-  Eigen::VectorXd x_prior(m);
-  for (std::size_t j = 0; j < count; ++j) {
-    x_prior.segment<3>(static_cast<Eigen::Index>(3 * j)) = prior[j].vector();
-  }
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(d, m), H_involved, K, PHt;
-  for (int iteration = 0; iteration < std::max(1, config_.iekf_iterations); ++iteration) {
+  // Iterated EKF (paper Eq. 9-10, slam/iterated_ekf.hpp) on the window, h's Jacobian placed at
+  // the involved elements' columns.
+  Eigen::MatrixXd H_involved, K, PHt;
+  const auto residual_window = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     const Eigen::VectorXd z_minus_h = residual(&H_involved);
-    H.middleCols(h_col, H_involved.cols()) = H_involved;
-    Eigen::VectorXd dx(m);  // X^ - X_i, angles wrapped
-    for (std::size_t j = 0; j < count; ++j) {
-      dx.segment<3>(static_cast<Eigen::Index>(3 * j)) =
-          pose_difference(prior[j], elements_[first + j]);
-    }
-    PHt.noalias() = P_window * H.transpose();
-    const Eigen::MatrixXd S = H * PHt + R;
-    const Eigen::VectorXd innovation = z_minus_h - H * dx;
-    if (iteration == 0 && innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
+    H->setZero(d, m);
+    H->middleCols(h_col, H_involved.cols()) = H_involved;
+    return z_minus_h;
+  };
+  const auto at_first = [&](const Eigen::VectorXd& x_prior, const Eigen::VectorXd& z_minus_h,
+                            const Eigen::VectorXd& innovation, const Eigen::MatrixXd& S) {
+    if (innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
       return false;  // the observation disagrees with the prediction: leave the state as it was
     }
-    if (iteration == 0 && measure_linearisation && config_.linearisation_samples > 0) {
+    if (measure_linearisation && config_.linearisation_samples > 0) {
       // epsilon of h at the prior over the involved elements: A (h(X) - h(X^)) = r(X^) - r(X).
       const Eigen::Index n = m - h_col;
-      const std::vector<Pose2> saved(prior.begin() + (first_involved - first), prior.end());
+      const std::vector<Pose2> saved(elements_.begin() + static_cast<long>(first_involved),
+                                     elements_.begin() + static_cast<long>(b) + 1);
       const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
         for (std::size_t j = 0; j < saved.size(); ++j) {
           elements_[first_involved + j] =
@@ -218,11 +212,11 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
           linearisation_error(deviation, x_prior.tail(n), P_window.bottomRightCorner(n, n),
                               H_involved, S, config_.linearisation_samples, linearisation_rng_));
     }
-    K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
-    const Eigen::VectorXd x_new = x_prior + K * innovation;
-    for (std::size_t j = 0; j < count; ++j) {
-      elements_[first + j] = Pose2(x_new.segment<3>(static_cast<Eigen::Index>(3 * j)));
-    }
+    return true;
+  };
+  if (!iterated_ekf_update(elements_.begin() + static_cast<long>(first), count, P_window,
+                           residual_window, R, config_.iekf_iterations, at_first, K, PHt)) {
+    return false;
   }
   // P = (I - K H) P on the window, as the symmetric rank-d downdate P - K (P H^T)^T; the rest of
   // P is uncorrelated with the window and unchanged.

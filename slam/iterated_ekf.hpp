@@ -1,0 +1,53 @@
+// The iterated EKF update of a state made of poses (paper Eq. 9-10), shared by trajectory SLAM's
+// filters and the pose graph's per-scan belief (docs/trajectory_slam.md):
+//   X_{i+1} = X^ + K_i (z - h(X_i) - H_i (X^ - X_i)),  K_i = P H_i^T (H_i P H_i^T + R)^-1,
+// and then P = (I - K H) P at the last linearisation, which the caller applies (as the rank-d
+// downdate P - K (P H^T)^T) to wherever its P lives.
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <algorithm>
+#include <vector>
+
+#include "geometry/se2.hpp"
+
+namespace msislab {
+
+/// Updates the `count` poses from `x` in place; P is their covariance (3 count square).
+/// residual(H) gives z (-) h at the current poses and sets H (d x 3 count).
+/// at_first(x_prior, z_minus_h, innovation, S) is called at the first linearisation; when it
+/// returns false (a gate) the poses are left as they were and so is the result false.
+/// K and PHt are those of the last linearisation, for the caller's downdate.
+template <class Residual, class AtFirst>
+bool iterated_ekf_update(std::vector<Pose2>::iterator x, std::size_t count,
+                         const Eigen::Ref<const Eigen::MatrixXd>& P, const Residual& residual,
+                         const Eigen::MatrixXd& R, int iterations, const AtFirst& at_first,
+                         Eigen::MatrixXd& K, Eigen::MatrixXd& PHt) {
+  const auto m = static_cast<Eigen::Index>(3 * count);
+  const std::vector<Pose2> prior(x, x + static_cast<long>(count));
+  Eigen::VectorXd x_prior(m);
+  for (std::size_t j = 0; j < count; ++j) {
+    x_prior.segment<3>(static_cast<Eigen::Index>(3 * j)) = prior[j].vector();
+  }
+  Eigen::MatrixXd H;
+  for (int iteration = 0; iteration < std::max(1, iterations); ++iteration) {
+    const Eigen::VectorXd z_minus_h = residual(&H);
+    Eigen::VectorXd dx(m);  // X^ - X_i, angles wrapped
+    for (std::size_t j = 0; j < count; ++j) {
+      dx.segment<3>(static_cast<Eigen::Index>(3 * j)) = pose_difference(prior[j], x[j]);
+    }
+    PHt.noalias() = P * H.transpose();
+    const Eigen::MatrixXd S = H * PHt + R;
+    const Eigen::VectorXd innovation = z_minus_h - H * dx;
+    if (iteration == 0 && !at_first(x_prior, z_minus_h, innovation, S)) return false;
+    K.noalias() = S.ldlt().solve(PHt.transpose()).transpose();
+    const Eigen::VectorXd x_new = x_prior + K * innovation;
+    for (std::size_t j = 0; j < count; ++j) {
+      x[j] = Pose2(Eigen::Vector3d(x_new.segment<3>(static_cast<Eigen::Index>(3 * j))));
+    }
+  }
+  return true;
+}
+
+}  // namespace msislab

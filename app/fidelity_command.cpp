@@ -236,8 +236,8 @@ std::vector<std::string> write_fidelity(const FidelityReport& report) {
                      range_charts(real, sim, range_m));
     charts.write_png((partial / "figures" / "revolution.png").string(),
                      revolution_charts(real, sim, range_m));
-    io::write_file_atomically((partial / "fidelity.json").string(),
-                              [&](std::ostream& out) { out << fidelity_json(report); });
+    io::write_json_file((partial / "fidelity.json").string(), fidelity_json(report),
+                        kFidelityJsonLayout);
     io::write_file_atomically((partial / "fidelity.md").string(),
                               [&](std::ostream& out) { out << fidelity_page(report); });
   } catch (...) {

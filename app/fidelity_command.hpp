@@ -58,7 +58,9 @@ std::string fidelity_command_line(const FidelityOptions& options);
 std::string fidelity_page(const FidelityReport& report);
 
 /// fidelity.json: the command, the datasets and every row.
-std::string fidelity_json(const FidelityReport& report);
+io::Json fidelity_json(const FidelityReport& report);
+/// How fidelity.json is laid out: one member per line, and one row per line.
+inline const io::JsonLayout kFidelityJsonLayout{1, {"rows"}};
 
 /// Writes DIR/fidelity.md, DIR/fidelity.json, DIR/figures/ranges.png and
 /// DIR/figures/revolution.png into a scratch sibling folder that then replaces DIR; returns the

@@ -137,15 +137,15 @@ std::string figures(const FidelityReport& r) {
          "range of each beam (dark), range rings every 10 m around the sonar head.*\n";
 }
 
-std::string side_json(const FidelitySide& s) {
-  return "{\"dataset\": " + io::json_string(fs::absolute(s.dir).lexically_normal().string()) +
-         ", \"first_keyframe\": " + std::to_string(s.beams.front().keyframe) +
-         ", \"last_keyframe\": " + std::to_string(s.beams.back().keyframe) +
-         ", \"beams\": " + std::to_string(s.beam_times) +
-         ", \"beams_counted\": " + std::to_string(s.stats.beams) +
-         ", \"beams_with_detection\": " + std::to_string(s.stats.beams - s.stats.empty_beams) +
-         ", \"detected_bins\": " + std::to_string(s.stats.detected_ranges_m.size()) +
-         ", \"revolution_drawn\": " + std::to_string(s.revolution) + "}";
+io::Json side_json(const FidelitySide& s) {
+  return {{"dataset", fs::absolute(s.dir).lexically_normal().string()},
+          {"first_keyframe", s.beams.front().keyframe},
+          {"last_keyframe", s.beams.back().keyframe},
+          {"beams", s.beam_times},
+          {"beams_counted", s.stats.beams},
+          {"beams_with_detection", s.stats.beams - s.stats.empty_beams},
+          {"detected_bins", s.stats.detected_ranges_m.size()},
+          {"revolution_drawn", s.revolution}};
 }
 
 }  // namespace
@@ -173,15 +173,17 @@ std::string fidelity_page(const FidelityReport& r) {
          figures(r);
 }
 
-std::string fidelity_json(const FidelityReport& r) {
+io::Json fidelity_json(const FidelityReport& r) {
   const io::SonarSetup& s = r.real.setup;
-  return "{\n  \"command\": " + io::json_string(fidelity_command_line(r.options)) +
-         ",\n  \"real\": " + side_json(r.real) + ",\n  \"sim\": " + side_json(r.sim) +
-         ",\n  \"setup\": {\"range_m\": " + io::json_number(s.range_m) +
-         ", \"bin_m\": " + io::json_number(s.bin_m) +
-         ", \"step_rad\": " + io::json_number(s.step_rad) +
-         ", \"beams_per_revolution\": " + std::to_string(io::steps_per_revolution(s)) +
-         "},\n  \"rows\": " + fidelity_rows_json(r.table, 4) + "\n}\n";
+  return {{"command", fidelity_command_line(r.options)},
+          {"real", side_json(r.real)},
+          {"sim", side_json(r.sim)},
+          {"setup",
+           {{"range_m", s.range_m},
+            {"bin_m", s.bin_m},
+            {"step_rad", s.step_rad},
+            {"beams_per_revolution", io::steps_per_revolution(s)}}},
+          {"rows", fidelity_rows_json(r.table)}};
 }
 
 }  // namespace msislab::app

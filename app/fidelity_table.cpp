@@ -165,18 +165,19 @@ std::string fidelity_markdown(const FidelityTable& table) {
   return text;
 }
 
-std::string fidelity_rows_json(const FidelityTable& table, int indent) {
-  const std::string pad(static_cast<std::size_t>(indent), ' ');
-  std::string text = "[";
-  for (std::size_t i = 0; i < table.size(); ++i) {
-    const FidelityRow& r = table[i];
-    text += (i ? ",\n" : "\n") + pad + "{\"section\": " + io::json_string(r.section) +
-            ", \"key\": " + io::json_string(r.key) + ", \"name\": " + io::json_string(r.name) +
-            ", \"unit\": " + io::json_string(r.unit) + ", \"real\": " + io::json_number(r.real) +
-            ", \"sim\": " + io::json_number(r.sim) + ", \"ratio\": " + io::json_number(ratio(r)) +
-            ", \"ks\": " + (r.ks ? io::json_number(*r.ks) : "null") + "}";
+io::Json fidelity_rows_json(const FidelityTable& table) {
+  io::Json rows = io::Json::array();
+  for (const FidelityRow& r : table) {
+    rows.push_back({{"section", r.section},
+                    {"key", r.key},
+                    {"name", r.name},
+                    {"unit", r.unit},
+                    {"real", r.real},
+                    {"sim", r.sim},
+                    {"ratio", ratio(r)},
+                    {"ks", r.ks ? io::Json(*r.ks) : io::Json()}});
   }
-  return text + "\n" + std::string(static_cast<std::size_t>(std::max(indent - 2, 0)), ' ') + "]";
+  return rows;
 }
 
 }  // namespace msislab::app

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/fidelity_statistics.hpp"
+#include "io/json.hpp"
 
 namespace msislab::app {
 
@@ -37,9 +38,8 @@ FidelityTable sonar_rows(const SonarStatistics& real, const SonarStatistics& sim
 /// opens each section. Undefined values print as "-".
 std::string fidelity_markdown(const FidelityTable& table);
 
-/// The rows as a JSON array of objects {section, key, name, unit, real, sim, ratio, ks}, numbers
-/// in shortest round-trip form, null when undefined; `indent` spaces before each row and
-/// indent - 2 before the closing bracket.
-std::string fidelity_rows_json(const FidelityTable& table, int indent);
+/// The rows as a JSON array of objects {section, key, name, unit, real, sim, ratio, ks}; an
+/// undefined value is NaN (written as null) or null.
+io::Json fidelity_rows_json(const FidelityTable& table);
 
 }  // namespace msislab::app

@@ -1,235 +1,111 @@
 #include "io/json.hpp"
 
-#include <cctype>
-#include <charconv>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
+#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::io {
 namespace {
 
-const char* type_name(JsonValue::Type type) {
-  switch (type) {
-    case JsonValue::Type::null:
-      return "null";
-    case JsonValue::Type::boolean:
-      return "a boolean";
-    case JsonValue::Type::number:
-      return "a number";
-    case JsonValue::Type::string:
-      return "a string";
-    case JsonValue::Type::array:
-      return "an array";
-    case JsonValue::Type::object:
-      return "an object";
-  }
-  return "";
+/// nlohmann's message without its "[json.exception...] parse error at line L, column C: " head.
+std::string parse_error_text(const Json::parse_error& e) {
+  std::string what = e.what();
+  const std::size_t column = what.find("column ");
+  const std::size_t colon = what.find(": ", column == std::string::npos ? 0 : column);
+  return colon == std::string::npos ? what : what.substr(colon + 2);
 }
 
-class Parser {
- public:
-  Parser(std::string_view text, const std::string& path) : text_(text), path_(path) {}
+const char* type_name(const Json& value) {
+  if (value.is_null()) return "null";
+  if (value.is_boolean()) return "a boolean";
+  if (value.is_number()) return "a number";
+  if (value.is_string()) return "a string";
+  if (value.is_array()) return "an array";
+  return "an object";
+}
 
-  JsonValue document() {
-    JsonValue value = parse_value(0);
-    skip_blanks();
-    if (at_ < text_.size()) fail("unexpected text after the JSON value");
-    return value;
+std::string quoted(const std::string& text) {
+  return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
+}
+
+class Printer {
+ public:
+  explicit Printer(const JsonLayout& layout) : layout_(layout) {}
+
+  void value(const Json& v, int level, bool expanded) {
+    if (v.is_object()) {
+      container(v, level, expanded, '{', '}');
+    } else if (v.is_array()) {
+      container(v, level, expanded, '[', ']');
+    } else if (v.is_number_float()) {
+      const double number = v.get<double>();
+      text_ += std::isfinite(number) ? format_number(number) : "null";
+    } else if (v.is_string()) {
+      text_ += quoted(v.get<std::string>());
+    } else {
+      text_ += v.dump();  // null, booleans and integers
+    }
   }
+
+  std::string text() && { return std::move(text_); }
 
  private:
-  static constexpr int kMaxDepth = 64;
-
-  [[noreturn]] void fail(const std::string& what) const {
-    std::size_t line = 1;
-    for (std::size_t i = 0; i < at_ && i < text_.size(); ++i) line += text_[i] == '\n';
-    fail_at(path_, line, what);
-  }
-
-  void skip_blanks() {
-    while (at_ < text_.size() &&
-           (text_[at_] == ' ' || text_[at_] == '\t' || text_[at_] == '\n' || text_[at_] == '\r')) {
-      ++at_;
-    }
-  }
-
-  bool consume(char c) {
-    skip_blanks();
-    if (at_ < text_.size() && text_[at_] == c) {
-      ++at_;
-      return true;
-    }
-    return false;
-  }
-
-  void expect(char c) {
-    if (!consume(c)) fail(std::string("expected '") + c + "'");
-  }
-
-  bool literal(std::string_view word) {
-    if (text_.substr(at_, word.size()) != word) return false;
-    at_ += word.size();
-    return true;
-  }
-
-  JsonValue parse_value(int depth) {
-    if (depth > kMaxDepth) fail("nesting too deep");
-    skip_blanks();
-    if (at_ >= text_.size()) fail("unexpected end of the file");
-    JsonValue value;
-    const char c = text_[at_];
-    if (c == '{') {
-      value.type = JsonValue::Type::object;
-      ++at_;
-      if (consume('}')) return value;
-      do {
-        skip_blanks();
-        std::string key = parse_string();
-        expect(':');
-        value.members.emplace_back(std::move(key), parse_value(depth + 1));
-      } while (consume(','));
-      expect('}');
-    } else if (c == '[') {
-      value.type = JsonValue::Type::array;
-      ++at_;
-      if (consume(']')) return value;
-      do {
-        value.items.push_back(parse_value(depth + 1));
-      } while (consume(','));
-      expect(']');
-    } else if (c == '"') {
-      value.type = JsonValue::Type::string;
-      value.text = parse_string();
-    } else if (literal("null")) {
-      value.type = JsonValue::Type::null;
-    } else if (literal("true")) {
-      value.type = JsonValue::Type::boolean;
-      value.boolean = true;
-    } else if (literal("false")) {
-      value.type = JsonValue::Type::boolean;
-    } else {
-      value.type = JsonValue::Type::number;
-      const std::size_t begin = at_;
-      value.number = parse_number();
-      value.text = std::string(text_.substr(begin, at_ - begin));
-    }
-    return value;
-  }
-
-  double parse_number() {
-    const std::size_t begin = at_;
-    while (at_ < text_.size() &&
-           (std::isdigit(static_cast<unsigned char>(text_[at_])) || text_[at_] == '-' ||
-            text_[at_] == '+' || text_[at_] == '.' || text_[at_] == 'e' || text_[at_] == 'E')) {
-      ++at_;
-    }
-    const std::string_view token = text_.substr(begin, at_ - begin);
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-    if (token.empty() || ec != std::errc() || ptr != token.data() + token.size() ||
-        !std::isfinite(value)) {
-      at_ = begin;
-      fail("'" + std::string(token.empty() ? text_.substr(at_, 1) : token) +
-           "' is not a JSON value");
-    }
-    return value;
-  }
-
-  std::string parse_string() {
-    if (at_ >= text_.size() || text_[at_] != '"') fail("expected a string");
-    ++at_;
-    std::string out;
-    while (true) {
-      if (at_ >= text_.size()) fail("unterminated string");
-      const char c = text_[at_++];
-      if (c == '"') return out;
-      if (static_cast<unsigned char>(c) < 0x20) fail("control character in a string");
-      if (c != '\\') {
-        out += c;
-        continue;
+  void container(const Json& v, int level, bool expanded, char open, char close) {
+    text_ += open;
+    const std::string pad(2 * static_cast<std::size_t>(level + 1), ' ');
+    bool first = true;
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      text_ += first ? "" : ",";
+      text_ += expanded ? "\n" + pad : std::string(first ? "" : " ");
+      first = false;
+      bool expand_child = level + 1 < layout_.expanded_levels;
+      if (v.is_object()) {
+        text_ += quoted(it.key()) + ": ";
+        expand_child = expand_child || std::count(layout_.expanded_members.begin(),
+                                                  layout_.expanded_members.end(), it.key()) > 0;
       }
-      if (at_ >= text_.size()) fail("unterminated string");
-      const char e = text_[at_++];
-      switch (e) {
-        case '"':
-        case '\\':
-        case '/':
-          out += e;
-          break;
-        case 'b':
-          out += '\b';
-          break;
-        case 'f':
-          out += '\f';
-          break;
-        case 'n':
-          out += '\n';
-          break;
-        case 'r':
-          out += '\r';
-          break;
-        case 't':
-          out += '\t';
-          break;
-        case 'u':
-          append_utf8(out, parse_hex4());
-          break;
-        default:
-          fail(std::string("bad escape '\\") + e + "'");
-      }
+      value(*it, level + 1, expand_child);
     }
+    if (expanded) text_ += "\n" + pad.substr(2);
+    text_ += close;
   }
 
-  unsigned parse_hex4() {
-    if (at_ + 4 > text_.size()) fail("truncated \\u escape");
-    unsigned code = 0;
-    const auto [ptr, ec] = std::from_chars(text_.data() + at_, text_.data() + at_ + 4, code, 16);
-    if (ec != std::errc() || ptr != text_.data() + at_ + 4) fail("bad \\u escape");
-    at_ += 4;
-    return code;
-  }
-
-  // Surrogate pairs are not joined: msislab never writes them.
-  static void append_utf8(std::string& out, unsigned code) {
-    if (code < 0x80) {
-      out += static_cast<char>(code);
-    } else if (code < 0x800) {
-      out += static_cast<char>(0xC0 | (code >> 6));
-      out += static_cast<char>(0x80 | (code & 0x3F));
-    } else {
-      out += static_cast<char>(0xE0 | (code >> 12));
-      out += static_cast<char>(0x80 | ((code >> 6) & 0x3F));
-      out += static_cast<char>(0x80 | (code & 0x3F));
-    }
-  }
-
-  std::string_view text_;
-  const std::string& path_;
-  std::size_t at_ = 0;
+  const JsonLayout& layout_;
+  std::string text_;
 };
 
 }  // namespace
 
-const JsonValue* JsonValue::find(const std::string& key) const {
-  for (const auto& [name, value] : members) {
-    if (name == key) return &value;
+Json parse_json(std::string_view text, const std::string& path) {
+  try {
+    return Json::parse(text.begin(), text.end());
+  } catch (const Json::parse_error& e) {
+    const std::size_t at = std::min(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    const auto newlines = std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
+    fail_at(path, static_cast<std::size_t>(newlines) + 1, parse_error_text(e));
   }
-  return nullptr;
 }
 
-JsonValue parse_json(std::string_view text, const std::string& path) {
-  return Parser(text, path).document();
+Json read_json_file(const std::string& path) { return parse_json(read_whole_file(path), path); }
+
+std::string format_json(const Json& value, const JsonLayout& layout) {
+  Printer printer(layout);
+  printer.value(value, 0, layout.expanded_levels > 0);
+  return std::move(printer).text() + "\n";
 }
 
-JsonValue read_json_file(const std::string& path) {
-  return parse_json(read_whole_file(path), path);
+void write_json_file(const std::string& path, const Json& value, const JsonLayout& layout) {
+  const std::string text = format_json(value, layout);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
 }
 
-JsonObject::JsonObject(const JsonValue& value, std::string path, std::string prefix)
+JsonObject::JsonObject(const Json& value, std::string path, std::string prefix)
     : value_(value), path_(std::move(path)), prefix_(std::move(prefix)) {
-  if (value_.type != JsonValue::Type::object) {
+  if (!value_.is_object()) {
     fail_file(path_, prefix_.empty() ? "expected a JSON object"
                                      : "key '" + prefix_.substr(0, prefix_.size() - 1) +
                                            "': expected an object");
@@ -240,39 +116,61 @@ void JsonObject::fail(const std::string& key, const std::string& what) const {
   fail_file(path_, "key '" + prefix_ + key + "': " + what);
 }
 
-bool JsonObject::has(const std::string& key) const { return value_.find(key) != nullptr; }
+bool JsonObject::has(const std::string& key) const { return value_.contains(key); }
 
-const JsonValue& JsonObject::get(const std::string& key, JsonValue::Type type) const {
-  const JsonValue* member = value_.find(key);
-  if (!member) fail(key, "missing");
-  if (member->type != type) {
-    fail(key, std::string("expected ") + type_name(type) + ", got " + type_name(member->type));
-  }
-  return *member;
+bool JsonObject::has_value(const std::string& key) const {
+  const auto it = value_.find(key);
+  return it != value_.end() && !it->is_null();
+}
+
+const Json& JsonObject::member(const std::string& key) const {
+  const auto it = value_.find(key);
+  if (it == value_.end()) fail(key, "missing");
+  return *it;
+}
+
+const Json& JsonObject::array(const std::string& key) const {
+  const Json& v = member(key);
+  if (!v.is_array()) fail(key, std::string("expected an array, got ") + type_name(v));
+  return v;
 }
 
 double JsonObject::number(const std::string& key) const {
-  return get(key, JsonValue::Type::number).number;
+  const Json& v = member(key);
+  if (!v.is_number()) fail(key, std::string("expected a number, got ") + type_name(v));
+  return v.get<double>();
 }
 
 std::optional<double> JsonObject::number_or_null(const std::string& key) const {
-  const JsonValue* member = value_.find(key);
-  if (member && member->type == JsonValue::Type::null) return std::nullopt;
+  if (has(key) && value_.at(key).is_null()) return std::nullopt;
   return number(key);
 }
 
+long long JsonObject::integer(const std::string& key, long long min, long long max) const {
+  const double value = number(key);
+  if (value != std::floor(value) || value < static_cast<double>(min) ||
+      value > static_cast<double>(max)) {
+    fail(key, "expected a whole number in [" + std::to_string(min) + ", " + std::to_string(max) +
+                  "], got " + format_number(value));
+  }
+  return static_cast<long long>(value);
+}
+
 std::string JsonObject::string(const std::string& key) const {
-  return get(key, JsonValue::Type::string).text;
+  const Json& v = member(key);
+  if (!v.is_string()) fail(key, std::string("expected a string, got ") + type_name(v));
+  return v.get<std::string>();
 }
 
 std::optional<std::string> JsonObject::string_or_null(const std::string& key) const {
-  const JsonValue* member = value_.find(key);
-  if (member && member->type == JsonValue::Type::null) return std::nullopt;
+  if (has(key) && value_.at(key).is_null()) return std::nullopt;
   return string(key);
 }
 
 JsonObject JsonObject::object(const std::string& key) const {
-  return JsonObject(get(key, JsonValue::Type::object), path_, prefix_ + key + ".");
+  const Json& v = member(key);
+  if (!v.is_object()) fail(key, std::string("expected an object, got ") + type_name(v));
+  return JsonObject(v, path_, prefix_ + key + ".");
 }
 
 }  // namespace msislab::io

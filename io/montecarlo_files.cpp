@@ -1,7 +1,5 @@
 #include "io/montecarlo_files.hpp"
 
-#include <algorithm>
-
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -15,63 +13,43 @@
 namespace msislab::io {
 namespace {
 
-std::string json_optional(const std::optional<double>& value) {
-  return value ? json_number(*value) : "null";
-}
+Json optional(const std::optional<double>& value) { return value ? Json(*value) : Json(); }
 
 int int_of(const JsonObject& json, const std::string& key, int min) {
-  const double value = json.number(key);
-  if (value != std::floor(value) || value < min || value > std::numeric_limits<int>::max()) {
-    json.fail(key,
-              "expected an integer >= " + std::to_string(min) + ", got " + format_number(value));
-  }
-  return static_cast<int>(value);
-}
-
-/// The key is there and not null (optional sections of summary.json).
-bool has_non_null(const JsonObject& json, const std::string& key) {
-  const auto& members = json.value().members;
-  const auto it = std::find_if(members.begin(), members.end(),
-                               [&](const auto& member) { return member.first == key; });
-  return it != members.end() && it->second.type != JsonValue::Type::null;
+  return static_cast<int>(json.integer(key, min, std::numeric_limits<int>::max()));
 }
 
 }  // namespace
 
-void write_manifest_json(const std::string& path, const MonteCarloManifest& m) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n"
-        << "  \"scenario\": \"scenario.yaml\",\n"
-        << "  \"scenario_source\": " << json_string(m.scenario_source) << ",\n"
-        << "  \"seed\": " << m.first_seed << ",\n"
-        << "  \"runs\": " << m.runs << ",\n"
-        << "  \"methods\": [";
-    for (std::size_t i = 0; i < m.methods.size(); ++i) {
-      out << (i ? ", " : "") << json_string(m.methods[i]);
-    }
-    out << "],\n"
-        << "  \"config\": " << (m.has_config ? "\"config.yaml\"" : "null") << ",\n"
-        << "  \"shard\": \"" << m.shard_index << "/" << m.shard_count << "\",\n"
-        << "  \"executable_digest\": " << json_string(m.executable_digest) << "\n"
-        << "}\n";
-  });
+void to_json(Json& json, const MonteCarloManifest& m) {
+  json = Json::object();
+  json["scenario"] = "scenario.yaml";
+  json["scenario_source"] = m.scenario_source;
+  json["seed"] = m.first_seed;
+  json["runs"] = m.runs;
+  json["methods"] = m.methods;
+  json["config"] = m.has_config ? Json("config.yaml") : Json();
+  json["shard"] = std::to_string(m.shard_index) + "/" + std::to_string(m.shard_count);
+  json["executable_digest"] = m.executable_digest;
 }
 
-MonteCarloManifest read_manifest_json(const std::string& path) {
-  const JsonValue root = read_json_file(path);
-  const JsonObject json(root, path);
-  MonteCarloManifest m;
+void write_manifest_json(const std::string& path, const MonteCarloManifest& m) {
+  write_json_file(path, m);
+}
+
+void from_json(const JsonObject& json, MonteCarloManifest& m) {
   m.scenario_source = json.string("scenario_source");
-  // The seed is read from its token: a double would not hold every 64-bit seed.
-  const std::string& seed = json.get("seed", JsonValue::Type::number).text;
-  const auto [end, ec] = std::from_chars(seed.data(), seed.data() + seed.size(), m.first_seed);
-  if (ec != std::errc() || end != seed.data() + seed.size()) {
-    json.fail("seed", "expected a non-negative integer, got " + seed);
+  // A double would not hold every 64-bit seed: the seed must have been read as an unsigned.
+  json.number("seed");
+  const Json& seed = json.value().at("seed");
+  if (!seed.is_number_unsigned()) {
+    json.fail("seed", "expected a non-negative integer, got " + seed.dump());
   }
+  m.first_seed = seed.get<std::uint64_t>();
   m.runs = int_of(json, "runs", 1);
-  for (const JsonValue& method : json.get("methods", JsonValue::Type::array).items) {
-    if (method.type != JsonValue::Type::string) json.fail("methods", "expected strings");
-    m.methods.push_back(method.text);
+  for (const Json& method : json.array("methods")) {
+    if (!method.is_string()) json.fail("methods", "expected strings");
+    m.methods.push_back(method.get<std::string>());
   }
   m.has_config = json.string_or_null("config").has_value();
   const std::string shard = json.string("shard");
@@ -79,7 +57,10 @@ MonteCarloManifest read_manifest_json(const std::string& path) {
     json.fail("shard", "expected i/N with 0 <= i < N, got '" + shard + "'");
   }
   if (json.has("executable_digest")) m.executable_digest = json.string("executable_digest");
-  return m;
+}
+
+MonteCarloManifest read_manifest_json(const std::string& path) {
+  return read_json_file_as<MonteCarloManifest>(path);
 }
 
 bool parse_shard(const std::string& text, int& index, int& count) {
@@ -100,133 +81,115 @@ void write_seeds_csv(const std::string& path, const std::vector<int>& runs,
   });
 }
 
-void write_failure_json(const std::string& path, const RunFailure& f) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n"
-        << "  \"run\": " << f.run << ",\n"
-        << "  \"seed\": " << f.seed << ",\n"
-        << "  \"stage\": " << json_string(f.stage) << ",\n"
-        << "  \"reason\": " << json_string(f.reason) << "\n"
-        << "}\n";
-  });
+void to_json(Json& json, const RunFailure& f) {
+  json = Json::object();
+  json["run"] = f.run;
+  json["seed"] = f.seed;
+  json["stage"] = f.stage;
+  json["reason"] = f.reason;
+}
+
+void write_failure_json(const std::string& path, const RunFailure& f) { write_json_file(path, f); }
+
+void to_json(Json& json, const PairedDifference& d) {
+  json = Json::object();
+  json["reference"] = d.reference;
+  json["runs"] = d.runs;
+  json["mean_m"] = d.mean_m;
+  json["sd_m"] = d.sd_m;
+  json["ci95_m"] = {d.ci95_lower_m, d.ci95_upper_m};
+  json["runs_lower"] = d.runs_lower;
+}
+
+void from_json(const JsonObject& p, PairedDifference& d) {
+  d.reference = p.string("reference");
+  d.runs = int_of(p, "runs", 2);
+  d.mean_m = p.number("mean_m");
+  d.sd_m = p.number("sd_m");
+  const Json& ci = p.array("ci95_m");
+  if (ci.size() != 2 || !ci[0].is_number() || !ci[1].is_number()) {
+    p.fail("ci95_m", "expected [lower, upper]");
+  }
+  d.ci95_lower_m = ci[0].get<double>();
+  d.ci95_upper_m = ci[1].get<double>();
+  d.runs_lower = int_of(p, "runs_lower", 0);
+}
+
+void to_json(Json& json, const MethodSummary& s) {
+  json = Json::object();
+  json["runs"] = s.runs;
+  json["failed"] = s.failed;
+  json["failed_runs"] = s.failed_runs;
+  json["missing"] = s.missing;
+  json["mean_error_m"] = optional(s.mean_error_m);
+  json["mean_error_quantiles_m"] = Json();
+  if (const auto& q = s.mean_error_quantiles_m) {
+    json["mean_error_quantiles_m"] = {{"p05", (*q)[0]}, {"p50", (*q)[1]}, {"p95", (*q)[2]}};
+  }
+  json["final_error_m"] = optional(s.final_error_m);
+  json["anees"] = optional(s.anees);
+  json["nees_in_bounds_fraction"] = optional(s.nees_in_bounds_fraction);
+  json["nees_scans"] = s.nees.size();
+  json["paired_difference"] = Json();
+  if (s.paired) to_json(json["paired_difference"], *s.paired);
+  Json& segments = json["segments"] = Json::object();
+  for (const auto& [name, mean] : s.segments) segments[name] = optional(mean);
+  Json& diagnostics = json["diagnostics"] = Json::object();
+  for (const auto& [name, value] : s.diagnostics) diagnostics[name] = value;
+  json["runtime_s"] = s.runtime_s;
 }
 
 void write_summary_json(const std::string& path, const std::vector<MethodSummary>& methods) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{";
-    for (std::size_t i = 0; i < methods.size(); ++i) {
-      const MethodSummary& s = methods[i];
-      out << (i ? ",\n" : "\n") << "  " << json_string(s.method) << ": {\n"
-          << "    \"runs\": " << s.runs << ",\n"
-          << "    \"failed\": " << s.failed << ",\n"
-          << "    \"failed_runs\": [";
-      for (std::size_t k = 0; k < s.failed_runs.size(); ++k) {
-        out << (k ? ", " : "") << s.failed_runs[k];
-      }
-      out << "],\n"
-          << "    \"missing\": " << s.missing << ",\n"
-          << "    \"mean_error_m\": " << json_optional(s.mean_error_m) << ",\n"
-          << "    \"mean_error_quantiles_m\": ";
-      if (s.mean_error_quantiles_m) {
-        const auto& q = *s.mean_error_quantiles_m;
-        out << "{\"p05\": " << json_number(q[0]) << ", \"p50\": " << json_number(q[1])
-            << ", \"p95\": " << json_number(q[2]) << "}";
-      } else {
-        out << "null";
-      }
-      out << ",\n"
-          << "    \"final_error_m\": " << json_optional(s.final_error_m) << ",\n"
-          << "    \"anees\": " << json_optional(s.anees) << ",\n"
-          << "    \"nees_in_bounds_fraction\": " << json_optional(s.nees_in_bounds_fraction)
-          << ",\n"
-          << "    \"nees_scans\": " << s.nees.size() << ",\n"
-          << "    \"paired_difference\": ";
-      if (s.paired) {
-        const PairedDifference& d = *s.paired;
-        out << "{\"reference\": " << json_string(d.reference) << ", \"runs\": " << d.runs
-            << ", \"mean_m\": " << json_number(d.mean_m) << ", \"sd_m\": " << json_number(d.sd_m)
-            << ", \"ci95_m\": [" << json_number(d.ci95_lower_m) << ", "
-            << json_number(d.ci95_upper_m) << "], \"runs_lower\": " << d.runs_lower << "}";
-      } else {
-        out << "null";
-      }
-      out << ",\n"
-          << "    \"segments\": {";
-      for (std::size_t k = 0; k < s.segments.size(); ++k) {
-        out << (k ? ", " : "") << json_string(s.segments[k].first) << ": "
-            << json_optional(s.segments[k].second);
-      }
-      out << "},\n"
-          << "    \"diagnostics\": {";
-      for (std::size_t k = 0; k < s.diagnostics.size(); ++k) {
-        out << (k ? ", " : "") << json_string(s.diagnostics[k].first) << ": "
-            << json_number(s.diagnostics[k].second);
-      }
-      out << "},\n"
-          << "    \"runtime_s\": " << json_number(s.runtime_s) << "\n"
-          << "  }";
+  Json json = Json::object();
+  for (const MethodSummary& s : methods) to_json(json[s.method], s);
+  write_json_file(path, json, {2, {}});
+}
+
+void from_json(const JsonObject& m, StoredSummary& stored) {
+  MethodSummary& s = stored.summary;
+  s.runs = int_of(m, "runs", 0);
+  s.failed = int_of(m, "failed", 0);
+  for (const Json& run : m.array("failed_runs")) {
+    if (!run.is_number_unsigned() || run.get<std::uint64_t>() > 1u << 30) {
+      m.fail("failed_runs", "expected run indices");
     }
-    out << "\n}\n";
-  });
+    s.failed_runs.push_back(run.get<int>());
+  }
+  s.missing = int_of(m, "missing", 0);
+  s.mean_error_m = m.number_or_null("mean_error_m");
+  if (m.has_value("mean_error_quantiles_m")) {
+    const JsonObject q = m.object("mean_error_quantiles_m");
+    s.mean_error_quantiles_m = {q.number("p05"), q.number("p50"), q.number("p95")};
+  }
+  s.final_error_m = m.number_or_null("final_error_m");
+  s.anees = m.number_or_null("anees");
+  s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
+  stored.nees_scans = static_cast<std::size_t>(int_of(m, "nees_scans", 0));
+  if (m.has_value("paired_difference")) {
+    s.paired.emplace();
+    from_json(m.object("paired_difference"), *s.paired);
+  }
+  const JsonObject segments = m.object("segments");
+  for (const auto& [segment, mean] : segments.value().items()) {
+    s.segments.emplace_back(segment, segments.number_or_null(segment));
+  }
+  if (m.has_value("diagnostics")) {  // absent from directories of earlier versions
+    const JsonObject diagnostics = m.object("diagnostics");
+    for (const auto& [name, value] : diagnostics.value().items()) {
+      s.diagnostics.emplace_back(name, diagnostics.number(name));
+    }
+  }
+  s.runtime_s = m.number("runtime_s");
 }
 
 std::vector<StoredSummary> read_summary_json(const std::string& path) {
-  const JsonValue root = read_json_file(path);
+  const Json root = read_json_file(path);
   const JsonObject json(root, path);
   std::vector<StoredSummary> methods;
-  for (const auto& [name, value] : root.members) {
-    const JsonObject m = json.object(name);
-    StoredSummary stored;
-    MethodSummary& s = stored.summary;
-    s.method = name;
-    s.runs = int_of(m, "runs", 0);
-    s.failed = int_of(m, "failed", 0);
-    for (const JsonValue& run : m.get("failed_runs", JsonValue::Type::array).items) {
-      if (run.type != JsonValue::Type::number || run.number != std::floor(run.number) ||
-          run.number < 0) {
-        m.fail("failed_runs", "expected run indices");
-      }
-      s.failed_runs.push_back(static_cast<int>(run.number));
-    }
-    s.missing = int_of(m, "missing", 0);
-    s.mean_error_m = m.number_or_null("mean_error_m");
-    if (has_non_null(m, "mean_error_quantiles_m")) {
-      const JsonObject q = m.object("mean_error_quantiles_m");
-      s.mean_error_quantiles_m = {q.number("p05"), q.number("p50"), q.number("p95")};
-    }
-    s.final_error_m = m.number_or_null("final_error_m");
-    s.anees = m.number_or_null("anees");
-    s.nees_in_bounds_fraction = m.number_or_null("nees_in_bounds_fraction");
-    stored.nees_scans = static_cast<std::size_t>(int_of(m, "nees_scans", 0));
-    if (has_non_null(m, "paired_difference")) {
-      const JsonObject p = m.object("paired_difference");
-      PairedDifference d;
-      d.reference = p.string("reference");
-      d.runs = int_of(p, "runs", 2);
-      d.mean_m = p.number("mean_m");
-      d.sd_m = p.number("sd_m");
-      const std::vector<JsonValue>& ci = p.get("ci95_m", JsonValue::Type::array).items;
-      if (ci.size() != 2 || ci[0].type != JsonValue::Type::number ||
-          ci[1].type != JsonValue::Type::number) {
-        p.fail("ci95_m", "expected [lower, upper]");
-      }
-      d.ci95_lower_m = ci[0].number;
-      d.ci95_upper_m = ci[1].number;
-      d.runs_lower = int_of(p, "runs_lower", 0);
-      s.paired = d;
-    }
-    const JsonObject segments = m.object("segments");
-    for (const auto& [segment, window] : segments.value().members) {
-      s.segments.emplace_back(segment, segments.number_or_null(segment));
-    }
-    if (has_non_null(m, "diagnostics")) {  // absent from directories of earlier versions
-      const JsonObject diagnostics = m.object("diagnostics");
-      for (const auto& member : diagnostics.value().members) {
-        s.diagnostics.emplace_back(member.first, diagnostics.number(member.first));
-      }
-    }
-    s.runtime_s = m.number("runtime_s");
-    methods.push_back(std::move(stored));
+  for (const auto& [name, value] : root.items()) {
+    StoredSummary& stored = methods.emplace_back();
+    stored.summary.method = name;
+    from_json(json.object(name), stored);
   }
   if (methods.empty()) fail_file(path, "no method in it");
   return methods;

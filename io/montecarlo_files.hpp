@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "eval/monte_carlo.hpp"
+#include "io/json.hpp"
 
 namespace msislab::io {
 
@@ -23,6 +24,8 @@ struct MonteCarloManifest {
   /// before it was recorded. Runs of two builds are never mixed.
   std::string executable_digest;
 };
+void to_json(Json& json, const MonteCarloManifest& manifest);
+void from_json(const JsonObject& json, MonteCarloManifest& manifest);
 void write_manifest_json(const std::string& path, const MonteCarloManifest& manifest);
 MonteCarloManifest read_manifest_json(const std::string& path);
 
@@ -40,6 +43,7 @@ struct RunFailure {
   std::string stage;   ///< "simulate" or "run"
   std::string reason;  ///< exit status or signal, and the last stderr line
 };
+void to_json(Json& json, const RunFailure& failure);
 void write_failure_json(const std::string& path, const RunFailure& failure);
 
 /// summary.json: one object per method, in the order given, atomically.
@@ -51,6 +55,11 @@ struct StoredSummary {
   MethodSummary summary;
   std::size_t nees_scans = 0;
 };
+/// One method's object in summary.json (its name is the member's key).
+void to_json(Json& json, const MethodSummary& summary);
+void from_json(const JsonObject& json, StoredSummary& stored);
+void to_json(Json& json, const PairedDifference& paired);
+void from_json(const JsonObject& json, PairedDifference& paired);
 std::vector<StoredSummary> read_summary_json(const std::string& path);
 
 /// errors.csv of a Monte Carlo directory: "method,t_s,runs,mean_m,p05_m,p50_m,p95_m", the spread

@@ -13,39 +13,6 @@
 
 namespace msislab::io {
 
-std::string json_number(double value) {
-  return std::isfinite(value) ? format_number(value) : "null";
-}
-
-std::string json_string(const std::string& text) {
-  std::string out = "\"";
-  for (const char ch : text) {
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        if (static_cast<unsigned char>(ch) < 0x20) {
-          char escaped[8];
-          std::snprintf(escaped, sizeof(escaped), "\\u%04x", ch);
-          out += escaped;
-        } else {
-          out += ch;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 void write_trajectory_tum(const std::string& path, const std::vector<StampedPose>& trajectory,
                           double depth_m) {
   std::vector<TumPose> poses;
@@ -56,45 +23,34 @@ void write_trajectory_tum(const std::string& path, const std::vector<StampedPose
   write_tum(path, poses);
 }
 
-void write_metrics_json(const std::string& path, const RunMetrics& m,
+void to_json(Json& json, const StoredMetrics& stored) {
+  const RunMetrics& m = stored.metrics;
+  json = Json::object();
+  json["method"] = m.method;
+  json["truth"] = m.truth;
+  if (!stored.truth_file.empty()) json["truth_file"] = stored.truth_file;
+  json["dataset"] = stored.dataset_dir.empty() ? Json() : Json(stored.dataset_dir);
+  json["mean_error_m"] = m.errors.mean_m;
+  json["rmse_m"] = m.errors.rmse_m;
+  json["median_error_m"] = m.errors.median_m;
+  json["max_error_m"] = m.errors.max_m;
+  json["final_error_m"] = m.errors.final_m;
+  json["truth_samples"] = m.errors.count;
+  Json& segments = json["segments"] = Json::object();
+  for (const auto& [name, mean] : m.segments) segments[name] = mean ? Json(*mean) : Json();
+  Json& windows = json["segment_windows"] = Json::object();
+  for (const TimeSegment& w : m.segment_windows) windows[w.name] = {w.begin_s, w.end_s};
+  json["scans"] = m.scans;
+  json["matches_accepted"] = m.matches_accepted;
+  json["anees"] = m.anees ? Json(*m.anees) : Json();
+  json["runtime_s"] = m.runtime_s;
+  Json& diagnostics = json["diagnostics"] = Json::object();
+  for (const auto& [name, value] : m.diagnostics) diagnostics[name] = value;
+}
+
+void write_metrics_json(const std::string& path, const RunMetrics& metrics,
                         const std::string& dataset_dir, const std::string& truth_file) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out << "{\n"
-        << "  \"method\": " << json_string(m.method) << ",\n"
-        << "  \"truth\": " << json_string(m.truth) << ",\n";
-    if (!truth_file.empty()) out << "  \"truth_file\": " << json_string(truth_file) << ",\n";
-    out << "  \"dataset\": " << (dataset_dir.empty() ? "null" : json_string(dataset_dir)) << ",\n"
-        << "  \"mean_error_m\": " << json_number(m.errors.mean_m) << ",\n"
-        << "  \"rmse_m\": " << json_number(m.errors.rmse_m) << ",\n"
-        << "  \"median_error_m\": " << json_number(m.errors.median_m) << ",\n"
-        << "  \"max_error_m\": " << json_number(m.errors.max_m) << ",\n"
-        << "  \"final_error_m\": " << json_number(m.errors.final_m) << ",\n"
-        << "  \"truth_samples\": " << m.errors.count << ",\n"
-        << "  \"segments\": {";
-    for (std::size_t i = 0; i < m.segments.size(); ++i) {
-      const auto& [name, mean] = m.segments[i];
-      out << (i ? ", " : "") << json_string(name) << ": "
-          << (mean ? json_number(*mean) : std::string("null"));
-    }
-    out << "},\n"
-        << "  \"segment_windows\": {";
-    for (std::size_t i = 0; i < m.segment_windows.size(); ++i) {
-      const TimeSegment& w = m.segment_windows[i];
-      out << (i ? ", " : "") << json_string(w.name) << ": [" << json_number(w.begin_s) << ", "
-          << json_number(w.end_s) << "]";
-    }
-    out << "},\n"
-        << "  \"scans\": " << m.scans << ",\n"
-        << "  \"matches_accepted\": " << m.matches_accepted << ",\n"
-        << "  \"anees\": " << (m.anees ? json_number(*m.anees) : std::string("null")) << ",\n"
-        << "  \"runtime_s\": " << json_number(m.runtime_s) << ",\n"
-        << "  \"diagnostics\": {";
-    for (std::size_t i = 0; i < m.diagnostics.size(); ++i) {
-      out << (i ? ", " : "") << json_string(m.diagnostics[i].first) << ": "
-          << json_number(m.diagnostics[i].second);
-    }
-    out << "}\n}\n";
-  });
+  write_json_file(path, StoredMetrics{metrics, dataset_dir, truth_file});
 }
 
 void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& scans) {
@@ -162,35 +118,27 @@ double number_or_nan(const JsonObject& object, const std::string& key) {
 }
 
 int count_of(const JsonObject& object, const std::string& key) {
-  const double value = object.number(key);
-  if (value < 0.0 || value != std::floor(value) || value > std::numeric_limits<int>::max()) {
-    object.fail(key, "expected a count, got " + format_number(value));
-  }
-  return static_cast<int>(value);
+  return static_cast<int>(object.integer(key, 0, std::numeric_limits<int>::max()));
 }
 
 std::vector<TimeSegment> read_segment_windows(const JsonObject& windows) {
   std::vector<TimeSegment> segments;
-  for (const auto& [name, value] : windows.value().members) {
-    if (value.type != JsonValue::Type::array || value.items.size() != 2 ||
-        value.items[0].type != JsonValue::Type::number ||
-        value.items[1].type != JsonValue::Type::number) {
+  for (const auto& [name, value] : windows.value().items()) {
+    if (!value.is_array() || value.size() != 2 || !value[0].is_number() || !value[1].is_number()) {
       windows.fail(name, "expected [begin_s, end_s]");
     }
-    segments.push_back({name, value.items[0].number, value.items[1].number});
+    segments.push_back({name, value[0].get<double>(), value[1].get<double>()});
   }
   return segments;
 }
 
 }  // namespace
 
-StoredMetrics read_metrics_json(const std::string& path) {
-  const JsonValue root = read_json_file(path);
-  const JsonObject json(root, path);
-  StoredMetrics stored;
+void from_json(const JsonObject& json, StoredMetrics& stored) {
   RunMetrics& m = stored.metrics;
   m.method = json.string("method");
   m.truth = json.string("truth");
+  if (json.has("truth_file")) stored.truth_file = json.string("truth_file");
   stored.dataset_dir = json.string_or_null("dataset").value_or("");
   m.errors.mean_m = json.number("mean_error_m");
   m.errors.rmse_m = json.number("rmse_m");
@@ -199,7 +147,7 @@ StoredMetrics read_metrics_json(const std::string& path) {
   m.errors.final_m = json.number("final_error_m");
   m.errors.count = static_cast<std::size_t>(count_of(json, "truth_samples"));
   const JsonObject segments = json.object("segments");
-  for (const auto& [name, value] : segments.value().members) {
+  for (const auto& [name, value] : segments.value().items()) {
     m.segments.emplace_back(name, segments.number_or_null(name));
   }
   if (json.has("segment_windows")) {
@@ -210,10 +158,13 @@ StoredMetrics read_metrics_json(const std::string& path) {
   m.anees = json.number_or_null("anees");
   m.runtime_s = number_or_nan(json, "runtime_s");
   const JsonObject diagnostics = json.object("diagnostics");
-  for (const auto& [name, value] : diagnostics.value().members) {
+  for (const auto& [name, value] : diagnostics.value().items()) {
     m.diagnostics.emplace_back(name, number_or_nan(diagnostics, name));
   }
-  return stored;
+}
+
+StoredMetrics read_metrics_json(const std::string& path) {
+  return read_json_file_as<StoredMetrics>(path);
 }
 
 namespace {

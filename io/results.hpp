@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "eval/evaluation.hpp"
+#include "io/json.hpp"
 #include "slam/scan_sequence.hpp"
 #include "slam/trajectory_slam.hpp"
 
@@ -20,11 +21,14 @@ void write_trajectory_tum(const std::string& path, const std::vector<StampedPose
 void write_metrics_json(const std::string& path, const RunMetrics& metrics,
                         const std::string& dataset_dir, const std::string& truth_file = "");
 
-/// metrics.json read back.
+/// metrics.json: the metrics and where their truth came from.
 struct StoredMetrics {
   RunMetrics metrics;       ///< runtime_s and diagnostics written as null read back as NaN
   std::string dataset_dir;  ///< empty when null
+  std::string truth_file;   ///< empty when absent
 };
+void to_json(Json& json, const StoredMetrics& stored);
+void from_json(const JsonObject& json, StoredMetrics& stored);
 StoredMetrics read_metrics_json(const std::string& path);
 
 /// scans.csv: one row per scan, "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,
@@ -71,10 +75,5 @@ std::vector<NeesSample> read_nees_csv(const std::string& path);
 
 /// An ASCII PLY point cloud (z = 0), atomically.
 void write_points_ply(const std::string& path, const std::vector<Eigen::Vector2d>& points_m);
-
-/// JSON text of a number: shortest round-trip form, null when not finite.
-std::string json_number(double value);
-/// JSON string literal with escapes.
-std::string json_string(const std::string& text);
 
 }  // namespace msislab::io

@@ -57,8 +57,8 @@ class FidelityCommand : public ::testing::Test {
 };
 
 /// The row with this key in fidelity.json.
-io::JsonObject row(const io::JsonValue& json, const std::string& key) {
-  for (const io::JsonValue& item : json.find("rows")->items) {
+io::JsonObject row(const io::Json& json, const std::string& key) {
+  for (const io::Json& item : json.at("rows")) {
     const io::JsonObject r(item, "fidelity.json");
     if (r.string("key") == key) return r;
   }
@@ -66,7 +66,7 @@ io::JsonObject row(const io::JsonValue& json, const std::string& key) {
 }
 
 /// The values to 1e-6 (beam times near 1e9 s carry about 1e-7 s), the ratio, null when real is 0.
-void expect_row(const io::JsonValue& json, const std::string& key, double real, double sim) {
+void expect_row(const io::Json& json, const std::string& key, double real, double sim) {
   SCOPED_TRACE(key);
   const io::JsonObject r = row(json, key);
   EXPECT_NEAR(r.number("real"), real, 1e-6);
@@ -120,7 +120,7 @@ TEST_F(FidelityCommand, OutWritesPageJsonAndFigures) {
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("wrote " + (out_ / "fidelity.md").string() + "\n"), std::string::npos)
       << result.out;
-  const io::JsonValue json = io::read_json_file((out_ / "fidelity.json").string());
+  const io::Json json = io::read_json_file((out_ / "fidelity.json").string());
   expect_row(json, "empty_beams_percent", 50.0, 25.0);
   expect_row(json, "bins_per_beam_mean", 2.65, 3.975);
   expect_row(json, "runs_per_beam_mean", 0.55, 0.825);
@@ -131,7 +131,7 @@ TEST_F(FidelityCommand, OutWritesPageJsonAndFigures) {
   expect_row(json, "first_ranges_20_30_m_percent", 0.0, 10.0);
   expect_row(json, "points_per_scan_p90", 100.0, 150.0);
   expect_row(json, "revolution_period_s", 13.8, 13.8);
-  const io::JsonObject real(*json.find("real"), "fidelity.json");
+  const io::JsonObject real(json.at("real"), "fidelity.json");
   EXPECT_EQ(real.number("beams"), 5 + 600 + 3);
   EXPECT_EQ(real.number("beams_counted"), 600);
   EXPECT_EQ(real.number("revolution_drawn"), 2);
@@ -158,8 +158,8 @@ TEST_F(FidelityCommand, OutReplacesAnEarlierReportButNoOtherFolder) {
   const CliResult again =
       fidelity(" --out " + shell_quote(out_.string()) + " --revolution-real 1 --revolution-sim 3");
   ASSERT_EQ(again.exit_code, 0) << again.err;
-  const io::JsonValue json = io::read_json_file((out_ / "fidelity.json").string());
-  EXPECT_EQ(io::JsonObject(*json.find("sim"), "f").number("revolution_drawn"), 3);
+  const io::Json json = io::read_json_file((out_ / "fidelity.json").string());
+  EXPECT_EQ(io::JsonObject(json.at("sim"), "f").number("revolution_drawn"), 3);
   EXPECT_NE(read_text((out_ / "fidelity.md").string()).find("--revolution-sim 3"),
             std::string::npos);
 
@@ -245,12 +245,12 @@ TEST(FidelityRealData, StPereAgainstItself) {
                       shell_quote(testing::stpere_dir()) + " --out " + shell_quote(out.string()),
                   tmp);
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  const io::JsonValue json = io::read_json_file((out / "fidelity.json").string());
-  const io::JsonObject real(*json.find("real"), "fidelity.json");
+  const io::Json json = io::read_json_file((out / "fidelity.json").string());
+  const io::JsonObject real(json.at("real"), "fidelity.json");
   EXPECT_EQ(real.number("beams"), 46259);
   EXPECT_EQ(real.number("beams_counted"), 46000);  // 230 keyframes of 200 beams
   EXPECT_EQ(real.number("detected_bins"), 1092064);
-  for (const io::JsonValue& item : json.find("rows")->items) {
+  for (const io::Json& item : json.at("rows")) {
     const io::JsonObject r(item, "fidelity.json");
     SCOPED_TRACE(r.string("key"));
     const std::optional<double> ratio = r.number_or_null("ratio");

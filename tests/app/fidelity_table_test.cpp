@@ -107,23 +107,24 @@ TEST(FidelityMarkdown, OneLinePerRowUnderItsSection) {
 TEST(FidelityRowsJson, EveryRowReadsBack) {
   FidelityTable table = sonar_rows(small_statistics(0.0), small_statistics(1.0), 50.0);
   table.front().real = 0.0;  // ratio undefined
-  const io::JsonValue rows = io::parse_json(fidelity_rows_json(table, 4), "rows.json");
-  ASSERT_EQ(rows.type, io::JsonValue::Type::array);
-  ASSERT_EQ(rows.items.size(), table.size());
+  const io::Json rows =
+      io::parse_json(io::format_json(fidelity_rows_json(table), {0, {}}), "rows.json");
+  ASSERT_TRUE(rows.is_array());
+  ASSERT_EQ(rows.size(), table.size());
   for (std::size_t i = 0; i < table.size(); ++i) {
-    const io::JsonObject row(rows.items[i], "rows.json");
+    const io::JsonObject row(rows[i], "rows.json");
     EXPECT_EQ(row.string("key"), table[i].key);
     EXPECT_EQ(row.string("section"), table[i].section);
     EXPECT_EQ(row.string("unit"), table[i].unit);
     EXPECT_EQ(row.number_or_null("ks"), table[i].ks);
   }
-  const io::JsonObject first(rows.items[0], "rows.json");
+  const io::JsonObject first(rows[0], "rows.json");
   EXPECT_EQ(first.number_or_null("ratio"), std::nullopt);
-  const io::JsonObject median(rows.items[6], "rows.json");
+  const io::JsonObject median(rows[6], "rows.json");
   EXPECT_EQ(median.string("key"), "first_range_median_m");
   EXPECT_DOUBLE_EQ(median.number("real"), 21.5);
   EXPECT_DOUBLE_EQ(median.number("ratio"), 22.5 / 21.5);
-  EXPECT_EQ(io::parse_json(fidelity_rows_json({}, 2), "empty.json").items.size(), 0u);
+  EXPECT_EQ(io::parse_json(io::format_json(fidelity_rows_json({})), "empty.json").size(), 0u);
 }
 
 }  // namespace

@@ -108,11 +108,11 @@ TEST(MonteCarloCommand, SummaryAndRunDirectories) {
       << full.logged->log.str();
 
   const std::string summary_path = (full.dir / "summary.json").string();
-  const io::JsonValue root = io::read_json_file(summary_path);
+  const io::Json root = io::read_json_file(summary_path);
   const io::JsonObject summary(root, summary_path);
-  ASSERT_EQ(root.members.size(), 2u);
-  EXPECT_EQ(root.members[0].first, "deadreckoning");
-  EXPECT_EQ(root.members[1].first, "worldcentric");
+  ASSERT_EQ(root.size(), 2u);
+  EXPECT_EQ(root.begin().key(), "deadreckoning");
+  EXPECT_EQ(std::next(root.begin()).key(), "worldcentric");
   for (const std::string& method : kMethods) {
     const io::JsonObject m = summary.object(method);
     EXPECT_EQ(m.number("runs"), 3);
@@ -335,7 +335,7 @@ TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
   EXPECT_TRUE(fs::exists(fs::path(run_dir(dir.string(), "deadreckoning", 1)) / "metrics.json"));
   EXPECT_FALSE(fs::exists(dir / "scratch"));
 
-  const io::JsonValue root = io::read_json_file((dir / "summary.json").string());
+  const io::Json root = io::read_json_file((dir / "summary.json").string());
   const io::JsonObject summary(root, "summary.json");
   EXPECT_EQ(summary.object("deadreckoning").number("runs"), 2);
   EXPECT_EQ(summary.object("deadreckoning").number("failed"), 1);

@@ -50,14 +50,6 @@ BeamTruthRow parse_row(std::string_view line, std::size_t line_number, const std
   return row;
 }
 
-void check_header(std::string_view line, const std::string& path) {
-  if (line != kHeader) {
-    fail_at(path, 1,
-            "wrong header: expected '" + std::string(kHeader) + "', got '" +
-                std::string(line.substr(0, 120)) + "'");
-  }
-}
-
 }  // namespace
 
 bool BeamTruthRow::operator==(const BeamTruthRow& other) const {
@@ -69,27 +61,15 @@ bool BeamTruthRow::operator==(const BeamTruthRow& other) const {
 }
 
 std::vector<BeamTruthRow> read_beam_truth(const std::string& path) {
-  const std::string text = read_whole_file(path);
-  if (text.empty()) fail_file(path, "empty file: no header line");
   std::vector<BeamTruthRow> rows;
-  std::size_t line_number = 0;
-  for (std::size_t start = 0; start < text.size();) {
-    const std::size_t newline = std::min(text.find('\n', start), text.size());
-    const std::string_view line = strip_cr(std::string_view(text).substr(start, newline - start));
-    start = newline + 1;
-    ++line_number;
-    if (line_number == 1) {
-      check_header(line, path);
-      continue;
-    }
-    if (line.empty()) continue;
+  for_each_csv_row(path, kHeader, [&](std::string_view line, std::size_t line_number) {
     rows.push_back(parse_row(line, line_number, path));
     if (rows.size() > 1 && rows.back().t_s < rows[rows.size() - 2].t_s) {
       fail_at(path, line_number,
               "t_s goes backwards (" + format_number(rows.back().t_s) + " after " +
                   format_number(rows[rows.size() - 2].t_s) + ")");
     }
-  }
+  });
   require_data_rows(path, rows.size());
   return rows;
 }

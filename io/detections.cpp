@@ -1,12 +1,7 @@
 #include "io/detections.hpp"
 
-#include <zlib.h>
-
 #include <array>
-#include <cerrno>
-#include <cstring>
 #include <limits>
-#include <memory>
 #include <ostream>
 #include <string_view>
 
@@ -51,83 +46,6 @@ DetectionRecord parse_row(std::string_view line, std::size_t line_number, const 
   return r;
 }
 
-// The header, then one record per non-blank line in beam_row order.
-class DetectionParser {
- public:
-  explicit DetectionParser(const std::string& path) : path_(path) {}
-
-  void line(std::string_view text) {
-    text = strip_cr(text);
-    ++line_number_;
-    if (line_number_ == 1) return check_header(text);
-    if (text.empty()) return;
-    const DetectionRecord record = parse_row(text, line_number_, path_);
-    if (!rows_.empty() && record.beam_row < rows_.back().beam_row)
-      fail_at(path_, line_number_,
-              "beam_row goes backwards (" + std::to_string(record.beam_row) + " after " +
-                  std::to_string(rows_.back().beam_row) + ")");
-    rows_.push_back(record);
-  }
-
-  std::vector<DetectionRecord> finish() {
-    if (line_number_ == 0) fail_file(path_, "empty file: no header line");
-    require_data_rows(path_, rows_.size());
-    return std::move(rows_);
-  }
-
- private:
-  void check_header(std::string_view text) const {
-    if (text != kHeader)
-      fail_at(path_, 1,
-              "wrong header: expected '" + std::string(kHeader) + "', got '" +
-                  std::string(text.substr(0, 100)) + "'");
-  }
-
-  const std::string& path_;
-  std::size_t line_number_ = 0;
-  std::vector<DetectionRecord> rows_;
-};
-
-struct GzFileCloser {
-  void operator()(gzFile_s* file) const { gzclose(file); }
-};
-
-// Appends up to one big chunk of decompressed text; false once the data is exhausted. gzread
-// returns a cut gzip file's data without an error, so the error state is checked every time.
-bool read_chunk(gzFile_s* file, const std::string& path, std::string& buffer) {
-  constexpr unsigned kChunk = 1u << 22;
-  const std::size_t kept = buffer.size();
-  buffer.resize(kept + kChunk);
-  const int got = gzread(file, buffer.data() + kept, kChunk);
-  int code = Z_OK;
-  const char* message = gzerror(file, &code);
-  if (code == Z_BUF_ERROR) fail_file(path, "truncated gzip data (unexpected end of file)");
-  if (got < 0 || code != Z_OK) fail_file(path, std::string("cannot read: ") + message);
-  buffer.resize(kept + static_cast<std::size_t>(got));
-  return got > 0;
-}
-
-// gzread also reads an uncompressed file as is, so one path serves .csv and .csv.gz. A partial
-// last line of each chunk is carried into the next one.
-template <typename OnLine>
-void for_each_line(const std::string& path, OnLine&& on_line) {
-  const std::unique_ptr<gzFile_s, GzFileCloser> file(gzopen(path.c_str(), "rb"));
-  if (!file) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
-  gzbuffer(file.get(), 1u << 20);
-  std::string buffer;
-  std::size_t consumed = 0;
-  bool more = true;
-  while (more) {
-    buffer.erase(0, consumed);
-    consumed = 0;
-    more = read_chunk(file.get(), path, buffer);
-    for (std::size_t newline = 0; (newline = buffer.find('\n', consumed)) != std::string::npos;
-         consumed = newline + 1)
-      on_line(std::string_view(buffer).substr(consumed, newline - consumed));
-  }
-  if (consumed < buffer.size()) on_line(std::string_view(buffer).substr(consumed));
-}
-
 void append_row(std::string& out, const DetectionRecord& r, const std::string& path,
                 std::size_t row) {
   out += std::to_string(r.keyframe);
@@ -162,10 +80,19 @@ bool DetectionRecord::operator==(const DetectionRecord& other) const {
          angle_rad == other.angle_rad && range_m == other.range_m;
 }
 
+// The header, then one record per non-blank line in beam_row order; .csv and .csv.gz alike.
 std::vector<DetectionRecord> read_detections(const std::string& path) {
-  DetectionParser parser(path);
-  for_each_line(path, [&](std::string_view line) { parser.line(line); });
-  return parser.finish();
+  std::vector<DetectionRecord> rows;
+  for_each_csv_row(path, kHeader, [&](std::string_view line, std::size_t line_number) {
+    const DetectionRecord record = parse_row(line, line_number, path);
+    if (!rows.empty() && record.beam_row < rows.back().beam_row)
+      fail_at(path, line_number,
+              "beam_row goes backwards (" + std::to_string(record.beam_row) + " after " +
+                  std::to_string(rows.back().beam_row) + ")");
+    rows.push_back(record);
+  });
+  require_data_rows(path, rows.size());
+  return rows;
 }
 
 void write_detections(const std::string& path, const std::vector<DetectionRecord>& rows) {

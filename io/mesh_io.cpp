@@ -1,16 +1,5 @@
 #include "io/mesh_io.hpp"
 
-#include <vtkCallbackCommand.h>
-#include <vtkCellArray.h>
-#include <vtkCellArrayIterator.h>
-#include <vtkCommand.h>
-#include <vtkExecutive.h>
-#include <vtkNew.h>
-#include <vtkPLYReader.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -18,8 +7,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <initializer_list>
 #include <limits>
 #include <string_view>
 #include <system_error>
@@ -27,6 +14,7 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/ply.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::io {
@@ -156,83 +144,32 @@ class ObjReader {
   std::string group_;  ///< "" until the first g/o/usemtl line
 };
 
-// VTK reports problems through events (or prints them); keep the first one. Its text is
-// "Warning: In FILE, line N\nvtkPLYReader (0x...): what", of which the user needs "what".
-void record_vtk_message(vtkObject*, unsigned long, void* client_data, void* call_data) {
-  auto& message = *static_cast<std::string*>(client_data);
-  if (!message.empty() || call_data == nullptr) return;
-  std::string_view text = static_cast<const char*>(call_data);
-  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back())))
-    text.remove_suffix(1);
-  const std::size_t what = text.rfind("): ");
-  message = what == std::string_view::npos ? text : text.substr(what + 3);
-}
-
-// vtkPLYReader says only "Could not open PLY file" for a file that is not a PLY; say why.
-void check_ply_start(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail_file(path, std::string("cannot open: ") + std::strerror(errno));
+// PLY has no groups: one material, the default (or by_group[""]), for every triangle.
+sim::TriangleMesh read_ply_mesh(const std::string& path, const MeshMaterials& materials) {
   std::error_code error;
-  if (std::filesystem::is_directory(path, error)) fail_file(path, "cannot open: is a folder");
-  std::string first_line;
-  if (!std::getline(in, first_line)) fail_file(path, "no triangles (empty file)");
-  if (!first_line.empty() && first_line.back() == '\r') first_line.pop_back();
-  if (first_line != "ply") fail_file(path, "not a PLY file (the first line is not 'ply')");
-}
-
-vtkSmartPointer<vtkPolyData> read_ply_polydata(const std::string& path) {
-  check_ply_start(path);
-  std::string message;
-  vtkNew<vtkCallbackCommand> observer;
-  observer->SetCallback(&record_vtk_message);
-  observer->SetClientData(&message);
-  vtkNew<vtkPLYReader> reader;
-  for (vtkObject* source : std::initializer_list<vtkObject*>{reader, reader->GetExecutive()}) {
-    source->AddObserver(vtkCommand::ErrorEvent, observer);
-    source->AddObserver(vtkCommand::WarningEvent, observer);
+  if (std::filesystem::exists(path, error) && std::filesystem::is_regular_file(path, error) &&
+      std::filesystem::file_size(path, error) == 0)
+    fail_file(path, "no triangles (empty file)");
+  const PlyData ply = read_ply(path);
+  sim::TriangleMesh mesh;
+  for (std::size_t i = 0; i < ply.vertices_m.size(); ++i) {
+    if ((ply.vertices_m[i].array().abs() > std::numeric_limits<float>::max()).any())
+      fail_file(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
+    mesh.vertices_m.push_back(ply.vertices_m[i].cast<float>());
   }
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  if (!message.empty()) fail_file(path, "cannot read PLY: " + message);
-  return reader->GetOutput();
-}
-
-void read_ply_vertices(const std::string& path, vtkPolyData& polydata, sim::TriangleMesh& mesh) {
-  for (vtkIdType i = 0; i < polydata.GetNumberOfPoints(); ++i) {
-    double point_m[3];
-    polydata.GetPoint(i, point_m);
-    for (const double coordinate : point_m)
-      if (!std::isfinite(coordinate) || std::abs(coordinate) > std::numeric_limits<float>::max())
-        fail_file(path, "vertex " + std::to_string(i) + " has a non-finite coordinate");
-    mesh.vertices_m.emplace_back(static_cast<float>(point_m[0]), static_cast<float>(point_m[1]),
-                                 static_cast<float>(point_m[2]));
-  }
-}
-
-void read_ply_triangles(const std::string& path, vtkPolyData& polydata, sim::TriangleMesh& mesh) {
-  const auto faces = vtk::TakeSmartPointer(polydata.GetPolys()->NewIterator());
-  for (faces->GoToFirstCell(); !faces->IsDoneWithTraversal(); faces->GoToNextCell()) {
-    vtkIdType corner_count = 0;
-    const vtkIdType* corners = nullptr;
-    faces->GetCurrentCell(corner_count, corners);
-    const std::string face = "face " + std::to_string(faces->GetCurrentCellId());
-    if (corner_count != 3)
-      fail_file(path, face + " has " + std::to_string(corner_count) +
+  const auto vertex_count = static_cast<std::int64_t>(mesh.vertices_m.size());
+  for (std::size_t f = 0; f < ply.faces.size(); ++f) {
+    const std::vector<std::int64_t>& corners = ply.faces[f];
+    const std::string face = "face " + std::to_string(f);
+    if (corners.size() != 3)
+      fail_file(path, face + " has " + std::to_string(corners.size()) +
                           " vertices; only triangles are supported");
-    for (vtkIdType k = 0; k < 3; ++k)
-      if (corners[k] < 0 || corners[k] >= polydata.GetNumberOfPoints())
+    for (const std::int64_t corner : corners)
+      if (corner < 0 || corner >= vertex_count)
         fail_file(path, face + " has a vertex index out of range");
     mesh.triangles.emplace_back(static_cast<int>(corners[0]), static_cast<int>(corners[1]),
                                 static_cast<int>(corners[2]));
   }
-}
-
-// PLY has no groups: one material, the default (or by_group[""]), for every triangle.
-sim::TriangleMesh read_ply(const std::string& path, const MeshMaterials& materials) {
-  const vtkSmartPointer<vtkPolyData> polydata = read_ply_polydata(path);
-  sim::TriangleMesh mesh;
-  read_ply_vertices(path, *polydata, mesh);
-  read_ply_triangles(path, *polydata, mesh);
   if (mesh.triangles.empty()) fail_file(path, "no triangles");
   mesh.material_ids.assign(mesh.triangles.size(), 0);
   mesh.materials.push_back(material_for(materials, ""));
@@ -286,7 +223,7 @@ void append_obj_groups(const std::string& path, const sim::TriangleMesh& mesh, s
 sim::TriangleMesh read_mesh(const std::string& path, const MeshMaterials& materials) {
   const std::string extension = lowercase_extension(path);
   if (extension == ".obj") return ObjReader(path, materials).read();
-  if (extension == ".ply") return read_ply(path, materials);
+  if (extension == ".ply") return read_ply_mesh(path, materials);
   fail_file(path, "unknown mesh format '" + extension + "' (expected .obj or .ply)");
 }
 

@@ -1,5 +1,5 @@
 // Scene meshes: OBJ (own strict reader: v, f, g, o, usemtl; faces must be triangles) and PLY
-// (VTK's vtkPLYReader, ASCII or binary, triangles only), and an OBJ writer for the scene tools.
+// (io/ply, ASCII or binary, triangles only), and an OBJ writer for the scene tools.
 // Errors name the file and line (OBJ) or the file (PLY): missing, empty (no triangle), a face that
 // is not a triangle, an index out of range, a non-finite coordinate.
 #pragma once

@@ -13,8 +13,8 @@
 
 namespace msislab::io {
 
-/// The vertices (x, y) of an ASCII PLY point cloud such as map.ply; z and other properties are
-/// ignored. Binary PLY is an error (msislab writes ASCII).
+/// The vertices (x, y) of a PLY point cloud such as map.ply (io/ply: ASCII or binary); z and
+/// other properties are ignored.
 std::vector<Eigen::Vector2d> read_points_ply(const std::string& path);
 
 /// One row of a Monte Carlo nees.csv: the NEES of scan `scan` averaged over `runs` runs, with the

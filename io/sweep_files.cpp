@@ -62,8 +62,13 @@ void write_sweep_csv(const std::string& path, const SweepTable& table) {
 }
 
 SweepTable read_sweep_csv(const std::string& path) {
-  const std::string text = read_whole_file(path);
-  const std::string first = text.substr(0, text.find('\n'));
+  std::string first;
+  {
+    LineReader lines(path);
+    std::string_view line;
+    if (!lines.next(line)) fail_file(path, "empty file: no header line");
+    first = line;
+  }
   std::vector<std::string> columns;
   std::size_t start = 0;
   for (std::size_t comma; (comma = first.find(',', start)) != std::string::npos;

@@ -9,6 +9,8 @@
 #include <memory>
 #include <system_error>
 
+#include <zlib.h>
+
 #include "io/input_error.hpp"
 
 namespace msislab::io {
@@ -86,16 +88,61 @@ std::string read_whole_file(const std::string& path) {
   return text;
 }
 
-DataLines::DataLines(std::string path, char comment)
-    : path_(std::move(path)), text_(read_whole_file(path_)), comment_(comment) {}
+void LineReader::Closer::operator()(gzFile_s* file) const { gzclose(file); }
+
+LineReader::LineReader(std::string path) : path_(std::move(path)) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path_, error)) fail_file(path_, "cannot open: is a folder");
+  file_.reset(gzopen(path_.c_str(), "rb"));
+  if (!file_) fail_file(path_, std::string("cannot open: ") + std::strerror(errno));
+  gzbuffer(file_.get(), 1u << 20);
+}
+
+LineReader::~LineReader() = default;
+
+// Appends up to one chunk of (decompressed) text; false once the data is exhausted. gzread
+// returns a cut gzip file's data without an error, so the error state is checked every time.
+bool LineReader::read_chunk() {
+  constexpr unsigned kChunk = 1u << 22;
+  buffer_.erase(0, consumed_);
+  consumed_ = 0;
+  const std::size_t kept = buffer_.size();
+  buffer_.resize(kept + kChunk);
+  const int got = gzread(file_.get(), buffer_.data() + kept, kChunk);
+  int code = Z_OK;
+  const char* message = gzerror(file_.get(), &code);
+  if (code == Z_BUF_ERROR) fail_file(path_, "truncated gzip data (unexpected end of file)");
+  if (got < 0 || code != Z_OK) fail_file(path_, std::string("cannot read: ") + message);
+  buffer_.resize(kept + static_cast<std::size_t>(got));
+  return got > 0;
+}
+
+bool LineReader::next(std::string_view& line) {
+  while (true) {
+    const std::size_t newline = buffer_.find('\n', consumed_);
+    if (newline != std::string::npos) {
+      line = strip_cr(std::string_view(buffer_).substr(consumed_, newline - consumed_));
+      consumed_ = newline + 1;
+      ++line_number_;
+      return true;
+    }
+    if (more_) {
+      more_ = read_chunk();
+      continue;
+    }
+    if (consumed_ >= buffer_.size()) return false;
+    line = strip_cr(std::string_view(buffer_).substr(consumed_));  // a last line without '\n'
+    consumed_ = buffer_.size();
+    ++line_number_;
+    return true;
+  }
+}
+
+DataLines::DataLines(std::string path, char comment) : lines_(std::move(path)), comment_(comment) {}
 
 bool DataLines::next() {
-  while (offset_ < text_.size()) {
-    const std::size_t newline = text_.find('\n', offset_);
-    const std::size_t end = newline == std::string::npos ? text_.size() : newline;
-    const std::string_view line(text_.data() + offset_, end - offset_);
-    offset_ = end + 1;
-    ++line_number_;
+  std::string_view line;
+  while (lines_.next(line)) {
     std::size_t first = 0;
     while (first < line.size() && is_blank(line[first])) ++first;
     if (first == line.size() || line[first] == comment_) continue;
@@ -107,14 +154,14 @@ bool DataLines::next() {
 }
 
 double DataLines::number(std::size_t index, std::string_view column) const {
-  return parse_finite(fields_[index], FieldAt{path_, line_number_, index + 1, column});
+  return parse_finite(fields_[index], FieldAt{path(), line_number(), index + 1, column});
 }
 
 void DataLines::expect_columns(std::size_t expected) const {
   if (fields_.size() != expected) fail(column_count_error(expected, fields_.size()));
 }
 
-void DataLines::fail(const std::string& what) const { fail_at(path_, line_number_, what); }
+void DataLines::fail(const std::string& what) const { fail_at(path(), line_number(), what); }
 
 // A step back means a corrupt or concatenated file; equal times (two sensor rows logged in one
 // clock tick) are allowed.

@@ -1,6 +1,7 @@
-// The whitespace-separated text formats of the .log files: a fast line reader that yields the
-// fields of each data line, number parsing that names the file, line and column on any error, and
-// shortest round-trip number formatting for the writers.
+// The one way msislab reads text: LineReader gives the lines of a file, plain or gzip-compressed,
+// and every text format reads through it (DataLines for the whitespace-separated .log and TUM
+// files, for_each_csv_row for the CSV files). Also number parsing that names the file, line and
+// column on any error, and shortest round-trip number formatting for the writers.
 #pragma once
 
 #include "io/input_error.hpp"
@@ -9,9 +10,12 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
+
+struct gzFile_s;
 
 namespace msislab::io {
 
@@ -34,20 +38,47 @@ std::int64_t parse_integer(std::string_view token, const FieldAt& at);
 /// Reads the whole file into memory; a missing or unreadable file is an InputError.
 std::string read_whole_file(const std::string& path);
 
+/// The lines of a text file, numbered from 1, without their '\n' and a trailing '\r'. The file is
+/// read through zlib in large chunks, so a gzip-compressed file (any name) reads as its text; a
+/// cut gzip file, a missing file or a read error is an InputError naming the path.
+class LineReader {
+ public:
+  explicit LineReader(std::string path);
+  ~LineReader();
+  LineReader(const LineReader&) = delete;
+  LineReader& operator=(const LineReader&) = delete;
+
+  /// The next line; false at the end of the file. The view is valid until the next call.
+  bool next(std::string_view& line);
+  /// The number of the line `next` gave last.
+  std::size_t line_number() const { return line_number_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  bool read_chunk();
+
+  struct Closer {
+    void operator()(gzFile_s* file) const;
+  };
+  std::string path_;
+  std::unique_ptr<gzFile_s, Closer> file_;
+  std::string buffer_;
+  std::size_t consumed_ = 0;
+  bool more_ = true;
+  std::size_t line_number_ = 0;
+};
+
 /// The data lines of a text file: skips blank lines and lines whose first non-blank character is
-/// the comment character, strips a trailing '\r' and splits on runs of spaces and tabs.
+/// the comment character, and splits on runs of spaces and tabs.
 class DataLines {
  public:
   explicit DataLines(std::string path, char comment = '%');
-  // The fields point into the text this object holds.
-  DataLines(const DataLines&) = delete;
-  DataLines& operator=(const DataLines&) = delete;
 
   /// Advances to the next data line; false at the end of the file.
   bool next();
 
-  const std::string& path() const { return path_; }
-  std::size_t line_number() const { return line_number_; }
+  const std::string& path() const { return lines_.path(); }
+  std::size_t line_number() const { return lines_.line_number(); }
   std::size_t size() const { return fields_.size(); }
   std::string_view field(std::size_t index) const { return fields_[index]; }
 
@@ -59,12 +90,9 @@ class DataLines {
   [[noreturn]] void fail(const std::string& what) const;
 
  private:
-  std::string path_;
-  std::string text_;
+  LineReader lines_;
   char comment_;
-  std::size_t offset_ = 0;
-  std::size_t line_number_ = 0;
-  std::vector<std::string_view> fields_;
+  std::vector<std::string_view> fields_;  ///< into the current line
 };
 
 /// Rows of a log are in logging order: InputError "time goes backwards (t after previous)" when
@@ -116,25 +144,20 @@ void append_finite(std::string& out, double value, const std::string& path, std:
 /// returns the number of rows.
 template <typename Row>
 std::size_t for_each_csv_row(const std::string& path, std::string_view header, Row&& row) {
-  const std::string text = read_whole_file(path);
-  std::size_t begin = 0, line_number = 0, rows = 0;
-  while (begin < text.size()) {
-    const std::size_t end = std::min(text.find('\n', begin), text.size());
-    const std::string_view line = strip_cr(std::string_view(text).substr(begin, end - begin));
-    begin = end + 1;
-    if (++line_number == 1) {
-      if (line != header) {
-        fail_at(path, 1,
-                "wrong header: expected '" + std::string(header) + "', got '" +
-                    std::string(line.substr(0, 120)) + "'");
-      }
-      continue;
-    }
+  LineReader lines(path);
+  std::string_view line;
+  if (!lines.next(line)) fail_file(path, "empty file: no header line");
+  if (line != header) {
+    fail_at(path, 1,
+            "wrong header: expected '" + std::string(header) + "', got '" +
+                std::string(line.substr(0, 120)) + "'");
+  }
+  std::size_t rows = 0;
+  while (lines.next(line)) {
     if (line.empty()) continue;
-    row(line, line_number);
+    row(line, lines.line_number());
     ++rows;
   }
-  if (line_number == 0) fail_file(path, "empty file: no header line");
   return rows;
 }
 

@@ -1,8 +1,9 @@
 #include "sim/simulator.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
-#include <atomic>
-#include <thread>
 
 #include "sim/random.hpp"
 
@@ -23,19 +24,16 @@ std::vector<RenderedBeam> render_beams(const Scenario& scenario, const Scene& sc
   const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
   const std::vector<BeamSlot> slots = beam_schedule(scenario.sonar, truth.start_s(), truth.end_s());
   std::vector<RenderedBeam> beams(slots.size());
-  // Workers take the next beam from a shared counter; each beam owns its slot in the output and
-  // its random stream, so the bytes do not depend on which worker renders it.
-  std::atomic<std::size_t> next{0};
-  auto work = [&] {
-    for (std::size_t i = next++; i < slots.size(); i = next++) {
+  // TBB (Embree's own task scheduler) spreads the beams over `threads` threads; each beam owns
+  // its slot in the output and its random stream, so the bytes do not depend on which thread
+  // renders it.
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, slots.size(), [&](std::size_t i) {
       Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
       beams[i] = model.render(slots[i], truth, rng);
-    }
-  };
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
+    });
+  });
   return beams;
 }
 }  // namespace

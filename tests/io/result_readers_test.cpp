@@ -77,7 +77,17 @@ TEST(ResultReaders, PointsPlyErrors) {
   const TempDir tmp;
   const std::string path = tmp.file("map.ply");
   write_text(path, "ply\nformat binary_little_endian 1.0\nelement vertex 1\nend_header\n");
-  expect_error([&] { read_points_ply(path); }, "only ASCII PLY");
+  expect_error([&] { read_points_ply(path); }, "no 'element vertex' with x and y properties");
+  // Binary is read (one PLY reader for meshes and maps); cut short, it is an error.
+  const std::string binary =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty float x\n"
+      "property float y\nend_header\n";
+  const float xy[3] = {1.5f, -2.0f, 3.0f};
+  write_text(path, binary + std::string(reinterpret_cast<const char*>(xy), sizeof(xy)));
+  expect_error([&] { read_points_ply(path); }, "header announces 2 vertices, the file has 1");
+  const float xy2[4] = {1.5f, -2.0f, 3.0f, 0.25f};
+  write_text(path, binary + std::string(reinterpret_cast<const char*>(xy2), sizeof(xy2)));
+  EXPECT_EQ(read_points_ply(path), (std::vector<Eigen::Vector2d>{{1.5, -2.0}, {3.0, 0.25}}));
   write_text(path,
              "ply\nformat ascii 1.0\nelement vertex 3\nproperty double x\nproperty double y\n"
              "end_header\n1 2\n3 4\n");

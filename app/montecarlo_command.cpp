@@ -215,12 +215,8 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
 
 /// The last line of the worker's stage notes ("simulate" or "run"); "simulate" when there is none.
 std::string crashed_stage(const std::string& dir, int run) {
-  std::ifstream in(scratch_file(dir, run, ".stage"));
-  std::string line, last = "simulate";
-  while (std::getline(in, line)) {
-    if (!line.empty()) last = line;
-  }
-  return last;
+  const std::string last = io::last_line(scratch_file(dir, run, ".stage"));
+  return last.empty() ? "simulate" : last;
 }
 
 /// Removes what workers left half-written: partial run directories and datasets, scratch files.

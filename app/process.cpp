@@ -9,7 +9,8 @@
 #include <csignal>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+
+#include "io/text_lines.hpp"
 
 extern char** environ;
 
@@ -54,18 +55,6 @@ ProcessResult process_result(int wait_status) {
   return result;
 }
 
-namespace {
-std::string last_line(const std::string& path) {
-  std::ifstream in(path);
-  std::string line, last;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (!line.empty()) last = line;
-  }
-  return last;
-}
-}  // namespace
-
 std::string describe_failure(const ProcessResult& result, const std::string& stderr_path) {
   std::string text;
   if (!result.start_error.empty()) {
@@ -76,7 +65,7 @@ std::string describe_failure(const ProcessResult& result, const std::string& std
     text =
         "killed by signal " + std::to_string(result.signal) + " (" + strsignal(result.signal) + ")";
   }
-  const std::string line = last_line(stderr_path);
+  const std::string line = io::last_line(stderr_path);
   return line.empty() ? text : text + ": " + line;
 }
 

@@ -1,7 +1,6 @@
 #include "app/simulate_command.hpp"
 
 #include <chrono>
-#include <fstream>
 #include <memory>
 #include <thread>
 
@@ -9,6 +8,7 @@
 #include "io/mesh_io.hpp"
 #include "io/scenario_yaml.hpp"
 #include "io/sim_dataset.hpp"
+#include "io/text_lines.hpp"
 #include "sim/simulator.hpp"
 
 namespace msislab::app {
@@ -20,10 +20,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 }  // namespace
 
 SimulateSummary simulate(const SimulateOptions& options) {
@@ -46,7 +42,8 @@ SimulateSummary simulate(const SimulateOptions& options) {
   const sim::SimulationResult result = sim::simulate(scenario, *scene, threads);
   SimulateSummary summary;
   summary.render_s = seconds_since(t_render);
-  io::write_simulated_dataset(options.out_dir, scenario, result, read_text(options.scenario_path));
+  io::write_simulated_dataset(options.out_dir, scenario, result,
+                              io::read_whole_file(options.scenario_path));
   summary.beams = result.beams.size();
   summary.dvl_samples = result.dvl.size();
   summary.duration_s = result.truth.end_s() - result.truth.start_s();

@@ -138,6 +138,16 @@ bool LineReader::next(std::string_view& line) {
   }
 }
 
+std::string last_line(const std::string& path) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error)) return "";
+  LineReader lines(path);
+  std::string last;
+  for (std::string_view line; lines.next(line);)
+    if (!line.empty()) last = line;
+  return last;
+}
+
 DataLines::DataLines(std::string path, char comment) : lines_(std::move(path)), comment_(comment) {}
 
 bool DataLines::next() {

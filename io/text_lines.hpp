@@ -68,6 +68,10 @@ class LineReader {
   std::size_t line_number_ = 0;
 };
 
+/// The last non-empty line of a text file; empty when the file is missing or has none (for the
+/// scratch notes a worker process leaves, which may not exist).
+std::string last_line(const std::string& path);
+
 /// The data lines of a text file: skips blank lines and lines whose first non-blank character is
 /// the comment character, and splits on runs of spaces and tabs.
 class DataLines {

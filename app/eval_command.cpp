@@ -1,9 +1,14 @@
 #include "app/eval_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
 #include <limits>
+#include <memory>
 #include <optional>
 
+#include "app/cli.hpp"
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
@@ -135,6 +140,32 @@ EvalOutcome evaluate(const EvalOptions& options) {
   write_scores(options.result_dir, metrics, nees, stored.dataset_dir,
                options.truth_path.empty() ? "" : absolute(options.truth_path));
   return outcome;
+}
+
+void add_eval_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<EvalOptions>();
+  CLI::App* eval = app.add_subcommand(
+      "eval",
+      "Re-score a result directory of `msislab run` against truth; rewrites metrics.json and "
+      "nees.csv");
+  eval->add_option("RESULT_DIR", options->result_dir,
+                   "Result directory (trajectory.tum, metrics.json, scans.csv)")
+      ->required();
+  eval->add_option("--truth,-t", options->truth_path,
+                   "TUM truth file (default: the truth of the dataset recorded in metrics.json)");
+  eval->add_option("--config,-c", options->config_path,
+                   "SLAM config YAML whose segments replace the recorded segment windows");
+  eval->callback([options] {
+    const EvalOutcome outcome = evaluate(*options);
+    std::cout << std::fixed << std::setprecision(3) << "wrote " << options->result_dir
+              << "/metrics.json: mean error " << outcome.metrics.errors.mean_m << " m against "
+              << outcome.metrics.truth;
+    if (outcome.metrics.anees) {
+      std::cout << ", ANEES " << *outcome.metrics.anees << " over " << outcome.nees_rows
+                << " scans (nees.csv)";
+    }
+    std::cout << std::endl;
+  });
 }
 
 }  // namespace msislab::app

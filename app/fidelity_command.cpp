@@ -2,12 +2,17 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 
+#include "app/cli.hpp"
 #include "app/fidelity_figures.hpp"
 #include "app/navigation_statistics.hpp"
 #include "app/sonar_readings.hpp"
@@ -16,6 +21,7 @@
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 #include "plot/chart.hpp"
+#include "plot/display.hpp"
 
 namespace msislab::app {
 
@@ -248,6 +254,47 @@ std::vector<std::string> write_fidelity(const FidelityReport& report) {
   const fs::path out = report.options.out_dir;
   return {(out / "fidelity.md").string(), (out / "fidelity.json").string(),
           (out / "figures" / "ranges.png").string(), (out / "figures" / "revolution.png").string()};
+}
+
+void add_fidelity_command(CLI::App& app, CommandLine& line) {
+  auto options = std::make_shared<FidelityOptions>();
+  CLI::App* fidelity = app.add_subcommand(
+      "fidelity",
+      "Compare a simulated dataset with the real one, statistic by statistic, from their "
+      "detections: prints a Markdown table (values, sim / real, KS distance); --out also writes "
+      "fidelity.md, fidelity.json and figures (VTK: needs an X display, else reruns itself under "
+      "xvfb-run)");
+  fidelity
+      ->add_option("REAL_DATASET", options->real_dir,
+                   "Real dataset directory (*_detections.csv[.gz], *_IS_timestamps.log)")
+      ->required();
+  fidelity
+      ->add_option("SIM_DATASET", options->sim_dir,
+                   "Simulated dataset directory, in the same formats and sonar setup")
+      ->required();
+  fidelity->add_option("--out,-o", options->out_dir,
+                       "Report folder (fidelity.md, fidelity.json, figures/), replaced whole");
+  fidelity->add_option("--revolution-real", options->revolution_real,
+                       "Keyframe of the real detections drawn in revolution.png (default: the "
+                       "middle one)");
+  fidelity->add_option("--revolution-sim", options->revolution_sim,
+                       "Keyframe of the simulated detections drawn (default: the one nearest in "
+                       "time to the real one drawn when the runs overlap in time, else the middle "
+                       "one)");
+  // Reads both datasets and computes the table first (bad input fails without a display); the
+  // figures of --out need one, so without it the command runs again under xvfb-run.
+  fidelity->callback([options, &line] {
+    const FidelityReport report = compare_datasets(*options);
+    if (!options->out_dir.empty() && !plot::x_display_available()) {
+      plot::rerun_under_xvfb(line.argc, line.argv);
+    }
+    std::cout << fidelity_markdown(report.table);
+    if (!options->out_dir.empty()) {
+      std::cout << "\n";
+      for (const std::string& file : write_fidelity(report)) std::cout << "wrote " << file << "\n";
+    }
+    std::cout << std::flush;
+  });
 }
 
 }  // namespace msislab::app

@@ -1,7 +1,12 @@
 #include "app/image_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
 
+#include "app/cli.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
@@ -39,6 +44,23 @@ void draw_image(const ImageOptions& options) {
   const SonarRevolution revolution = read_revolution(options.dataset_dir, options.revolution);
   io::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
                            options.size_px);
+}
+
+void add_image_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<ImageOptions>();
+  CLI::App* image = app.add_subcommand(
+      "image", "Draw one sonar revolution of a dataset's *_IS.log as an acoustic image (PNG)");
+  image->add_option("DATASET_DIR", options->dataset_dir, "Dataset directory with a *_IS.log")
+      ->required();
+  image->add_option("--out,-o", options->out_path, "PNG file to write")->required();
+  image->add_option("--revolution,-r", options->revolution, "0-based revolution to draw")
+      ->check(CLI::NonNegativeNumber);
+  image->add_option("--size", options->size_px, "Image width and height in pixels")
+      ->check(CLI::Range(100, 4000));
+  image->callback([options] {
+    draw_image(*options);
+    std::cout << "wrote " << options->out_path << std::endl;
+  });
 }
 
 }  // namespace msislab::app

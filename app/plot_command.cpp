@@ -1,11 +1,18 @@
 #include "app/plot_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
 
+#include "app/cli.hpp"
 #include "app/plot_figures.hpp"
+#include "app/plot_inputs.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/atomic_file.hpp"
+#include "plot/display.hpp"
 
 namespace msislab::app {
 
@@ -107,6 +114,42 @@ std::vector<std::string> draw_plot(const PlotInputs& in) {
 
 std::vector<std::string> plot(const PlotOptions& options) {
   return draw_plot(load_plot_inputs(options));
+}
+
+void add_plot_command(CLI::App& app, CommandLine& line) {
+  auto options = std::make_shared<PlotOptions>();
+  CLI::App* command = app.add_subcommand(
+      "plot",
+      "Draw the figures of a result, comparison or Monte Carlo directory as PNG into DIR/figures/ "
+      "(VTK: needs an X display, else reruns itself under xvfb-run)");
+  command
+      ->add_option("DIR", options->dir,
+                   "A result directory (trajectory.tum), a folder of result directories, or a "
+                   "Monte Carlo directory (nees.csv)")
+      ->required();
+  command->add_option("--dataset,-d", options->dataset_dir,
+                      "Dataset directory for the truth and the acoustic image (default: the one "
+                      "recorded in metrics.json)");
+  command
+      ->add_option("--ellipse-every", options->ellipse_every,
+                   "Draw the 2-sigma ellipse of every k-th scan (default: about 25 per figure)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--width", options->width_px, "Figure width in pixels")
+      ->check(CLI::Range(400, 4000));
+  command->add_option("--height", options->height_px, "Figure height in pixels")
+      ->check(CLI::Range(300, 4000));
+  command
+      ->add_option("--revolution,-r", options->revolution,
+                   "Sonar revolution of the acoustic image (default: the middle one)")
+      ->check(CLI::NonNegativeNumber);
+  // Reads every input first (bad input fails without a display), then draws; VTK needs an X
+  // display, so without one the command runs again under xvfb-run.
+  command->callback([options, &line] {
+    const PlotInputs inputs = load_plot_inputs(*options);
+    if (!plot::x_display_available()) plot::rerun_under_xvfb(line.argc, line.argv);
+    for (const std::string& file : draw_plot(inputs)) std::cout << "wrote " << file << "\n";
+    std::cout << std::flush;
+  });
 }
 
 }  // namespace msislab::app

@@ -1,15 +1,18 @@
 #include "app/report_command.hpp"
 
-#include "app/methods.hpp"
-
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
+#include <memory>
 #include <sstream>
 
+#include "app/cli.hpp"
+#include "app/methods.hpp"
 #include "app/plot_figures.hpp"
 #include "app/plot_inputs.hpp"
 #include "io/atomic_file.hpp"
@@ -502,6 +505,32 @@ ReportOutcome write_report(const ReportOptions& options) {
   if (ec) io::fail_file(figures.string(), "cannot put the figures in place: " + ec.message());
   io::write_file_atomically(page.string(), [&](std::ostream& out) { out << markdown; });
   return outcome;
+}
+
+void add_report_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<ReportOptions>();
+  CLI::App* report = app.add_subcommand(
+      "report",
+      "Write the results page (Table I on simulated and real data, the Monte Carlo consistency "
+      "table, the figures) from folders that run, plot and montecarlo filled");
+  report
+      ->add_option("OUT_MD", options->out_path,
+                   "The Markdown page; its figures are copied into <stem>/ beside it")
+      ->required();
+  report->add_option("--sim", options->sim_dir,
+                     "Folder of result directories on a simulated dataset, plotted");
+  report->add_option("--real", options->real_dir,
+                     "Folder of result directories on the real dataset, plotted");
+  report->add_option("--montecarlo", options->montecarlo_dirs,
+                     "Monte Carlo directory, plotted; repeat for further scenarios, the page's "
+                     "consistency test first");
+  report->add_option("--sweep", options->sweep_dirs,
+                     "Sweep directory (msislab sweep): its sweep.csv as a table; repeatable");
+  report->callback([options] {
+    const ReportOutcome outcome = write_report(*options);
+    std::cout << "wrote " << options->out_path << " and " << outcome.figures.size()
+              << " figures beside it" << std::endl;
+  });
 }
 
 }  // namespace msislab::app

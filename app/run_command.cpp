@@ -1,12 +1,16 @@
 #include "app/run_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
 #include <iterator>
 #include <memory>
 
+#include "app/cli.hpp"
 #include "app/eval_command.hpp"
 #include "app/methods.hpp"
 #include "app/sonar_readings.hpp"
@@ -311,6 +315,36 @@ RunOutcome run(const RunOptions& options) {
   write_method_result(options.out_dir, result,
                       fs::absolute(options.dataset_dir).lexically_normal().string());
   return {result.trajectory, result.metrics};
+}
+
+void add_run_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<RunOptions>();
+  CLI::App* run_cli = app.add_subcommand(
+      "run",
+      "Run a method on a dataset directory (real or synthetic) and write a result directory");
+  run_cli
+      ->add_option("DATASET_DIR", options->dataset_dir,
+                   "Dataset directory (*_DVL.log, *_MTi.log, optional *_DGPS.log, "
+                   "calibration.yaml, truth/)")
+      ->required();
+  run_cli->add_option("--method,-m", options->method, "Method: " + method_list())->required();
+  run_cli
+      ->add_option("--out,-o", options->out_dir,
+                   "Result directory (trajectory.tum, metrics.json when truth exists)")
+      ->required();
+  run_cli->add_option("--config,-c", options->config_path,
+                      "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+  run_cli->callback([options] {
+    const RunOutcome outcome = run(*options);
+    std::cout << "wrote " << options->out_dir << "/trajectory.tum (" << outcome.trajectory.size()
+              << " poses)";
+    if (outcome.metrics) {
+      std::cout << std::fixed << std::setprecision(3) << "; mean error "
+                << outcome.metrics->errors.mean_m << " m against " << outcome.metrics->truth
+                << ", metrics.json";
+    }
+    std::cout << std::endl;
+  });
 }
 
 }  // namespace msislab::app

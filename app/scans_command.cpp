@@ -1,7 +1,12 @@
 #include "app/scans_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
 
+#include "app/cli.hpp"
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
@@ -100,6 +105,33 @@ ScansSummary build_scans_command(const ScansOptions& options) {
   for (const PositionFix& f : truth.positions) truth_track.push_back(f.p_world_m);
   write_outputs(options.out_dir, scans, truth_track, truth.kind, options.figure_scan);
   return summary;
+}
+
+void add_scans_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<ScansOptions>();
+  CLI::App* scans = app.add_subcommand(
+      "scans",
+      "Segment the sonar beams and build motion-compensated scans placed by dead "
+      "reckoning; writes scans.csv, map.ply, map.png and compensation.png");
+  scans->add_option("DATASET_DIR", options->dataset_dir, "Dataset directory, real or synthetic")
+      ->required();
+  scans->add_option("--out,-o", options->out_dir, "Output directory")->required();
+  scans->add_option("--config,-c", options->config_path,
+                    "SLAM config YAML (segmentation and dead_reckoning sections)");
+  scans->add_option("--figure-scan", options->figure_scan,
+                    "Scan drawn before/after compensation (default: the middle one)");
+  scans->callback([options] {
+    const ScansSummary s = build_scans_command(*options);
+    std::cout << "wrote " << options->out_dir << ": " << s.scans << " scans, " << s.points
+              << " points from " << s.beams_with_readings << " of " << s.beams << " beams ("
+              << s.source << ")";
+    if (s.compensated_error_m) {
+      std::cout << std::fixed << std::setprecision(3)
+                << "; reading placement error against the truth: " << *s.compensated_error_m
+                << " m compensated, " << *s.uncompensated_error_m << " m uncompensated";
+    }
+    std::cout << std::endl;
+  });
 }
 
 }  // namespace msislab::app

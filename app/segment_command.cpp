@@ -1,9 +1,14 @@
 #include "app/segment_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <memory>
 #include <ostream>
 
+#include "app/cli.hpp"
 #include "io/atomic_file.hpp"
 #include "io/beam_truth.hpp"
 #include "io/dataset.hpp"
@@ -127,6 +132,29 @@ SegmentReport segment(const SegmentOptions& options) {
     io::write_file_atomically(options.out_path, [&](std::ostream& out) { out << report.markdown; });
   }
   return report;
+}
+
+void add_segment_command(CLI::App& app, CommandLine&) {
+  auto options = std::make_shared<SegmentOptions>();
+  CLI::App* command = app.add_subcommand(
+      "segment",
+      "Score beam segmentation methods on a simulated dataset against its truth/beams.csv");
+  command
+      ->add_option("DATASET_DIR", options->dataset_dir,
+                   "Simulated dataset directory (*_IS.log, truth/beams.csv)")
+      ->required();
+  command->add_option("--method,-m", options->methods,
+                      "Methods: max_intensity, threshold_groups, smoothed_first or all (default)");
+  command
+      ->add_option("--threshold", options->threshold,
+                   "Intensity threshold 0..255 (default: the SegmentationConfig default)")
+      ->check(CLI::Range(0.0, 255.0));
+  command
+      ->add_option("--min-range", options->min_range_m,
+                   "Minimum range in m (default: the SegmentationConfig default)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--out,-o", options->out_path, "Also write the Markdown table to this file");
+  command->callback([options] { std::cout << segment(*options).markdown << std::flush; });
 }
 
 }  // namespace msislab::app

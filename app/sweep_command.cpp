@@ -1,8 +1,16 @@
 #include "app/sweep_command.hpp"
 
-#include <cstdio>
-#include <filesystem>
+#include <unistd.h>
 
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+
+#include "app/cli.hpp"
 #include "app/directory_lock.hpp"
 #include "app/methods.hpp"
 #include "io/atomic_file.hpp"
@@ -163,6 +171,68 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
   outcome.table = sweep_table(out_dir, plan);
   io::write_sweep_csv((fs::path(out_dir) / "sweep.csv").string(), outcome.table);
   return outcome;
+}
+
+namespace {
+
+/// `sweep` or `sweep merge`'s options.
+struct SweepCli {
+  SweepOptions options;
+  std::string merge_out;
+  std::vector<std::string> merge_shards;
+  bool no_plot = false;
+  CLI::App* command = nullptr;
+};
+
+/// Runs `sweep` or `sweep merge`; the exit status.
+int run_sweep_cli(const SweepCli& cli) {
+  SweepOutcome outcome;
+  std::string dir;
+  if (cli.command->got_subcommand("merge")) {
+    dir = cli.merge_out;
+    outcome = merge_sweep(cli.merge_out, cli.merge_shards);
+  } else {
+    if (cli.options.sweep_path.empty()) throw io::InputError("sweep: SWEEP is required");
+    if (cli.options.out_dir.empty()) throw io::InputError("sweep: --out is required");
+    dir = cli.options.out_dir;
+    outcome = sweep(cli.options, {std::cerr, isatty(STDERR_FILENO) == 1});
+    if (outcome.interrupted != 0) {
+      std::cerr << "sweep: stopped by " << sigabbrev_np(outcome.interrupted)
+                << "; every worker ended, the finished runs are kept in " << dir
+                << "; run the same command to resume" << std::endl;
+      return 128 + outcome.interrupted;
+    }
+  }
+  std::cout << "sweep: " << dir << " holds " << outcome.cells << " cells (" << outcome.executed
+            << " runs done now, " << outcome.failed << " with a failed method); wrote sweep.csv"
+            << std::endl;
+  if (!cli.no_plot && cli.options.shard.empty()) draw_and_list_figures("sweep", dir);
+  return 0;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, CommandLine& line) {
+  auto cli = std::make_shared<SweepCli>();
+  cli->command = app.add_subcommand(
+      "sweep",
+      "A Monte Carlo directory per cell of a grid (or list) of scenario and SLAM config overrides; "
+      "resumable and shardable; writes sweep.csv and figures");
+  cli->command->add_option("SWEEP", cli->options.sweep_path, "Sweep YAML (required unless merge)");
+  cli->command->add_option("--out,-o", cli->options.out_dir,
+                           "Sweep directory (required); an existing one is resumed");
+  cli->command->add_option("--jobs,-j", cli->options.jobs,
+                           "Runs at once in each cell (default: one per hardware thread)");
+  cli->command->add_option("--shard", cli->options.shard,
+                           "i/N: in every cell only the runs r with r % N == i; merge afterwards");
+  cli->command->add_flag("--no-plot", cli->no_plot, "Do not draw the figures at the end");
+  cli->command->require_subcommand(0, 1);
+  CLI::App* m = cli->command->add_subcommand(
+      "merge", "Merge sweep shard directories into OUT_DIR, cell by cell, and write sweep.csv");
+  m->add_option("OUT_DIR", cli->merge_out, "Sweep directory to write")->required();
+  m->add_option("SHARD_DIR", cli->merge_shards, "Shard directories made with --shard")->required();
+  m->add_flag("--no-plot", cli->no_plot, "Do not draw the figures at the end");
+  cli->command->callback([cli, &line] { line.exit_status = run_sweep_cli(*cli); });
 }
 
 }  // namespace msislab::app

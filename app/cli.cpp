@@ -1,0 +1,52 @@
+#include "app/cli.hpp"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <vector>
+
+#include "app/methods.hpp"
+#include "app/montecarlo_command.hpp"
+
+namespace msislab::app {
+
+void add_commands(CLI::App& app, CommandLine& line) {
+  add_run_command(app, line);
+  add_eval_command(app, line);
+  add_simulate_command(app, line);
+  add_montecarlo_command(app, line);
+  add_sweep_command(app, line);
+  add_image_command(app, line);
+  add_scans_command(app, line);
+  add_segment_command(app, line);
+  add_plot_command(app, line);
+  add_report_command(app, line);
+  add_fidelity_command(app, line);
+}
+
+std::string method_list() {
+  std::string methods;
+  for (const std::string& m : method_names()) methods += (methods.empty() ? "" : ", ") + m;
+  return methods;
+}
+
+void draw_and_list_figures(const std::string& command, const std::string& dir) {
+  const std::string failure = draw_montecarlo_figures(dir);
+  if (!failure.empty()) {
+    std::cerr << command << ": figures not drawn (" << failure << "); draw them with `msislab plot "
+              << dir << "`" << std::endl;
+    return;
+  }
+  std::vector<std::string> figures;
+  for (const auto& entry : std::filesystem::directory_iterator(dir + "/figures")) {
+    if (entry.path().extension() == ".png") figures.push_back(entry.path().filename().string());
+  }
+  std::sort(figures.begin(), figures.end());
+  for (const std::string& name : figures) {
+    std::cout << command << ": wrote " << dir << "/figures/" << name << "\n";
+  }
+  std::cout.flush();
+}
+
+}  // namespace msislab::app

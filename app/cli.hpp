@@ -1,0 +1,45 @@
+// The msislab command line, one subcommand per app/*_command.cpp: each command's file registers
+// its subcommand, its options and the callback that runs it and prints its summary
+// (add_*_command), so tools/msislab.cpp only parses and maps errors to exit statuses.
+#pragma once
+
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace msislab::app {
+
+/// What the callbacks share with main: argv (to rerun a drawing command under xvfb-run) and the
+/// exit status a command sets (128 + the signal when a long command is stopped).
+struct CommandLine {
+  int argc = 0;
+  char** argv = nullptr;
+  int exit_status = 0;
+};
+
+void add_run_command(CLI::App& app, CommandLine& line);
+void add_eval_command(CLI::App& app, CommandLine& line);
+void add_simulate_command(CLI::App& app, CommandLine& line);
+void add_montecarlo_command(CLI::App& app, CommandLine& line);
+void add_sweep_command(CLI::App& app, CommandLine& line);
+void add_image_command(CLI::App& app, CommandLine& line);
+void add_scans_command(CLI::App& app, CommandLine& line);
+void add_segment_command(CLI::App& app, CommandLine& line);
+void add_plot_command(CLI::App& app, CommandLine& line);
+void add_report_command(CLI::App& app, CommandLine& line);
+void add_fidelity_command(CLI::App& app, CommandLine& line);
+
+/// Every subcommand, in the order of `msislab --help`.
+void add_commands(CLI::App& app, CommandLine& line);
+
+/// "robocentric, worldcentric, ...": the methods for help texts.
+std::string method_list();
+
+/// The figures of a Monte Carlo or sweep directory, drawn by `msislab plot DIR` in a child process
+/// and listed as "COMMAND: wrote FILE"; a failure to draw is reported on stderr and leaves the
+/// statistics (and the exit status) alone.
+void draw_and_list_figures(const std::string& command, const std::string& dir);
+
+}  // namespace msislab::app

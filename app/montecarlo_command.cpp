@@ -1,43 +1,30 @@
 #include "app/montecarlo_command.hpp"
 
-#include <fcntl.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <csignal>
-#include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
-#include <stdexcept>
 #include <thread>
 
 #include "app/cli.hpp"
 #include "app/directory_lock.hpp"
 #include "app/methods.hpp"
 #include "app/montecarlo_directory.hpp"
+#include "app/montecarlo_runs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
-#include "app/run_command.hpp"
-#include "app/worker_processes.hpp"
-#include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/scenario_yaml.hpp"
-#include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
-#include "sim/scene.hpp"
 
 namespace msislab::app {
 
@@ -59,18 +46,6 @@ void check_methods(const std::vector<std::string>& methods) {
     }
   }
 }
-
-/// What the workers share: the directory's settings and the inputs read once by the caller.
-struct RunContext {
-  io::MonteCarloManifest manifest;
-  std::string dir;
-  sim::Scenario scenario;
-  std::string scenario_text;
-  sim::TriangleMesh mesh;
-  SlamConfig config;
-  int simulation_threads = 1;
-  bool keep_datasets = false;
-};
 
 /// Reads and checks every input and locks the directory; then makes or resumes it: scenario.yaml
 /// and config.yaml copies, montecarlo.json.
@@ -110,155 +85,6 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   return ctx;
 }
 
-/// DIR/runs/<method>/.run_<rrrr>.partial: where a run's result is written before it is put in
-/// place, so a run directory is never half-written.
-std::string partial_dir(const std::string& dir, const std::string& method, int run) {
-  return (fs::path(dir) / "runs" / method / ("." + run_name(run) + ".partial")).string();
-}
-
-/// Fills the partial directory of (method, run) with `write`, then puts it in place of the run
-/// directory.
-void put_in_place(const std::string& dir, const std::string& method, int run,
-                  const std::function<void(const std::string&)>& write) {
-  const std::string partial = partial_dir(dir, method, run);
-  std::error_code ec;
-  fs::remove_all(partial, ec);
-  io::create_output_dir(partial);
-  write(partial);
-  const std::string target = run_dir(dir, method, run);
-  fs::remove_all(target, ec);
-  fs::rename(partial, target, ec);
-  if (ec) io::fail_file(target, "cannot put the run's results in place: " + ec.message());
-}
-
-/// Records that a method did not finish run r: a run directory holding only failed.json.
-void record_failure(const std::string& dir, const std::string& method,
-                    const io::RunFailure& failure) {
-  put_in_place(dir, method, failure.run, [&](const std::string& out) {
-    io::write_failure_json((fs::path(out) / "failed.json").string(), failure);
-  });
-}
-
-std::string scratch_file(const std::string& dir, int run, const char* suffix) {
-  return (fs::path(dir) / "scratch" / (run_name(run) + suffix)).string();
-}
-
-/// The worker's note of what it is doing (the last line names the stage a crash hit).
-void note_stage(const std::string& dir, int run, const std::string& stage) {
-  std::ofstream(scratch_file(dir, run, ".stage"), std::ios::app) << stage << "\n" << std::flush;
-}
-
-/// Test hook (docs/cli.md): MSISLAB_MONTECARLO_FAULTS="run:where:how,..." makes the worker of
-/// run `run` crash (SIGSEGV) or throw at `where` ("simulate" or a method name).
-void injected_fault(int run, const std::string& where) {
-  const char* faults = std::getenv("MSISLAB_MONTECARLO_FAULTS");
-  if (faults == nullptr) return;
-  std::istringstream list(faults);
-  for (std::string entry; std::getline(list, entry, ',');) {
-    const std::string prefix = std::to_string(run) + ":" + where + ":";
-    if (entry.rfind(prefix, 0) != 0) continue;
-    const std::string how = entry.substr(prefix.size());
-    if (how == "crash") {
-      const rlimit no_core{0, 0};  // an injected crash leaves no core file behind
-      ::setrlimit(RLIMIT_CORE, &no_core);
-      std::raise(SIGSEGV);
-    }
-    if (how == "throw") throw std::runtime_error("injected failure (MSISLAB_MONTECARLO_FAULTS)");
-  }
-}
-
-/// Worker process of run r: simulates into memory, runs the pending methods on the dataset and
-/// puts each method's result (or its failed.json) in place.
-int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& pending) {
-  // The worker's stderr goes to a file, whose last line explains a crash.
-  const int err = ::open(scratch_file(ctx.dir, run, ".stderr").c_str(),
-                         O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (err >= 0) ::dup2(err, STDERR_FILENO);
-  const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
-  std::shared_ptr<const io::DatasetRecords> records;
-  std::string dataset_label;
-  try {
-    note_stage(ctx.dir, run, "simulate");
-    sim::Scenario scenario = ctx.scenario;
-    scenario.seed = seed;
-    const sim::Scene scene(ctx.mesh, scenario.scene.surface);
-    injected_fault(run, "simulate");
-    const sim::SimulationResult result = sim::simulate(scenario, scene, ctx.simulation_threads);
-    records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
-    dataset_label = records->name;
-    if (ctx.keep_datasets) {
-      dataset_label = absolute((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
-      io::write_simulated_dataset(dataset_label, scenario, result, ctx.scenario_text);
-    }
-  } catch (const std::exception& e) {
-    for (const std::string& method : pending) {
-      record_failure(ctx.dir, method, {run, seed, "simulate", e.what()});
-    }
-    return 0;
-  }
-  std::optional<RunInputs> in;
-  SharedInputs shared;
-  for (const std::string& method : pending) {
-    try {
-      note_stage(ctx.dir, run, "run");
-      if (!in) in = run_inputs_of(records, ctx.config);
-      injected_fault(run, method);
-      const MethodResult result = run_method(method, *in, &shared);
-      if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");
-      // The summary needs neither the map nor the dataset; the map is large.
-      put_in_place(ctx.dir, method, run, [&](const std::string& out) {
-        write_method_result(out, result, dataset_label, /*write_map=*/false);
-        io::write_errors_csv((fs::path(out) / "errors.csv").string(), result.errors,
-                             result.t_first_truth_s);
-      });
-    } catch (const std::exception& e) {
-      record_failure(ctx.dir, method, {run, seed, "run", e.what()});
-    }
-  }
-  return 0;
-}
-
-/// The last line of the worker's stage notes ("simulate" or "run"); "simulate" when there is none.
-std::string crashed_stage(const std::string& dir, int run) {
-  const std::string last = io::last_line(scratch_file(dir, run, ".stage"));
-  return last.empty() ? "simulate" : last;
-}
-
-/// Removes what workers left half-written: partial run directories and datasets, scratch files.
-void remove_leftovers(const std::string& dir, const std::vector<std::string>& methods,
-                      std::optional<int> run = std::nullopt) {
-  std::error_code ec;
-  for (const std::string& method : methods) {
-    const fs::path folder = fs::path(dir) / "runs" / method;
-    if (!fs::is_directory(folder)) continue;
-    for (const auto& entry : fs::directory_iterator(folder, ec)) {
-      const std::string name = entry.path().filename().string();
-      const bool partial = name.size() > 8 && name.compare(name.size() - 8, 8, ".partial") == 0;
-      if (partial && (!run || name == "." + run_name(*run) + ".partial")) {
-        fs::remove_all(entry.path(), ec);
-      }
-    }
-  }
-  const fs::path datasets = fs::path(dir) / "datasets";
-  if (fs::is_directory(datasets)) {
-    for (const auto& entry : fs::directory_iterator(datasets, ec)) {
-      const std::string name = entry.path().filename().string();
-      const std::string hidden = run ? "." + run_name(*run) + "." : ".";
-      if (name.rfind(hidden, 0) == 0) fs::remove_all(entry.path(), ec);
-    }
-  }
-  if (run) {
-    for (const char* suffix : {".stderr", ".stage"})
-      fs::remove(scratch_file(dir, *run, suffix), ec);
-  } else {
-    fs::remove_all(fs::path(dir) / "scratch", ec);
-  }
-}
-
-bool finished(const std::string& dir, const std::string& method, int run) {
-  return fs::exists(fs::path(run_dir(dir, method, run)) / "metrics.json");
-}
-
 }  // namespace
 
 void check_shard_and_jobs(const std::string& shard, int jobs, int& shard_index, int& shard_count) {
@@ -278,19 +104,7 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
   const std::string& dir = ctx.dir;
   const std::vector<int> runs = runs_of(ctx.manifest);
   remove_leftovers(dir, ctx.manifest.methods);  // of a command killed outright
-
-  struct Pending {
-    int run;
-    std::vector<std::string> methods;
-  };
-  std::vector<Pending> todo;
-  for (const int r : runs) {
-    std::vector<std::string> methods;
-    for (const std::string& m : ctx.manifest.methods) {
-      if (!finished(dir, m, r)) methods.push_back(m);
-    }
-    if (!methods.empty()) todo.push_back({r, methods});
-  }
+  const std::vector<PendingRun> todo = pending_runs(ctx, runs);
   const int jobs = options.jobs > 0
                        ? options.jobs
                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -299,45 +113,13 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
       std::min(static_cast<std::size_t>(jobs), todo.size()) > 1
           ? 1
           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  // The shared parent folders are made here, not by the workers at the same time.
-  io::create_output_dir((fs::path(dir) / "scratch").string());
-  for (const std::string& m : ctx.manifest.methods) {
-    io::create_output_dir((fs::path(dir) / "runs" / m).string());
-  }
-  if (ctx.keep_datasets) io::create_output_dir((fs::path(dir) / "datasets").string());
+  make_run_folders(ctx);
 
   MonteCarloOutcome outcome;
   outcome.runs = runs.size();
   Progress progress(runs.size(), runs.size() - todo.size(), log.terminal, log.log);
   progress.redraw();
-  WorkerPool pool;
-  pool.workers = jobs;
-  const int lock_fd = lock->fd();
-  pool.job = [&](std::size_t i) {
-    ::close(lock_fd);  // the lock is the caller's alone
-    return execute_run(ctx, todo[i].run, todo[i].methods);
-  };
-  pool.finished = [&](std::size_t i, const ProcessResult& result) {
-    const int r = todo[i].run;
-    const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(r);
-    bool failed = false;
-    for (const std::string& method : todo[i].methods) {
-      if (finished(dir, method, r)) continue;
-      failed = true;
-      const bool recorded = fs::exists(fs::path(run_dir(dir, method, r)) / "failed.json");
-      if (!result.ok() || !recorded) {
-        record_failure(dir, method,
-                       {r, seed, crashed_stage(dir, r),
-                        describe_failure(result, scratch_file(dir, r, ".stderr"))});
-      }
-    }
-    ++outcome.executed;
-    remove_leftovers(dir, ctx.manifest.methods, r);
-    progress.run_finished(failed);
-  };
-  pool.tick = [&] { progress.redraw(); };
-  pool.stopped = [&](std::size_t i) { remove_leftovers(dir, ctx.manifest.methods, todo[i].run); };
-  outcome.interrupted = run_worker_processes(todo.size(), pool);
+  outcome.interrupted = execute_runs(ctx, todo, jobs, lock->fd(), progress, outcome.executed);
   progress.end();
   std::error_code ec;
   fs::remove(fs::path(dir) / "scratch", ec);  // only when empty

@@ -1,0 +1,25 @@
+// The Markdown of `msislab report`'s page (app/report_command.hpp): Table I, the figure lists,
+// a section per Monte Carlo directory (app/report_page.cpp) and per sweep (app/report_sweep.cpp),
+// and the cell formats they share.
+#pragma once
+
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "app/report_command.hpp"
+
+namespace msislab::app {
+
+/// A table cell: the value with `decimals` decimals, "n/a" when it is not finite or missing.
+std::string fixed(double value, int decimals);
+std::string fixed(const std::optional<double>& value, int decimals);
+/// A fraction as a percentage with one decimal, "n/a" when missing.
+std::string percent(const std::optional<double>& fraction);
+
+/// A sweep's sweep.csv as a table: a row per cell, per method its mean error and ANEES, each
+/// further method's paired difference to the first with its 95 % interval, and the linearisation
+/// errors when measured; then the cells where the paired difference is beyond the noise.
+void sweep_section(std::ostringstream& md, const SweepFolder& sweep);
+
+}  // namespace msislab::app

@@ -10,6 +10,7 @@
 #include "app/cli.hpp"
 #include "app/plot_figures.hpp"
 #include "app/plot_inputs.hpp"
+#include "app/sweep_figures.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/atomic_file.hpp"
 #include "plot/display.hpp"

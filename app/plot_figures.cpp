@@ -1,17 +1,15 @@
 #include "app/plot_figures.hpp"
 
-#include <cstdlib>
-
-#include "app/methods.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <map>
 #include <optional>
 #include <set>
 #include <stdexcept>
 
+#include "app/methods.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::app {
@@ -32,16 +30,6 @@ std::string ordinal(std::size_t k) {
                        : last == 3                        ? "rd"
                                                           : "th";
   return std::to_string(k) + suffix;
-}
-
-/// The colour scaled towards black: ellipses stand apart from their trajectory.
-std::uint32_t darker(std::uint32_t rgb, double factor) {
-  std::uint32_t out = 0;
-  for (const int shift : {16, 8, 0}) {
-    const auto channel = static_cast<double>(rgb >> shift & 0xff);
-    out |= static_cast<std::uint32_t>(std::lround(channel * factor)) << shift;
-  }
-  return out;
 }
 
 std::string truth_label(const Truth& truth) {
@@ -125,7 +113,17 @@ void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
   chart.series.push_back(std::move(upper));
 }
 
-/// An empty chart with its axis labels and size.
+}  // namespace
+
+std::uint32_t darker(std::uint32_t rgb, double factor) {
+  std::uint32_t out = 0;
+  for (const int shift : {16, 8, 0}) {
+    const auto channel = static_cast<double>(rgb >> shift & 0xff);
+    out |= static_cast<std::uint32_t>(std::lround(channel * factor)) << shift;
+  }
+  return out;
+}
+
 plot::ChartSpec empty_chart(const std::string& x_label, const std::string& y_label, int width_px,
                             int height_px) {
   plot::ChartSpec chart;
@@ -135,8 +133,6 @@ plot::ChartSpec empty_chart(const std::string& x_label, const std::string& y_lab
   chart.height_px = height_px;
   return chart;
 }
-
-}  // namespace
 
 plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
                                  int height_px) {
@@ -310,198 +306,6 @@ plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& hist
     outline.x.push_back(h.edges_m.back());
     outline.y.push_back(0.0);
     chart.series.push_back(std::move(outline));
-  }
-  return chart;
-}
-
-namespace {
-
-/// The sweep figures' y values: per metric, its kinds (one line per method and kind) and the value
-/// with its band of a row.
-struct SweepMetric {
-  std::string y_label, title;
-  std::vector<std::string> kinds;  ///< "" for a metric of one kind
-  bool log_y = false;
-  std::optional<double> value(const io::SweepRow& r, std::size_t kind) const;
-  std::optional<std::pair<double, double>> band(const io::SweepRow& r) const;
-  std::string name;
-};
-
-SweepMetric sweep_metric(const std::string& metric, const io::SweepTable& table) {
-  SweepMetric m;
-  m.name = metric;
-  m.kinds = {""};
-  if (metric == "mean_error") {
-    m.y_label = "mean position error [m]";
-    m.title = "Mean error (dotted: 5-95 % of runs)";
-  } else if (metric == "anees") {
-    m.y_label = "ANEES";
-    m.title = "ANEES";
-    m.log_y = true;
-  } else if (metric == "paired_difference") {
-    std::string reference;
-    for (const io::SweepRow& r : table.rows) {
-      if (!r.paired_reference.empty()) reference = r.paired_reference;
-    }
-    m.y_label = "mean error minus " + method_title(reference) + "'s, same runs [m]";
-    m.title = "Paired difference (dotted: 95 % interval)";
-  } else if (metric == "linearisation") {
-    m.y_label = "linearisation error epsilon";
-    m.title = "Linearisation error";
-    m.kinds = {"match update", "inversion", "pose read-out"};
-    m.log_y = true;
-  } else {
-    throw std::invalid_argument("sweep_chart: unknown metric '" + metric + "'");
-  }
-  return m;
-}
-
-std::optional<double> SweepMetric::value(const io::SweepRow& r, std::size_t kind) const {
-  if (name == "mean_error") return r.mean_error_m;
-  if (name == "anees") return r.anees;
-  if (name == "paired_difference") return r.paired_difference_m;
-  const std::optional<double> v = std::array{r.linearisation_observation, r.linearisation_inversion,
-                                             r.linearisation_pose}[kind];
-  return v && *v > 0.0 ? v : std::nullopt;  // a log axis
-}
-
-std::optional<std::pair<double, double>> SweepMetric::band(const io::SweepRow& r) const {
-  if (name == "mean_error" && r.p05_m && r.p95_m) return std::pair{*r.p05_m, *r.p95_m};
-  if (name == "paired_difference" && r.paired_ci95_lower_m && r.paired_ci95_upper_m) {
-    return std::pair{*r.paired_ci95_lower_m, *r.paired_ci95_upper_m};
-  }
-  return std::nullopt;
-}
-
-}  // namespace
-
-bool sweep_has_metric(const io::SweepTable& table, const std::string& metric) {
-  const SweepMetric m = sweep_metric(metric, table);
-  for (const io::SweepRow& r : table.rows) {
-    for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
-      if (m.value(r, kind)) return true;
-    }
-  }
-  return false;
-}
-
-plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
-                            int width_px, int height_px) {
-  const SweepMetric m = sweep_metric(metric, table);
-  plot::ChartSpec chart = empty_chart(table.keys[key], m.y_label, width_px, height_px);
-  chart.log_y = m.log_y;
-  // The key's values in first-seen order; their x: the number, else the rank.
-  std::vector<std::string> values;
-  bool numeric = true;
-  for (const io::SweepRow& r : table.rows) {
-    if (std::find(values.begin(), values.end(), r.values[key]) == values.end()) {
-      values.push_back(r.values[key]);
-    }
-  }
-  std::vector<double> x_of(values.size());
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    char* end = nullptr;
-    x_of[i] = std::strtod(values[i].c_str(), &end);
-    numeric = numeric && end != values[i].c_str() && *end == '\0';
-  }
-  std::string ranks;
-  if (!numeric) {
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      x_of[i] = static_cast<double>(i);
-      ranks += (ranks.empty() ? "" : ", ") + std::to_string(i) + ": " + values[i];
-    }
-  }
-  chart.title = m.title + " vs " + table.keys[key].substr(table.keys[key].rfind('.') + 1) +
-                (ranks.empty() ? "" : " (" + ranks + ")");
-  // One line per method (and kind) and combination of the other keys' values; when each value of
-  // this key is one cell (a list whose other keys move with it), one line per method (and kind).
-  std::set<int> cells;
-  for (const io::SweepRow& r : table.rows) cells.insert(r.cell);
-  const bool one_cell_per_value = cells.size() == values.size();
-  // Another key whose value follows this key's (a filter sigma set with the noise it models)
-  // does not split the lines.
-  std::vector<bool> follows(table.keys.size(), false);
-  for (std::size_t k = 0; k < table.keys.size(); ++k) {
-    std::map<std::string, std::string> value_at;
-    bool determined = true;
-    for (const io::SweepRow& r : table.rows) {
-      const auto [it, inserted] = value_at.emplace(r.values[key], r.values[k]);
-      determined = determined && (inserted || it->second == r.values[k]);
-    }
-    follows[k] = determined;
-  }
-  const auto line_of = [&](const io::SweepRow& r, std::size_t kind) {
-    // The other keys by their last name: "Robocentric SLAM, iekf_iterations=1".
-    std::string name = method_title(r.method);
-    if (!m.kinds[kind].empty()) name += ": " + m.kinds[kind];
-    for (std::size_t k = 0; k < table.keys.size() && !one_cell_per_value; ++k) {
-      if (k != key && !follows[k])
-        name += ", " + table.keys[k].substr(table.keys[k].rfind('.') + 1) + "=" + r.values[k];
-    }
-    return name;
-  };
-  std::vector<std::pair<std::string, std::size_t>> lines;  // name, kind
-  for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
-    for (const io::SweepRow& r : table.rows) {
-      const std::pair line{line_of(r, kind), kind};
-      if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
-    }
-  }
-  std::map<std::string, int> shade;  // the lines of a method so far: each a darker shade
-  for (const auto& [line, kind] : lines) {
-    std::string method;
-    std::vector<std::pair<double, const io::SweepRow*>> points;
-    for (const io::SweepRow& r : table.rows) {
-      if (line_of(r, kind) != line) continue;
-      method = r.method;
-      const auto at = std::find(values.begin(), values.end(), r.values[key]) - values.begin();
-      points.emplace_back(x_of[static_cast<std::size_t>(at)], &r);
-    }
-    std::sort(points.begin(), points.end(),
-              [](const auto& a, const auto& b) { return a.first < b.first; });
-    plot::Series mid{line, {}, {}, method_style(method), 0, 2.5f};
-    plot::Series low{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
-    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
-    for (const auto& [x, r] : points) {
-      const std::optional<double> y = m.value(*r, kind);
-      if (!y) continue;
-      mid.x.push_back(x);
-      mid.y.push_back(*y);
-      if (const auto band = m.band(*r)) {
-        low.x.push_back(x);
-        low.y.push_back(band->first);
-        high.x.push_back(x);
-        high.y.push_back(band->second);
-      }
-    }
-    if (mid.x.empty()) continue;
-    const std::uint32_t rgb = darker(method_colour(method), std::pow(0.6, shade[method]++));
-    mid.rgb = low.rgb = high.rgb = rgb;
-    // A line needs two points (VTK refuses shorter ones); a single value is drawn as its point,
-    // labelled.
-    if (low.x.size() > 1) {
-      chart.series.push_back(std::move(low));
-      chart.series.push_back(std::move(high));
-    }
-    plot::Series points_of_mid = mid;
-    points_of_mid.style = plot::SeriesStyle::kPoints;
-    points_of_mid.width_px = 8.0f;
-    if (mid.x.size() > 1) {
-      points_of_mid.label.clear();
-      chart.series.push_back(std::move(mid));
-    }
-    chart.series.push_back(std::move(points_of_mid));
-  }
-  const double x_min = *std::min_element(x_of.begin(), x_of.end());
-  const double x_max = *std::max_element(x_of.begin(), x_of.end());
-  if (metric == "anees" || metric == "paired_difference") {
-    const double level = metric == "anees" ? 3.0 : 0.0;
-    chart.series.push_back({metric == "anees" ? "consistent (3)" : "no difference",
-                            {x_min, x_max},
-                            {level, level},
-                            plot::SeriesStyle::kDottedLine,
-                            0x888888,
-                            2.0f});
   }
   return chart;
 }

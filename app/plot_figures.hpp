@@ -11,6 +11,13 @@
 
 namespace msislab::app {
 
+/// The colour scaled towards black by `factor` (ellipses stand apart from their trajectory, a
+/// method's further lines are darker shades).
+std::uint32_t darker(std::uint32_t rgb, double factor);
+/// An empty chart with its axis labels and size.
+plot::ChartSpec empty_chart(const std::string& x_label, const std::string& y_label, int width_px,
+                            int height_px);
+
 /// Truth (or GPS) and the estimate in the world frame with equal aspect, the map points as small
 /// dots and the 2-sigma position ellipses of every k-th scan (k = every, or about 25 in all).
 plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
@@ -29,17 +36,6 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
 /// as a histogram outline on shared bins.
 plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
                                          int width_px, int height_px);
-
-/// A sweep: a metric of the cells against one swept key, one line per method and per value of the
-/// other keys: "mean_error" with its 5-95 % band over the runs' mean errors, "anees",
-/// "paired_difference" (each method's per-run mean error minus the first method's, with its 95 %
-/// interval) or "linearisation" (epsilon of the match update, the inversion and the pose read-out:
-/// a line per method and kind, log axis). Numeric values are placed at their value, others at
-/// their rank (named in the title). std::invalid_argument for another metric.
-/// Whether any row has a value of the metric (the figures drawn are those with data).
-bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
-plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
-                            int width_px, int height_px);
 
 /// Run-averaged NEES against scan index per method, with the 95% bounds; log y axis.
 plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px);

@@ -14,6 +14,7 @@
 #include "app/plot_figures.hpp"
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
+#include "app/sweep_figures.hpp"
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/results.hpp"

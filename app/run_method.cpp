@@ -1,0 +1,283 @@
+#include "app/run_method.hpp"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+
+#include "app/eval_command.hpp"
+#include "app/methods.hpp"
+#include "io/input_error.hpp"
+#include "slam/dead_reckoning.hpp"
+#include "slam/trajectory_correction.hpp"
+
+namespace msislab::app {
+
+namespace {
+
+struct SlamRun {
+  std::vector<PlacedScan> scans;  ///< with their corrected world poses (online, where it differs)
+  std::vector<StampedPose> trajectory;
+  /// A back end with an online estimate (the pose graph): its smoothed trajectory and scans.
+  std::optional<std::vector<StampedPose>> smoothed_trajectory;
+  std::optional<std::vector<StampedPose>> smoothed_scan_poses;
+  std::optional<int> matches_downweighted;
+  SlamTotals totals;
+  std::vector<MatchRecord> matches;                  ///< every candidate match of every step
+  std::vector<StampedPose> dead_reckoning_at_scans;  ///< the scans' poses before the SLAM
+};
+
+/// The dataset's revolutions as motion-compensated scans placed by dead reckoning.
+std::vector<PlacedScan> dead_reckoning_scans(const SonarInput& sonar, const RunInputs& in) {
+  ScanConfig builder;
+  builder.beams_per_scan = sonar.beams_per_revolution;
+  builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
+  return build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
+                     {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
+}
+
+/// A SLAM back end over the dataset's scans, and the corrected trajectory: from the final
+/// estimate of every scan (the filters), or from each scan's pose when it was added with the
+/// smoothed one beside it (the pose graph).
+SlamRun run_trajectory_slam(const MethodInfo& method, const SonarInput& sonar, const RunInputs& in,
+                            const std::vector<StampedPose>& dead_reckoning) {
+  SlamRun run;
+  run.scans = dead_reckoning_scans(sonar, in);
+  const std::unique_ptr<ScanSlam> slam = method.make_slam(in.config, in.start.pose);
+  for (const PlacedScan& placed : run.scans) {
+    SlamStepStats step = slam->add_scan(placed.scan);
+    run.matches.insert(run.matches.end(), std::make_move_iterator(step.matches.begin()),
+                       std::make_move_iterator(step.matches.end()));
+  }
+  std::vector<StampedPose> dr_at_scans;
+  std::vector<GaussianPose2> final_poses;
+  for (std::size_t i = 0; i < run.scans.size(); ++i) {
+    dr_at_scans.push_back(run.scans[i].centre_world);
+    final_poses.push_back(slam->scan_pose_world(i));
+  }
+  run.totals = slam->totals();
+  run.matches_downweighted = slam->matches_downweighted();
+  const std::optional<std::vector<GaussianPose2>> online = slam->online_poses();
+  const std::vector<GaussianPose2>& corrected = online ? *online : final_poses;
+  for (std::size_t i = 0; i < run.scans.size(); ++i) run.scans[i].centre_world.pose = corrected[i];
+  run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
+  if (online) {
+    run.smoothed_trajectory = correct_trajectory(dead_reckoning, dr_at_scans, final_poses);
+    run.smoothed_scan_poses.emplace();
+    for (std::size_t i = 0; i < run.scans.size(); ++i) {
+      run.smoothed_scan_poses->push_back({run.scans[i].scan.t_s, final_poses[i]});
+    }
+  }
+  run.dead_reckoning_at_scans = std::move(dr_at_scans);
+  return run;
+}
+
+/// The scans' corrected world poses.
+std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
+  std::vector<StampedPose> poses;
+  for (const PlacedScan& s : scans) poses.push_back({s.scan.t_s, s.centre_world.pose});
+  return poses;
+}
+
+/// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
+/// pose and the match's NEES in its observed directions.
+std::vector<io::MatchRow> match_rows(const SlamRun& slam, const Truth& truth) {
+  std::vector<io::MatchRow> rows;
+  rows.reserve(slam.matches.size());
+  for (const MatchRecord& m : slam.matches) {
+    io::MatchRow row;
+    row.t_s = slam.scans[m.scan].scan.t_s;
+    row.t_reference_s = slam.scans[m.reference].scan.t_s;
+    row.record = m;
+    if (!truth.poses.empty()) {
+      row.has_truth = true;
+      row.truth = interpolate_pose(truth.poses, row.t_reference_s)
+                      .between(interpolate_pose(truth.poses, row.t_s));
+      const Eigen::VectorXd e = m.observed * pose_difference(m.z.mean, row.truth);
+      const Eigen::MatrixXd R = m.observed * m.z.cov * m.observed.transpose();
+      row.nees = e.dot(R.ldlt().solve(e));
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+/// The accepted matches between consecutive scans (k, k - 1), for the scale statistic: the
+/// spIC translation, and the dead reckoning's (the first thing a consecutive match is measured
+/// against).
+std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecutive_translations(
+    const SlamRun& slam) {
+  std::vector<MatchTranslation> matched, dead_reckoning;
+  for (const MatchRecord& m : slam.matches) {
+    if (m.rejection != MatchRejection::kNone || m.scan != m.reference + 1) continue;
+    MatchTranslation t;
+    t.t_reference_s = slam.scans[m.reference].scan.t_s;
+    t.t_s = slam.scans[m.scan].scan.t_s;
+    t.yaw_reference_rad = slam.scans[m.reference].centre_world.pose.mean.yaw();
+    t.translation_reference_m = m.z.mean.translation();
+    matched.push_back(t);
+    const Pose2 motion = slam.dead_reckoning_at_scans[m.reference].pose.mean.between(
+        slam.dead_reckoning_at_scans[m.scan].pose.mean);
+    t.translation_reference_m = motion.translation();
+    dead_reckoning.push_back(t);
+  }
+  return {matched, dead_reckoning};
+}
+
+/// The SLAM's counters for metrics.json (docs/formats.md); sets matches_accepted.
+std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam,
+                                                             const Truth& truth,
+                                                             int& matches_accepted) {
+  matches_accepted = slam.totals.accepted;
+  std::vector<std::pair<std::string, double>> diagnostics = {
+      {"scan_candidates", slam.totals.candidates},
+      {"scan_matches_valid", slam.totals.matched},
+      {"scans_skipped", slam.totals.skipped},
+      {"compass_accepted", slam.totals.compass_accepted}};
+  const MatchRejectionCounts& counts = slam.totals.rejections;
+  for (int reason = 1; reason < kMatchRejectionReasons; ++reason) {
+    diagnostics.emplace_back(
+        "matches_rejected_" + rejection_name(static_cast<MatchRejection>(reason)),
+        counts.rejected[static_cast<std::size_t>(reason)]);
+  }
+  diagnostics.emplace_back("matches_direction_dropped", counts.direction_dropped);
+  if (slam.matches_downweighted) {
+    diagnostics.emplace_back("matches_downweighted", *slam.matches_downweighted);
+  }
+  // How long the consecutive matches make the motion, against the truth (docs/formats.md).
+  const auto [matched, dead_reckoning] = consecutive_translations(slam);
+  for (const auto& [name, translations] :
+       {std::pair{"consecutive_match_scale", &matched},
+        std::pair{"consecutive_dead_reckoning_scale", &dead_reckoning}}) {
+    if (const std::optional<double> scale =
+            match_translation_scale(*translations, truth.positions)) {
+      diagnostics.emplace_back(name, *scale);
+    }
+  }
+  // The measured linearisation error (trajectory_slam.linearisation_samples > 0).
+  for (const auto& [name, tally] :
+       {std::pair{"linearisation_observation", &slam.totals.linearisation_observation},
+        std::pair{"linearisation_inversion", &slam.totals.linearisation_inversion},
+        std::pair{"linearisation_pose", &slam.totals.linearisation_pose}}) {
+    if (const std::optional<double> mean = tally->mean()) diagnostics.emplace_back(name, *mean);
+  }
+  return diagnostics;
+}
+
+/// What a method estimated, on its clock: dead reckoning (or the integration), the SLAM run
+/// when it is a SLAM method, and the scans dead reckoning places after its clock.
+struct Estimate {
+  DeadReckoningResult dead_reckoning;
+  std::optional<SlamRun> slam;
+  double runtime_s = 0.0;
+  std::vector<PlacedScan> dead_reckoning_scans;
+
+  const std::vector<StampedPose>& trajectory() const {
+    return slam ? slam->trajectory : dead_reckoning.trajectory;
+  }
+  const std::vector<PlacedScan>& scans() const { return slam ? slam->scans : dead_reckoning_scans; }
+  bool has_scans() const { return slam || !dead_reckoning_scans.empty(); }
+};
+
+Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* shared) {
+  // SLAM methods: the sonar readings are read before the clock starts, like the logs; read once
+  // and shared between the methods when `shared` is given.
+  std::optional<SonarInput> own_readings;
+  const auto readings = [&]() -> const SonarInput& {
+    std::optional<SonarInput>& slot = shared ? shared->sonar : own_readings;
+    if (!slot) slot = load_sonar_readings(in);
+    return *slot;
+  };
+  const SonarInput* sonar = method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
+  const auto t_begin = std::chrono::steady_clock::now();
+  const Eigen::Vector2d p_vehicle_dvl_m(in.calibration.dvl.x_m, in.calibration.dvl.y_m);
+  Estimate e;
+  DeadReckoningResult& dr = e.dead_reckoning;
+  if (method.kind == MethodKind::kIntegration) {
+    dr.trajectory = integrate_velocities(in.navigation, in.start);
+  } else {
+    dr = run_dead_reckoning(in.navigation, in.config.dead_reckoning, p_vehicle_dvl_m, in.start);
+  }
+  if (sonar) {
+    e.slam = run_trajectory_slam(method, *sonar, in, dr.trajectory);
+    if (shared && !shared->dead_reckoning_scans) {
+      shared->dead_reckoning_scans = e.slam->scans;
+      for (std::size_t i = 0; i < e.slam->scans.size(); ++i) {
+        (*shared->dead_reckoning_scans)[i].centre_world = e.slam->dead_reckoning_at_scans[i];
+      }
+    }
+  }
+  e.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
+  // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
+  // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
+  if (method.kind == MethodKind::kDeadReckoning && has_sonar_data(in)) {
+    if (shared && shared->dead_reckoning_scans) {
+      e.dead_reckoning_scans = *shared->dead_reckoning_scans;
+    } else {
+      e.dead_reckoning_scans = dead_reckoning_scans(readings(), in);
+    }
+  }
+  if (e.trajectory().size() < 2) {
+    io::fail_file(in.dataset, "no navigation data after the start time");
+  }
+  return e;
+}
+
+/// The smoothed trajectory scored beside the online one (docs/formats.md).
+void add_smoothed_diagnostics(const SlamRun& slam, const Truth& truth, RunMetrics& metrics) {
+  const std::optional<ErrorStats> smoothed =
+      error_stats(position_errors(*slam.smoothed_trajectory, truth.positions));
+  if (smoothed) {
+    metrics.diagnostics.emplace_back("smoothed_mean_error_m", smoothed->mean_m);
+    metrics.diagnostics.emplace_back("smoothed_final_error_m", smoothed->final_m);
+  }
+  if (const std::optional<double> anees =
+          average_nees(scan_nees(*slam.smoothed_scan_poses, truth))) {
+    metrics.diagnostics.emplace_back("smoothed_anees", *anees);
+  }
+}
+
+/// Scores the estimate against the truth (the dataset has one).
+void score(const MethodInfo& method, const RunInputs& in, const Estimate& e, MethodResult& result) {
+  const Truth& truth = in.truth;
+  result.errors = position_errors(e.trajectory(), truth.positions);
+  result.metrics = score_errors(truth, result.errors, in.config.segments, in.dataset);
+  result.t_first_truth_s = truth.positions.front().t_s;
+  RunMetrics& metrics = *result.metrics;
+  metrics.method = method.name;
+  metrics.runtime_s = e.runtime_s;
+  if (e.has_scans()) {
+    metrics.scans = static_cast<int>(e.scans().size());
+    result.nees = scan_nees(scan_poses(e.scans()), truth);
+    metrics.anees = average_nees(result.nees);
+  }
+  if (e.slam) metrics.diagnostics = slam_diagnostics(*e.slam, truth, metrics.matches_accepted);
+  if (e.slam && e.slam->smoothed_trajectory) add_smoothed_diagnostics(*e.slam, truth, metrics);
+  if (method.kind == MethodKind::kDeadReckoning) {
+    const DeadReckoningResult& dr = e.dead_reckoning;
+    metrics.diagnostics = {{"dvl_used", dr.dvl_used},
+                           {"dvl_rejected", dr.dvl_rejected},
+                           {"dvl_without_bottom_lock", in.navigation.dvl_rows_without_bottom_lock},
+                           {"dvl_mean_nis", dr.dvl_mean_nis},
+                           {"heading_used", dr.heading_used},
+                           {"heading_mean_nis", dr.heading_mean_nis}};
+  }
+}
+
+}  // namespace
+
+MethodResult run_method(const std::string& name, const RunInputs& in, SharedInputs* shared) {
+  const MethodInfo& method = method_info(name);
+  const Estimate e = estimate(method, in, shared);
+  MethodResult result;
+  result.method = method.name;
+  result.trajectory = e.trajectory();
+  result.depth_m = in.truth.depth_m;
+  if (!in.truth.kind.empty()) score(method, in, e, result);
+  if (e.has_scans()) result.scans = e.scans();
+  if (e.slam) result.matches = match_rows(*e.slam, in.truth);
+  if (e.slam) result.smoothed_trajectory = e.slam->smoothed_trajectory;
+  return result;
+}
+
+}  // namespace msislab::app

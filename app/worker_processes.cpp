@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstdio>
 #include <exception>
@@ -40,83 +42,116 @@ constexpr int kUncaughtExceptionStatus = 70;  // EX_SOFTWARE
   ::_exit(status);
 }
 
-}  // namespace
+/// One call of run_worker_processes: the watched signals (blocked, so that they wait for
+/// sigtimedwait instead of interrupting or ending the caller), the workers running and the next
+/// job. Should a callback throw, the destructor still ends every worker and gives the caller its
+/// signal mask back.
+class WorkerRun {
+ public:
+  WorkerRun(std::size_t count, const WorkerPool& pool)
+      : count_(count),
+        pool_(pool),
+        self_(::getpid()),
+        workers_(static_cast<std::size_t>(std::max(1, pool.workers))) {
+    sigemptyset(&watched_);
+    for (const int sig : {SIGCHLD, SIGINT, SIGTERM, SIGHUP}) sigaddset(&watched_, sig);
+    ::pthread_sigmask(SIG_BLOCK, &watched_, &old_mask_);
+  }
+  ~WorkerRun() {
+    for (const auto& [pid, index] : running_) ::kill(pid, SIGTERM);
+    for (const auto& [pid, index] : running_) ::waitpid(pid, nullptr, 0);
+    ::pthread_sigmask(SIG_SETMASK, &old_mask_, nullptr);
+  }
+  WorkerRun(const WorkerRun&) = delete;
+  WorkerRun& operator=(const WorkerRun&) = delete;
 
-int run_worker_processes(std::size_t count, const WorkerPool& pool) {
-  sigset_t watched, old_mask;
-  sigemptyset(&watched);
-  for (const int sig : {SIGCHLD, SIGINT, SIGTERM, SIGHUP}) sigaddset(&watched, sig);
-  // Blocked, they wait for sigtimedwait below instead of interrupting (or ending) the caller.
-  ::pthread_sigmask(SIG_BLOCK, &watched, &old_mask);
-  const pid_t self = ::getpid();
-  const std::size_t workers = static_cast<std::size_t>(std::max(1, pool.workers));
-
-  std::map<pid_t, std::size_t> running;
-  // Should a callback throw, no worker outlives the call and the caller's mask comes back.
-  struct Cleanup {
-    std::map<pid_t, std::size_t>& running;
-    const sigset_t& old_mask;
-    ~Cleanup() {
-      for (const auto& [pid, index] : running) ::kill(pid, SIGTERM);
-      for (const auto& [pid, index] : running) ::waitpid(pid, nullptr, 0);
-      ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
+  /// Runs every job; 0, or the signal that stopped them.
+  int run() {
+    auto last_tick = std::chrono::steady_clock::now();
+    while (true) {
+      start_workers();
+      if (running_.empty()) break;
+      wait_for_signal();
+      reap_finished();
+      const auto now = std::chrono::steady_clock::now();
+      if (pool_.tick && now - last_tick >= pool_.tick_period) {
+        pool_.tick();
+        last_tick = now;
+      }
     }
-  } cleanup{running, old_mask};
-  std::size_t next = 0;
-  int stop = 0;
-  auto last_tick = std::chrono::steady_clock::now();
-  while (true) {
-    while (stop == 0 && next < count && running.size() < workers) {
+    // A stop request (or children's ends) still pending is consumed here, not by the caller.
+    timespec none{0, 0};
+    for (int sig; (sig = ::sigtimedwait(&watched_, nullptr, &none)) > 0;) {
+      if (stop_ == 0 && sig != SIGCHLD) stop_ = sig;
+    }
+    return stop_;
+  }
+
+ private:
+  /// Forks workers for the next jobs, up to the pool's size, unless stopped.
+  void start_workers() {
+    while (stop_ == 0 && next_ < count_ && running_.size() < workers_) {
       std::cout.flush();
       std::cerr.flush();
       const pid_t pid = ::fork();
-      if (pid == 0) be_worker(pool, next, old_mask, self);
+      if (pid == 0) be_worker(pool_, next_, old_mask_, self_);
       if (pid < 0) {
         // No process for it: recorded as a failure to start, and the pool goes on.
         ProcessResult failed;
         failed.start_error = "cannot start a worker process (fork failed)";
-        if (pool.finished) pool.finished(next, failed);
+        if (pool_.finished) pool_.finished(next_, failed);
       } else {
-        running[pid] = next;
+        running_[pid] = next_;
       }
-      ++next;
+      ++next_;
     }
-    if (running.empty()) break;
+  }
 
-    const auto period_ms = pool.tick_period.count();
+  /// Waits up to a tick for a signal; a stop request ends every worker.
+  void wait_for_signal() {
+    const auto period_ms = pool_.tick_period.count();
     timespec timeout{static_cast<time_t>(period_ms / 1000),
                      static_cast<long>((period_ms % 1000) * 1000000)};
-    const int sig = ::sigtimedwait(&watched, nullptr, &timeout);
-    if ((sig == SIGINT || sig == SIGTERM || sig == SIGHUP) && stop == 0) {
-      stop = sig;
-      for (const auto& [pid, index] : running) ::kill(pid, SIGTERM);
+    const int sig = ::sigtimedwait(&watched_, nullptr, &timeout);
+    if ((sig == SIGINT || sig == SIGTERM || sig == SIGHUP) && stop_ == 0) {
+      stop_ = sig;
+      for (const auto& [pid, index] : running_) ::kill(pid, SIGTERM);
     }
-    for (auto it = running.begin(); it != running.end();) {
+  }
+
+  /// Collects the workers that ended: finished, or stopped (killed by the stop request).
+  void reap_finished() {
+    for (auto it = running_.begin(); it != running_.end();) {
       int status = 0;
       if (::waitpid(it->first, &status, WNOHANG) != it->first) {
         ++it;
         continue;
       }
       const ProcessResult result = process_result(status);
-      if (stop != 0 && !result.exited) {
-        if (pool.stopped) pool.stopped(it->second);
-      } else if (pool.finished) {
-        pool.finished(it->second, result);
+      if (stop_ != 0 && !result.exited) {
+        if (pool_.stopped) pool_.stopped(it->second);
+      } else if (pool_.finished) {
+        pool_.finished(it->second, result);
       }
-      it = running.erase(it);
-    }
-    const auto now = std::chrono::steady_clock::now();
-    if (pool.tick && now - last_tick >= pool.tick_period) {
-      pool.tick();
-      last_tick = now;
+      it = running_.erase(it);
     }
   }
-  // A stop request (or children's ends) still pending is consumed here, not by the caller.
-  timespec none{0, 0};
-  for (int sig; (sig = ::sigtimedwait(&watched, nullptr, &none)) > 0;) {
-    if (stop == 0 && sig != SIGCHLD) stop = sig;
-  }
-  return stop;  // the mask is restored by cleanup
+
+  std::size_t count_;
+  const WorkerPool& pool_;
+  pid_t self_;
+  std::size_t workers_;
+  sigset_t watched_{};
+  sigset_t old_mask_{};
+  std::map<pid_t, std::size_t> running_;
+  std::size_t next_ = 0;
+  int stop_ = 0;
+};
+
+}  // namespace
+
+int run_worker_processes(std::size_t count, const WorkerPool& pool) {
+  return WorkerRun(count, pool).run();  // the mask is restored by ~WorkerRun
 }
 
 }  // namespace msislab::app

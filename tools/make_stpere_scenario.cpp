@@ -20,11 +20,18 @@
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/mesh_io.hpp"
-#include "sim/vehicle.hpp"
+#include "sim/scenario_path.hpp"
 
 namespace {
 
-using Path = std::vector<Eigen::Vector2d>;
+using msislab::sim::clearance_m;
+using msislab::sim::length_m;
+using msislab::sim::min_leg_clearance_m;
+using msislab::sim::Path2;
+using msislab::sim::pull_inside;
+using msislab::sim::SceneOutline;
+using msislab::sim::simplify;
+using Path = Path2;
 
 struct Options {
   std::string dataset_dir;
@@ -40,188 +47,24 @@ struct Options {
   int timing_iterations = 8;       ///< leg speed corrections against the simulated vehicle
 };
 
-/// The scene's walls as 2-D segments and its bottom as 2-D triangles (from the OBJ groups).
-struct SceneOutline {
-  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> walls;
-  std::vector<std::array<Eigen::Vector2d, 3>> bottom;
-};
-
+/// The outline of the scene file (its groups 'walls' and 'bottom').
 SceneOutline load_outline(const std::string& path) {
-  const msislab::sim::TriangleMesh mesh = msislab::io::read_mesh(path, {});
-  SceneOutline outline;
-  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
-    const std::string& group = mesh.group_names[mesh.material_ids[i]];
-    std::array<Eigen::Vector2d, 3> corners;
-    for (int k = 0; k < 3; ++k) {
-      corners[k] = mesh.vertices_m[mesh.triangles[i][k]].head<2>().cast<double>();
-    }
-    if (group == "bottom") outline.bottom.push_back(corners);
-    if (group != "walls") continue;
-    for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector2d& a = corners[k];
-      const Eigen::Vector2d& b = corners[(k + 1) % 3];
-      if ((b - a).norm() > 1e-6) outline.walls.emplace_back(a, b);
-    }
+  try {
+    return msislab::sim::outline_of(msislab::io::read_mesh(path, {}));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path + ": " + e.what());
   }
-  if (outline.walls.empty() || outline.bottom.empty()) {
-    throw std::runtime_error(path + ": needs the groups 'walls' and 'bottom'");
-  }
-  return outline;
 }
 
-bool inside(const SceneOutline& outline, const Eigen::Vector2d& p) {
-  const auto cross = [](const Eigen::Vector2d& u, const Eigen::Vector2d& v) {
-    return u.x() * v.y() - u.y() * v.x();
-  };
-  for (const auto& [a, b, c] : outline.bottom) {
-    const double s1 = cross(b - a, p - a), s2 = cross(c - b, p - b), s3 = cross(a - c, p - c);
-    if ((s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0)) return true;
-  }
-  return false;
-}
-
-/// The wall point nearest to p.
-Eigen::Vector2d nearest_wall_point(const SceneOutline& outline, const Eigen::Vector2d& p) {
-  Eigen::Vector2d nearest = outline.walls.front().first;
-  for (const auto& [a, b] : outline.walls) {
-    const double u = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
-    const Eigen::Vector2d q = a + u * (b - a);
-    if ((q - p).squaredNorm() < (nearest - p).squaredNorm()) nearest = q;
-  }
-  return nearest;
-}
-
-/// Signed clearance: distance to the nearest wall, negative outside the scene.
-double clearance_m(const SceneOutline& outline, const Eigen::Vector2d& p) {
-  const double distance_m = (nearest_wall_point(outline, p) - p).norm();
-  return inside(outline, p) ? distance_m : -distance_m;
-}
-
-/// Centred moving average over window_s; the window shrinks symmetrically at the ends, so the
-/// first and last fixes stay where they are.
+/// The GPS track smoothed over window_s.
 Path smooth_track(const std::vector<msislab::PositionFix>& fixes, double window_s) {
-  Path smoothed;
-  std::size_t lo = 0, hi = 0;
+  std::vector<double> t_s;
+  Path p_m;
   for (const msislab::PositionFix& fix : fixes) {
-    const double half_s =
-        std::min({window_s / 2.0, fix.t_s - fixes.front().t_s, fixes.back().t_s - fix.t_s});
-    while (fixes[lo].t_s < fix.t_s - half_s) ++lo;
-    while (hi + 1 < fixes.size() && fixes[hi + 1].t_s <= fix.t_s + half_s) ++hi;
-    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
-    for (std::size_t i = lo; i <= hi; ++i) sum += fixes[i].p_world_m;
-    smoothed.push_back(sum / static_cast<double>(hi - lo + 1));
+    t_s.push_back(fix.t_s);
+    p_m.push_back(fix.p_world_m);
   }
-  return smoothed;
-}
-
-/// Douglas-Peucker (Douglas and Peucker 1973) on an open polyline: the indices of the points kept.
-std::vector<std::size_t> simplify(const Path& path, double tolerance_m) {
-  std::vector<bool> keep(path.size(), false);
-  keep.front() = keep.back() = true;
-  std::vector<std::pair<std::size_t, std::size_t>> spans = {{0, path.size() - 1}};
-  while (!spans.empty()) {
-    const auto [first, last] = spans.back();
-    spans.pop_back();
-    const Eigen::Vector2d a = path[first], ab = path[last] - a;
-    double farthest_m = 0.0;
-    std::size_t farthest = first;
-    for (std::size_t i = first + 1; i < last; ++i) {
-      const double u = ab.squaredNorm() > 0.0
-                           ? std::clamp((path[i] - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0)
-                           : 0.0;
-      const double distance_m = (path[i] - a - u * ab).norm();
-      if (distance_m > farthest_m) {
-        farthest_m = distance_m;
-        farthest = i;
-      }
-    }
-    if (farthest_m <= tolerance_m) continue;
-    keep[farthest] = true;
-    spans.emplace_back(first, farthest);
-    spans.emplace_back(farthest, last);
-  }
-  std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < path.size(); ++i) {
-    if (keep[i]) kept.push_back(i);
-  }
-  return kept;
-}
-
-/// Moves a waypoint away from (or back inside) the nearest wall until it has the clearance.
-/// Returns the distance moved.
-double pull_inside(const SceneOutline& outline, Eigen::Vector2d& p, double wanted_m) {
-  const Eigen::Vector2d start = p;
-  for (int iteration = 0; iteration < 20 && clearance_m(outline, p) < wanted_m; ++iteration) {
-    const Eigen::Vector2d q = nearest_wall_point(outline, p);
-    const Eigen::Vector2d inward = (inside(outline, p) ? p - q : q - p).normalized();
-    p = q + inward * (wanted_m + 0.05);
-  }
-  return (p - start).norm();
-}
-
-double length_m(const Path& path) {
-  double total_m = 0.0;
-  for (std::size_t i = 1; i < path.size(); ++i) total_m += (path[i] - path[i - 1]).norm();
-  return total_m;
-}
-
-/// Smallest signed clearance along the legs, sampled every 0.25 m.
-double min_leg_clearance_m(const SceneOutline& outline, const Path& path) {
-  double lowest_m = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < path.size(); ++i) {
-    const int samples = 1 + static_cast<int>((path[i] - path[i - 1]).norm() / 0.25);
-    for (int k = 0; k <= samples; ++k) {
-      const Eigen::Vector2d p = path[i - 1] + (path[i] - path[i - 1]) * k / samples;
-      lowest_m = std::min(lowest_m, clearance_m(outline, p));
-    }
-  }
-  return lowest_m;
-}
-
-/// The time (from the start) at which the vehicle passes each waypoint: its closest approach,
-/// searched in order along the trajectory.
-std::vector<double> arrival_times_s(const msislab::sim::VehicleTrajectory& truth,
-                                    const Path& path) {
-  const auto& samples = truth.samples();
-  std::vector<double> arrivals = {0.0};
-  std::size_t i = 0;
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    double best_m = std::numeric_limits<double>::infinity();
-    std::size_t best = i;
-    for (; i < samples.size(); ++i) {
-      const double d_m = (samples[i].pose.translation() - path[k]).norm();
-      if (d_m < best_m) best_m = d_m, best = i;
-      if (best_m < 3.0 && d_m > best_m + 2.0) break;
-    }
-    i = best;
-    arrivals.push_back(samples[best].t_s - truth.start_s());
-  }
-  return arrivals;
-}
-
-/// Leg speeds that make the simulated vehicle reach every waypoint when the real one did: first
-/// leg length / real leg time, then each scaled by its simulated / real duration (the pursuit
-/// cuts corners) a few times. Returns the speeds and the arrival times reached.
-std::pair<std::vector<double>, std::vector<double>> timed_leg_speeds(
-    const Path& path, const std::vector<double>& real_times_s, const Options& options) {
-  msislab::sim::VehicleConfig vehicle;
-  vehicle.path_m = path;
-  for (std::size_t k = 1; k < path.size(); ++k) {
-    const double leg_s = std::max(real_times_s[k] - real_times_s[k - 1], 1.0);
-    vehicle.leg_speeds_mps.push_back(std::clamp((path[k] - path[k - 1]).norm() / leg_s, 0.02, 1.0));
-  }
-  std::vector<double> arrivals;
-  for (int iteration = 0; iteration <= options.timing_iterations; ++iteration) {
-    arrivals = arrival_times_s(msislab::sim::follow_path(vehicle), path);
-    if (iteration == options.timing_iterations) break;
-    for (std::size_t k = 1; k < path.size(); ++k) {
-      const double simulated_s = std::max(arrivals[k] - arrivals[k - 1], 1.0);
-      const double real_s = std::max(real_times_s[k] - real_times_s[k - 1], 1.0);
-      vehicle.leg_speeds_mps[k - 1] =
-          std::clamp(vehicle.leg_speeds_mps[k - 1] * simulated_s / real_s, 0.02, 1.0);
-    }
-  }
-  return {vehicle.leg_speeds_mps, arrivals};
+  return msislab::sim::smooth_track(t_s, p_m, window_s);
 }
 
 /// Waypoints with the real time (from the first fix) of the fix each was kept from.
@@ -288,7 +131,8 @@ void make_scenario(const Options& options) {
   const Path smoothed = smooth_track(fixes, options.smooth_s);
   const Waypoints waypoints = place_waypoints(fixes, smoothed, outline, options);
   const Path& path = waypoints.path;
-  const auto [leg_speeds_mps, arrivals_s] = timed_leg_speeds(path, waypoints.real_times_s, options);
+  const auto [leg_speeds_mps, arrivals_s] =
+      msislab::sim::timed_leg_speeds(path, waypoints.real_times_s, options.timing_iterations);
 
   double lowest_m = std::numeric_limits<double>::infinity();
   for (const Eigen::Vector2d& p : path) lowest_m = std::min(lowest_m, clearance_m(outline, p));

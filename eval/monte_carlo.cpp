@@ -63,6 +63,73 @@ std::vector<std::string> segment_names(const std::vector<MonteCarloRun>& runs) {
   return names;
 }
 
+// Per time the runs sampled (errors_at: t_s -> the runs' errors then), in time order, the
+// spread of the errors.
+std::vector<ErrorSpread> error_spread(const std::map<double, std::vector<double>>& errors_at) {
+  std::vector<ErrorSpread> spread;
+  for (const auto& [t_s, errors] : errors_at) {
+    double sum = 0.0;
+    for (const double e : errors) sum += e;
+    spread.push_back({t_s, static_cast<int>(errors.size()),
+                      sum / static_cast<double>(errors.size()), quantile(errors, 0.05),
+                      quantile(errors, 0.5), quantile(errors, 0.95)});
+  }
+  return spread;
+}
+
+// The 5, 50 and 95 % quantiles of the present mean errors; nullopt when none.
+std::optional<std::array<double, 3>> mean_error_quantiles(
+    const std::vector<std::optional<double>>& mean_errors) {
+  std::vector<double> finished_means;
+  for (const std::optional<double>& m : mean_errors) {
+    if (m) finished_means.push_back(*m);
+  }
+  if (finished_means.empty()) return std::nullopt;
+  return std::array<double, 3>{quantile(finished_means, 0.05), quantile(finished_means, 0.5),
+                               quantile(finished_means, 0.95)};
+}
+
+// Per segment name, in order of first appearance, the mean over the finished runs of the
+// segment's mean error.
+std::vector<std::pair<std::string, std::optional<double>>> segment_means(
+    const std::vector<MonteCarloRun>& runs) {
+  std::vector<std::pair<std::string, std::optional<double>>> segments;
+  for (const std::string& name : segment_names(runs)) {
+    std::vector<std::optional<double>> means;
+    for (const MonteCarloRun& run : runs) {
+      if (!run.metrics) continue;
+      for (const auto& [segment, mean] : run.metrics->segments) {
+        if (segment == name) means.push_back(mean);
+      }
+    }
+    segments.emplace_back(name, mean_present(means));
+  }
+  return segments;
+}
+
+// Per diagnostic name, in order of first appearance, the mean over the finished runs with a
+// finite value.
+std::vector<std::pair<std::string, double>> diagnostic_means(
+    const std::vector<MonteCarloRun>& runs) {
+  std::vector<std::pair<std::string, std::pair<double, int>>> diagnostics;  // sum, count
+  for (const MonteCarloRun& run : runs) {
+    if (!run.metrics) continue;
+    for (const auto& [name, value] : run.metrics->diagnostics) {
+      if (!std::isfinite(value)) continue;
+      auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
+                             [&](const auto& d) { return d.first == name; });
+      if (it == diagnostics.end()) it = diagnostics.insert(diagnostics.end(), {name, {0.0, 0}});
+      it->second.first += value;
+      ++it->second.second;
+    }
+  }
+  std::vector<std::pair<std::string, double>> means;
+  for (const auto& [name, sum_count] : diagnostics) {
+    means.emplace_back(name, sum_count.first / sum_count.second);
+  }
+  return means;
+}
+
 }  // namespace
 
 MethodSummary summarise_runs(const std::string& method, const std::vector<MonteCarloRun>& runs) {
@@ -96,51 +163,15 @@ MethodSummary summarise_runs(const std::string& method, const std::vector<MonteC
     for (const double v : run.nees) nees_sum += v;
     nees_count += run.nees.size();
   }
-  for (const auto& [t_s, errors] : errors_at) {
-    double sum = 0.0;
-    for (const double e : errors) sum += e;
-    summary.error_spread.push_back(
-        {t_s, static_cast<int>(errors.size()), sum / static_cast<double>(errors.size()),
-         quantile(errors, 0.05), quantile(errors, 0.5), quantile(errors, 0.95)});
-  }
+  summary.error_spread = error_spread(errors_at);
   summary.mean_error_m = mean_present(mean_errors);
-  std::vector<double> finished_means;
-  for (const std::optional<double>& m : mean_errors) {
-    if (m) finished_means.push_back(*m);
-  }
-  if (!finished_means.empty()) {
-    summary.mean_error_quantiles_m = {quantile(finished_means, 0.05), quantile(finished_means, 0.5),
-                                      quantile(finished_means, 0.95)};
-  }
+  summary.mean_error_quantiles_m = mean_error_quantiles(mean_errors);
   summary.final_error_m = mean_present(final_errors);
   if (nees_count > 0) summary.anees = nees_sum / static_cast<double>(nees_count);
   summary.nees = average_nees_over_runs(nees_by_run);
   summary.nees_in_bounds_fraction = fraction_inside(summary.nees);
-  for (const std::string& name : segment_names(runs)) {
-    std::vector<std::optional<double>> means;
-    for (const MonteCarloRun& run : runs) {
-      if (!run.metrics) continue;
-      for (const auto& [segment, mean] : run.metrics->segments) {
-        if (segment == name) means.push_back(mean);
-      }
-    }
-    summary.segments.emplace_back(name, mean_present(means));
-  }
-  std::vector<std::pair<std::string, std::pair<double, int>>> diagnostics;  // sum, count
-  for (const MonteCarloRun& run : runs) {
-    if (!run.metrics) continue;
-    for (const auto& [name, value] : run.metrics->diagnostics) {
-      if (!std::isfinite(value)) continue;
-      auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
-                             [&](const auto& d) { return d.first == name; });
-      if (it == diagnostics.end()) it = diagnostics.insert(diagnostics.end(), {name, {0.0, 0}});
-      it->second.first += value;
-      ++it->second.second;
-    }
-  }
-  for (const auto& [name, sum_count] : diagnostics) {
-    summary.diagnostics.emplace_back(name, sum_count.first / sum_count.second);
-  }
+  summary.segments = segment_means(runs);
+  summary.diagnostics = diagnostic_means(runs);
   return summary;
 }
 

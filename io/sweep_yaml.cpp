@@ -71,6 +71,84 @@ std::string emit(const YAML::Node& node) {
   return std::string(out.c_str()) + "\n";
 }
 
+/// The methods list, when given, replaces the default methods.
+void read_methods(YamlMap& root, Sweep& sweep) {
+  if (!root.has("methods")) return;
+  const YAML::Node methods = root.node("methods");
+  if (!methods.IsSequence() || methods.size() == 0) {
+    root.fail("methods", "expected a non-empty list of method names");
+  }
+  sweep.methods.clear();
+  for (const YAML::Node& m : methods) {
+    if (!m.IsScalar()) root.fail_node(m, "methods", "expected a method name");
+    sweep.methods.push_back(m.Scalar());
+  }
+}
+
+/// grid: a list of values per key; the cells are every combination, the last key fastest.
+void read_grid(YamlMap& root, Sweep& sweep) {
+  YamlMap grid = root.map("grid");
+  std::vector<std::vector<SweepValue>> values;
+  for (const std::string& key : grid.keys()) {
+    check_key(grid, key);
+    const YAML::Node list = grid.node(key);
+    if (!list.IsSequence() || list.size() == 0) {
+      grid.fail(key, "expected a non-empty list of values");
+    }
+    sweep.keys.push_back(key);
+    values.emplace_back();
+    for (const YAML::Node& v : list) values.back().push_back(value_of(v));
+  }
+  if (sweep.keys.empty()) root.fail("grid", "has no key");
+  grid.finish();
+  // Every combination, the last key fastest.
+  std::vector<std::size_t> at(values.size(), 0);
+  while (true) {
+    SweepCell cell;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      cell.overrides.emplace_back(sweep.keys[k], values[k][at[k]]);
+    }
+    sweep.cells.push_back(std::move(cell));
+    std::size_t k = values.size();
+    while (k > 0 && ++at[k - 1] == values[k - 1].size()) at[--k] = 0;
+    if (k == 0) break;
+  }
+}
+
+/// cells: a list of mappings of key: value, one per cell; the keys in order of first appearance.
+void read_cells(YamlMap& root, const std::string& path, Sweep& sweep) {
+  const YAML::Node cells = root.node("cells");
+  if (!cells.IsSequence() || cells.size() == 0) {
+    root.fail("cells", "expected a non-empty list of cells (mappings of key: value)");
+  }
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    YamlMap cell_map(cells[i], path, "cells[" + std::to_string(i) + "]");
+    SweepCell cell;
+    for (const std::string& key : cell_map.keys()) {
+      check_key(cell_map, key);
+      cell.overrides.emplace_back(key, value_of(cell_map.node(key)));
+      if (std::find(sweep.keys.begin(), sweep.keys.end(), key) == sweep.keys.end()) {
+        sweep.keys.push_back(key);
+      }
+    }
+    if (cell.overrides.empty()) root.fail_node(cells[i], "cells", "a cell sets no key");
+    cell_map.finish();
+    sweep.cells.push_back(std::move(cell));
+  }
+}
+
+/// InputError naming the first two cells that are the same.
+void check_cells_differ(const std::string& path, const std::vector<SweepCell>& cells) {
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (describe_cell(cells[i]) == describe_cell(cells[j])) {
+        fail_file(path, "cells " + std::to_string(j) + " and " + std::to_string(i) +
+                            " are the same (" + describe_cell(cells[i]) + ")");
+      }
+    }
+  }
+}
+
 }  // namespace
 
 Sweep read_sweep(const std::string& path) {
@@ -87,76 +165,17 @@ Sweep read_sweep(const std::string& path) {
   if (!root.integer("runs", runs)) root.fail("runs", "is required");
   if (runs < 1) root.fail("runs", "must be at least 1");
   sweep.runs = static_cast<int>(runs);
-  if (root.has("methods")) {
-    const YAML::Node methods = root.node("methods");
-    if (!methods.IsSequence() || methods.size() == 0) {
-      root.fail("methods", "expected a non-empty list of method names");
-    }
-    sweep.methods.clear();
-    for (const YAML::Node& m : methods) {
-      if (!m.IsScalar()) root.fail_node(m, "methods", "expected a method name");
-      sweep.methods.push_back(m.Scalar());
-    }
-  }
+  read_methods(root, sweep);
   if (root.has("grid") == root.has("cells")) {
     root.fail(root.has("grid") ? "cells" : "grid", "give exactly one of grid and cells");
   }
   if (root.has("grid")) {
-    YamlMap grid = root.map("grid");
-    std::vector<std::vector<SweepValue>> values;
-    for (const std::string& key : grid.keys()) {
-      check_key(grid, key);
-      const YAML::Node list = grid.node(key);
-      if (!list.IsSequence() || list.size() == 0) {
-        grid.fail(key, "expected a non-empty list of values");
-      }
-      sweep.keys.push_back(key);
-      values.emplace_back();
-      for (const YAML::Node& v : list) values.back().push_back(value_of(v));
-    }
-    if (sweep.keys.empty()) root.fail("grid", "has no key");
-    grid.finish();
-    // Every combination, the last key fastest.
-    std::vector<std::size_t> at(values.size(), 0);
-    while (true) {
-      SweepCell cell;
-      for (std::size_t k = 0; k < values.size(); ++k) {
-        cell.overrides.emplace_back(sweep.keys[k], values[k][at[k]]);
-      }
-      sweep.cells.push_back(std::move(cell));
-      std::size_t k = values.size();
-      while (k > 0 && ++at[k - 1] == values[k - 1].size()) at[--k] = 0;
-      if (k == 0) break;
-    }
+    read_grid(root, sweep);
   } else {
-    const YAML::Node cells = root.node("cells");
-    if (!cells.IsSequence() || cells.size() == 0) {
-      root.fail("cells", "expected a non-empty list of cells (mappings of key: value)");
-    }
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      YamlMap cell_map(cells[i], path, "cells[" + std::to_string(i) + "]");
-      SweepCell cell;
-      for (const std::string& key : cell_map.keys()) {
-        check_key(cell_map, key);
-        cell.overrides.emplace_back(key, value_of(cell_map.node(key)));
-        if (std::find(sweep.keys.begin(), sweep.keys.end(), key) == sweep.keys.end()) {
-          sweep.keys.push_back(key);
-        }
-      }
-      if (cell.overrides.empty()) root.fail_node(cells[i], "cells", "a cell sets no key");
-      cell_map.finish();
-      sweep.cells.push_back(std::move(cell));
-    }
+    read_cells(root, path, sweep);
   }
   root.finish();
-  for (std::size_t i = 0; i < sweep.cells.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      if (describe_cell(sweep.cells[i]) == describe_cell(sweep.cells[j])) {
-        fail_file(path, "cells " + std::to_string(j) + " and " + std::to_string(i) +
-                            " are the same (" + describe_cell(sweep.cells[i]) + ")");
-      }
-    }
-  }
+  check_cells_differ(path, sweep.cells);
   return sweep;
 }
 

@@ -26,6 +26,84 @@ std::string rejection_name(MatchRejection rejection) {
   return "none";
 }
 
+namespace {
+
+/// The frame (u, v, yaw) in which the restarts are compared, as rows. u: the translation
+/// direction the reference's walls constrain least (the normals' scatter sum n n^T is smallest
+/// along a corridor's axis); v across it. With too few wall-like points to tell (from_walls
+/// false), u and v are the axes of the match's covariance and both are tested.
+struct ComparisonFrame {
+  Eigen::Matrix3d rows = Eigen::Matrix3d::Zero();
+  bool from_walls = false;
+};
+
+ComparisonFrame comparison_frame(const std::vector<ScanPoint>& reference, const GaussianPose2& q,
+                                 const ScanMatchConfig& matching) {
+  Eigen::Matrix2d normal_scatter = Eigen::Matrix2d::Zero();
+  int walls = 0;
+  for (const Eigen::Vector2d& n : line_normals(reference, matching.line)) {
+    if (n.squaredNorm() > 0.0) normal_scatter += n * n.transpose(), ++walls;
+  }
+  ComparisonFrame frame;
+  frame.from_walls = walls >= matching.min_inliers;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(
+      frame.from_walls ? normal_scatter : Eigen::Matrix2d(q.cov.topLeftCorner<2, 2>()));
+  const Eigen::Vector2d u = eigen.eigenvectors().col(frame.from_walls ? 0 : 1);
+  frame.rows.block<1, 2>(0, 0) = u.transpose();
+  frame.rows.block<1, 2>(1, 0) = Eigen::Vector2d(-u.y(), u.x()).transpose();
+  frame.rows(2, 2) = 1.0;
+  return frame;
+}
+
+/// Where the restarts from either side of the solution q ended, and along which axes of the
+/// frame some restart slid away from it.
+struct RestartEnds {
+  std::vector<Eigen::Vector3d> ends;  ///< each valid restart's end against q, in the frame
+  bool slid[2] = {false, false};
+};
+
+/// Restarts spIC from q moved along the frame's tested axes, C being q's covariance in the
+/// frame; counts them in `restarts`.
+RestartEnds restart_ends(const std::vector<ScanPoint>& reference,
+                         const std::vector<ScanPoint>& current, const GaussianPose2& guess,
+                         const GaussianPose2& q, const ComparisonFrame& frame,
+                         const Eigen::Matrix3d& C, const ScanMatchConfig& matching,
+                         const MatchValidationConfig& validation, int& restarts) {
+  RestartEnds out;
+  for (int axis = 0; axis < (frame.from_walls ? 1 : 2); ++axis) {
+    const double offset_m = std::max(validation.restart_offset_m, 3.0 * std::sqrt(C(axis, axis)));
+    for (const double side : {1.0, -1.0}) {
+      // From the solution moved by the offset, the guess's covariance widened along the axis so
+      // the offset is two standard deviations there: the association gate reaches the true
+      // counterparts from the restart.
+      const Eigen::Vector3d step = offset_m * frame.rows.row(axis).transpose();
+      GaussianPose2 start = guess;
+      start.mean = Pose2(q.mean.vector() + side * step);
+      start.cov += 0.25 * step * step.transpose();
+      const ScanMatchResult restart = match_scans(reference, current, start, matching);
+      ++restarts;
+      if (!restart.valid) continue;  // no minimum from there: no evidence either way
+      const Eigen::Vector3d d = frame.rows * pose_difference(restart.estimate.mean, q.mean);
+      if (std::abs(d(axis)) > validation.max_kept_fraction * offset_m) out.slid[axis] = true;
+      out.ends.push_back(d);
+    }
+  }
+  return out;
+}
+
+/// Whether every restart ends where the solution is in the kept directions: within the gate of
+/// the solution's covariance there (C_kept, factored).
+bool restarts_agree(const RestartEnds& restarts, const std::vector<Eigen::Index>& kept,
+                    const Eigen::LDLT<Eigen::MatrixXd>& C_kept, double gate) {
+  for (const Eigen::Vector3d& end : restarts.ends) {
+    const Eigen::VectorXd d = end(kept);
+    if (d.dot(C_kept.solve(d)) > gate) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
 ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
                                   const std::vector<ScanPoint>& current, const GaussianPose2& guess,
                                   const ScanMatchConfig& matching,
@@ -43,66 +121,28 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
   }
   if (validation.restart_offset_m <= 0.0) return out;
 
-  // u: the translation direction the reference's walls constrain least (the normals' scatter
-  // sum n n^T is smallest along a corridor's axis); v across it. With too few wall-like points to
-  // tell, u and v are the axes of the match's covariance and both are tested.
   const GaussianPose2& q = out.match.estimate;
-  Eigen::Matrix2d normal_scatter = Eigen::Matrix2d::Zero();
-  int walls = 0;
-  for (const Eigen::Vector2d& n : line_normals(reference, matching.line)) {
-    if (n.squaredNorm() > 0.0) normal_scatter += n * n.transpose(), ++walls;
-  }
-  const bool from_walls = walls >= matching.min_inliers;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(
-      from_walls ? normal_scatter : Eigen::Matrix2d(q.cov.topLeftCorner<2, 2>()));
-  const Eigen::Vector2d u = eigen.eigenvectors().col(from_walls ? 0 : 1);
-  // Rows of the frame (u, v, yaw) in which the restarts are compared.
-  Eigen::Matrix3d frame = Eigen::Matrix3d::Zero();
-  frame.block<1, 2>(0, 0) = u.transpose();
-  frame.block<1, 2>(1, 0) = Eigen::Vector2d(-u.y(), u.x()).transpose();
-  frame(2, 2) = 1.0;
-
+  const ComparisonFrame frame = comparison_frame(reference, q, matching);
   // Each restart's end against the solution, in the frame.
-  const Eigen::Matrix3d C = frame * q.cov * frame.transpose();
-  std::vector<Eigen::Vector3d> ends;
-  bool slid[2] = {false, false};
-  for (int axis = 0; axis < (from_walls ? 1 : 2); ++axis) {
-    const double offset_m = std::max(validation.restart_offset_m, 3.0 * std::sqrt(C(axis, axis)));
-    for (const double side : {1.0, -1.0}) {
-      // From the solution moved by the offset, the guess's covariance widened along the axis so
-      // the offset is two standard deviations there: the association gate reaches the true
-      // counterparts from the restart.
-      const Eigen::Vector3d step = offset_m * frame.row(axis).transpose();
-      GaussianPose2 start = guess;
-      start.mean = Pose2(q.mean.vector() + side * step);
-      start.cov += 0.25 * step * step.transpose();
-      const ScanMatchResult restart = match_scans(reference, current, start, matching);
-      ++out.restarts;
-      if (!restart.valid) continue;  // no minimum from there: no evidence either way
-      const Eigen::Vector3d d = frame * pose_difference(restart.estimate.mean, q.mean);
-      if (std::abs(d(axis)) > validation.max_kept_fraction * offset_m) slid[axis] = true;
-      ends.push_back(d);
-    }
-  }
+  const Eigen::Matrix3d C = frame.rows * q.cov * frame.rows.transpose();
+  const RestartEnds restarts =
+      restart_ends(reference, current, guess, q, frame, C, matching, validation, out.restarts);
   // The directions observed: yaw, and each axis no restart slid along.
   std::vector<Eigen::Index> kept;
   for (Eigen::Index axis = 0; axis < 2; ++axis) {
-    if (!slid[axis]) kept.push_back(axis);
+    if (!restarts.slid[axis]) kept.push_back(axis);
   }
   kept.push_back(2);
   // In those directions every restart must end where the solution is.
   const double gate =
       chi2_quantile(validation.ambiguity_probability, static_cast<int>(kept.size()));
   const Eigen::LDLT<Eigen::MatrixXd> C_kept(C(kept, kept));
-  for (const Eigen::Vector3d& end : ends) {
-    const Eigen::VectorXd d = end(kept);
-    if (d.dot(C_kept.solve(d)) > gate) {
-      out.rejection = MatchRejection::kAmbiguous;
-      return out;
-    }
+  if (!restarts_agree(restarts, kept, C_kept, gate)) {
+    out.rejection = MatchRejection::kAmbiguous;
+    return out;
   }
   if (kept.size() < 3) {
-    out.observed = frame(kept, Eigen::all);
+    out.observed = frame.rows(kept, Eigen::all);
     out.direction_dropped = true;
   }
   return out;

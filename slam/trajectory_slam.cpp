@@ -4,7 +4,6 @@
 #include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -257,111 +256,7 @@ void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::s
   }
 }
 
-void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t>& candidates,
-                                    SlamStepStats& stats) {
-  // Every match from the prediction: Eq. 8 stacks them before any update.
-  std::vector<ValidatedMatch> matches;
-  std::vector<GaussianPose2> predictions(candidates.size());
-  std::vector<RelativePoseObservation> observations;
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    ValidatedMatch m = match(candidates[c], k, predictions[c]);
-    if (m.match.valid) ++stats.matched;
-    if (m.rejection == MatchRejection::kNone) {
-      observations.push_back({candidates[c], m.match.estimate.mean, m.observed});
-    }
-    matches.push_back(std::move(m));
-  }
-  std::vector<std::size_t> used;  // indices into matches of the observations
-  for (std::size_t i = 0; i < matches.size(); ++i) {
-    if (matches[i].rejection == MatchRejection::kNone) used.push_back(i);
-  }
-  // The stacked covariance: A_i cov(z_i, z_j) A_j^T, cov(z_i, z_i) spIC's own, and between two
-  // matches the errors of the newest scan they share (docs/trajectory_slam.md, "Joint update").
-  const std::size_t n = used.size();
-  std::vector<Eigen::Index> offset(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) offset[i + 1] = offset[i] + observations[i].observed.rows();
-  Eigen::MatrixXd R_all = Eigen::MatrixXd::Zero(offset[n], offset[n]);
-  for (std::size_t i = 0; i < n; ++i) {
-    const ValidatedMatch& mi = matches[used[i]];
-    for (std::size_t j = i; j < n; ++j) {
-      const ValidatedMatch& mj = matches[used[j]];
-      Eigen::Matrix3d C = mi.match.estimate.cov;
-      if (j != i) {
-        C = config_.match_cross_covariance
-                ? shared_current_covariance(mi.match, mj.match, points_[k])
-                : Eigen::Matrix3d::Zero();
-      }
-      const Eigen::MatrixXd block = mi.observed * C * mj.observed.transpose();
-      R_all.block(offset[i], offset[j], block.rows(), block.cols()) = block;
-      R_all.block(offset[j], offset[i], block.cols(), block.rows()) = block.transpose();
-    }
-  }
-  // Joint compatibility (JCBB-style): the largest set of matches whose stack agrees with the
-  // prediction at the gate's probability, the lowest NIS among sets of that size. Up to
-  // kExhaustive matches every subset is tried; beyond, the match of largest NIS of its own
-  // leaves until the rest agree.
-  std::vector<RelativePoseObservation> z;
-  Eigen::MatrixXd R;
-  const auto select = [&](const std::vector<std::size_t>& set) {  // z and R of a set
-    z.clear();
-    std::vector<Eigen::Index> rows;
-    for (const std::size_t i : set) {
-      z.push_back(observations[i]);
-      for (Eigen::Index r = offset[i]; r < offset[i + 1]; ++r) rows.push_back(r);
-    }
-    R = R_all(rows, rows);
-  };
-  const auto compatible = [&](const std::vector<std::size_t>& set, double* nis) {
-    select(set);
-    *nis = innovation_nis(k, z, R);
-    return *nis <= gate_for_dimensions(config_.innovation_gate_chi2, R.rows());
-  };
-  // Each match's own NIS against the prediction: the greedy search below drops the largest first,
-  // and matches.csv reports it.
-  std::vector<double> own(n);
-  for (std::size_t i = 0; i < n; ++i) compatible({i}, &own[i]);
-  constexpr std::size_t kExhaustive = 8;
-  std::vector<std::size_t> chosen;
-  if (n <= kExhaustive) {
-    double best = std::numeric_limits<double>::infinity();
-    for (std::uint32_t mask = 1; mask < (1u << n); ++mask) {
-      std::vector<std::size_t> set;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (mask >> i & 1u) set.push_back(i);
-      }
-      double nis = 0.0;
-      if (set.size() < chosen.size() || !compatible(set, &nis)) continue;
-      if (set.size() > chosen.size() || nis < best) chosen = set, best = nis;
-    }
-  } else {
-    std::vector<std::size_t> set(n);
-    for (std::size_t i = 0; i < n; ++i) set[i] = i;
-    double nis = 0.0;
-    while (!set.empty() && !compatible(set, &nis)) {
-      set.erase(std::max_element(set.begin(), set.end(),
-                                 [&](std::size_t a, std::size_t b) { return own[a] < own[b]; }));
-    }
-    chosen = set;
-  }
-  std::vector<bool> accepted(n, false);
-  if (!chosen.empty()) {
-    select(chosen);
-    if (update_relative_poses(k, z, R, stats.window_elements)) {
-      for (const std::size_t i : chosen) accepted[i] = true;
-      stats.accepted += static_cast<int>(chosen.size());
-    }
-  }
-  std::vector<double> own_nis(matches.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!accepted[i]) matches[used[i]].rejection = MatchRejection::kInnovation;
-    own_nis[used[i]] = own[i];
-  }
-  for (std::size_t c = 0; c < matches.size(); ++c) {
-    stats.matches.push_back(record_of(candidates[c], k, matches[c], predictions[c], own_nis[c]));
-    stats.rejections.count(matches[c]);
-    totals_.rejections.count(matches[c]);
-  }
-}
+// update_jointly, the same matches in one update (paper Eq. 8): slam/joint_update.cpp.
 
 Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
                                                  const std::vector<RelativePoseObservation>& z,

@@ -266,6 +266,7 @@ void read_instance(DataReader& data, const Element& e, std::int64_t i, PlyData& 
 }
 
 void read_element(DataReader& data, const Element& e, PlyData& out, const std::string& path) {
+  if (e.properties.empty()) return;  // no data, however many instances are announced
   std::int64_t i = 0;
   try {
     for (; i < e.count; ++i) {

@@ -104,6 +104,10 @@ TEST(Ply, MalformedFilesAreOneLineErrors) {
             p + ":9: field 2 (y) 'x' is not a number");
   EXPECT_EQ(error("ply\nformat ascii 1.0\n" + xyz + "1 2 3\n1 inf 3\n"),
             p + ": vertex 1 has a non-finite coordinate");
+  // An element without properties holds no data, however many it announces.
+  EXPECT_EQ(error("ply\nformat binary_little_endian 1.0\nelement e 999999999999\n" + xyz +
+                  "abcdefghijkl"),
+            p + ": truncated: the header announces 2 vertices, the file has 1");
   EXPECT_EQ(error("ply\nformat binary_little_endian 1.0\n" + xyz + "abcdefghijkl"),
             p + ": truncated: the header announces 2 vertices, the file has 1");
   EXPECT_EQ(error("ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int "

@@ -7,6 +7,7 @@
 
 #include "slam/iterated_ekf.hpp"
 #include "slam/match_validation.hpp"
+#include "slam/numerical_error.hpp"
 
 namespace msislab {
 
@@ -118,8 +119,11 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     totals_.matched += stats.matched;
     totals_.accepted += stats.accepted;
   }
+  require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
+                 scan.t_s, "compass and match updates");
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
     solve();
+    require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, scan.t_s, "solve");
   }
   online_.push_back({graph_->pose(node), newest.cov});
   return stats;
@@ -219,7 +223,7 @@ void PoseGraphSlam::smooth() const {
 
 GaussianPose2 PoseGraphSlam::scan_pose_world(std::size_t i) const {
   smooth();
-  return smoothed_.at(i);
+  return require_finite(smoothed_.at(i), "pose graph", i);
 }
 
 }  // namespace msislab

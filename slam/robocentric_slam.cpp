@@ -1,6 +1,7 @@
 #include "slam/robocentric_slam.hpp"
 
 #include "geometry/pose_chain.hpp"
+#include "slam/numerical_error.hpp"
 
 namespace msislab {
 
@@ -56,7 +57,8 @@ Pose2 RoboCentricSlam::pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) co
 GaussianPose2 RoboCentricSlam::scan_pose_world(std::size_t i) const {
   Eigen::MatrixXd H;
   const Pose2 relative = chain_pose(0, i, &H);
-  return compose(start_world_, GaussianPose2{relative, propagate(0, H)});
+  return require_finite(compose(start_world_, GaussianPose2{relative, propagate(0, H)}),
+                        "trajectory SLAM", i);
 }
 
 std::vector<double> RoboCentricSlam::distances_to_newest() const {

@@ -9,6 +9,7 @@
 #include <limits>
 
 #include "slam/iterated_ekf.hpp"
+#include "slam/numerical_error.hpp"
 
 namespace msislab {
 
@@ -81,6 +82,13 @@ Eigen::Matrix3d TrajectorySlam::propagate(std::size_t first, const Eigen::Matrix
   return J * P_.block(f, f, J.cols(), J.cols()) * J.transpose();
 }
 
+bool TrajectorySlam::state_finite() const {
+  for (const Pose2& element : elements_) {
+    if (!element.vector().allFinite()) return false;
+  }
+  return P_.allFinite();
+}
+
 SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   SlamStepStats stats;
   const bool motion_ok = scan.motion.mean.vector().allFinite() && scan.motion.cov.allFinite();
@@ -90,11 +98,14 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   ++totals_.scans;
 
   const std::size_t k = elements_.size() - 1;
+  require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "prediction");
   if (config_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
       scan.compass_sigma_rad > 0.0) {
     stats.compass_accepted = update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad,
                                             stats.window_elements);
     totals_.compass_accepted += stats.compass_accepted;
+    if (stats.compass_accepted)
+      require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "compass update");
   }
   if (!motion_ok || static_cast<int>(points_[k].size()) < config_.matching.min_inliers) {
     stats.skipped = true;
@@ -117,6 +128,8 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   } else {
     update_sequentially(k, references, stats);
   }
+  if (stats.accepted > 0)
+    require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "match updates");
   for (std::size_t c = 0; c < stats.matches.size(); ++c) {
     stats.matches[c].distance_m = candidates[c].first;
   }

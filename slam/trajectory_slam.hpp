@@ -206,6 +206,8 @@ class TrajectorySlam : public ScanSlam {
               double gate_chi2, bool measure_linearisation, int& window_elements);
   /// With linearisation_samples > 0: tallies epsilon of the newest scan's pose in the start frame.
   void measure_pose_linearisation();
+  /// Every state element and the covariance are finite (checked after each stage of a step).
+  bool state_finite() const;
   /// The step's validated matches of scan k against the candidates, one update after the other.
   void update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
                            SlamStepStats& stats);

@@ -1,6 +1,7 @@
 #include "slam/worldcentric_slam.hpp"
 
 #include "geometry/pose_chain.hpp"
+#include "slam/numerical_error.hpp"
 
 namespace msislab {
 
@@ -36,7 +37,8 @@ Pose2 WorldCentricSlam::pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) c
 GaussianPose2 WorldCentricSlam::scan_pose_world(std::size_t i) const {
   Eigen::MatrixXd H;
   const Pose2 relative = pose_in_start_frame(i, &H);
-  return compose(start_world_, GaussianPose2{relative, propagate(0, H)});
+  return require_finite(compose(start_world_, GaussianPose2{relative, propagate(0, H)}),
+                        "trajectory SLAM", i);
 }
 
 std::vector<double> WorldCentricSlam::distances_to_newest() const {

@@ -1,7 +1,7 @@
 // The msislab command line: parses arguments; each subcommand's options and callback live beside
 // the command in app/ (app/cli.hpp). Exit status 0 on success, 2 on bad input with one line on
-// stderr naming the file, line or key (docs/cli.md), 128 + the signal when a long command is
-// stopped.
+// stderr naming the file, line or key (docs/cli.md), 1 with one line on stderr when a run cannot
+// go on (a non-finite estimate), 128 + the signal when a long command is stopped.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -9,6 +9,7 @@
 #include "io/input_error.hpp"
 
 namespace {
+constexpr int kFailure = 1;
 constexpr int kBadInput = 2;
 }  // namespace
 
@@ -28,6 +29,9 @@ int main(int argc, char** argv) {
   } catch (const msislab::io::InputError& e) {
     std::cerr << "msislab: " << e.what() << "\n";
     return kBadInput;
+  } catch (const std::exception& e) {  // a run that cannot go on (a NumericalError)
+    std::cerr << "msislab: " << e.what() << "\n";
+    return kFailure;
   }
   return line.exit_status;
 }

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "geometry/se2.hpp"
+#include "slam/numerical_error.hpp"
 
 namespace msislab {
 
@@ -169,7 +170,12 @@ DeadReckoningResult run_dead_reckoning(const NavigationLog& log, const DeadRecko
   DeadReckoningEkf ekf(config, p_vehicle_dvl_m, initial);
   result.trajectory.push_back(ekf.pose());
   auto record = [&] {
-    if (ekf.time() > result.trajectory.back().t_s) result.trajectory.push_back(ekf.pose());
+    if (ekf.time() <= result.trajectory.back().t_s) return;
+    const StampedPose& pose = ekf.pose();
+    require_finite(pose.pose.mean.vector().allFinite() && pose.pose.cov.allFinite(),
+                   "dead reckoning", result.trajectory.size(), pose.t_s, "DVL or heading update",
+                   "pose");
+    result.trajectory.push_back(pose);
   };
   MeasurementFeed(log, initial.t_s)
       .run_until(

@@ -18,14 +18,14 @@ class NumericalError : public std::runtime_error {
 };
 
 /// Throws NumericalError "<estimator>: scan <scan> (t = <t_s> s): the state or its covariance is
-/// not finite after the <stage>" unless `finite`. The estimators check their state after each
-/// stage of a step.
+/// not finite after the <stage>" unless `finite` ("pose <n>" with item "pose", for dead
+/// reckoning). The estimators check their state after each stage of a step.
 inline void require_finite(bool finite, const char* estimator, std::size_t scan, double t_s,
-                           const char* stage) {
+                           const char* stage, const char* item = "scan") {
   if (finite) return;
-  throw NumericalError(std::string(estimator) + ": scan " + std::to_string(scan) +
+  throw NumericalError(std::string(estimator) + ": " + item + " " + std::to_string(scan) +
                        " (t = " + std::to_string(t_s) +
-                       " s): the state or its covariance is not finite " + "after the " + stage);
+                       " s): the state or its covariance is not finite after the " + stage);
 }
 
 /// Throws NumericalError "<estimator>: scan <scan>: its world pose or covariance is not finite"

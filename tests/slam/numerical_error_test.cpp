@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "slam/dead_reckoning.hpp"
 #include "slam/pose_graph_slam.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
@@ -55,6 +56,23 @@ TEST(NumericalError, FiltersStopWhereTheStateBecomesNonFinite) {
 TEST(NumericalError, PoseGraphStopsWhereItsBeliefBecomesNonFinite) {
   PoseGraphSlam graph(TrajectorySlamConfig{}, PoseGraphSlamConfig{}, GaussianPose2{});
   expect_numerical_error(graph, "pose graph");
+}
+
+TEST(NumericalError, DeadReckoningStopsWhereItsPoseBecomesNonFinite) {
+  NavigationLog log;
+  for (int k = 1; k <= 20; ++k) {
+    // Finite readings whose integration overflows: 1e307 m/s for seconds.
+    log.dvl.push_back({1.0 * k, Eigen::Vector2d(1e307, 1e307)});
+    log.heading.push_back({1.0 * k + 0.5, 0.0});
+  }
+  DeadReckoningConfig config;
+  config.dvl_gate_chi2 = 0.0;  // no gate: every reading is used
+  try {
+    run_dead_reckoning(log, config, Eigen::Vector2d::Zero(), StampedPose{});
+    ADD_FAILURE() << "no NumericalError";
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("dead reckoning: pose ", 0), 0u) << e.what();
+  }
 }
 
 TEST(NumericalError, FiniteStatesPass) {

@@ -3,8 +3,8 @@
 #include <filesystem>
 
 #include "app/methods.hpp"
-#include "io/text_lines.hpp"
 #include "app/report_markdown.hpp"
+#include "io/text_lines.hpp"
 #include "slam/scan_matching.hpp"
 
 namespace msislab::app {

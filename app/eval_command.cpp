@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "app/cli.hpp"
+#include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
@@ -68,10 +69,6 @@ void write_scores(const std::string& out_dir, const RunMetrics& metrics,
 }
 
 namespace {
-
-std::string absolute(const std::string& path) {
-  return fs::absolute(path).lexically_normal().string();
-}
 
 /// The run's own record. A result written without truth has none: then only --truth can score it,
 /// and the run's figures are unknown.
@@ -138,7 +135,7 @@ EvalOutcome evaluate(const EvalOptions& options) {
   metrics.anees = average_nees(nees);
   outcome.nees_rows = nees.size();
   write_scores(options.result_dir, metrics, nees, stored.dataset_dir,
-               options.truth_path.empty() ? "" : absolute(options.truth_path));
+               options.truth_path.empty() ? "" : io::absolute_path(options.truth_path));
   return outcome;
 }
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "app/fidelity_command.hpp"
+#include "io/atomic_file.hpp"
 #include "io/results.hpp"
 #include "io/text_lines.hpp"
 #include "slam/beam_segmentation.hpp"
@@ -138,7 +139,7 @@ std::string figures(const FidelityReport& r) {
 }
 
 io::Json side_json(const FidelitySide& s) {
-  return {{"dataset", fs::absolute(s.dir).lexically_normal().string()},
+  return {{"dataset", io::absolute_path(s.dir)},
           {"first_keyframe", s.beams.front().keyframe},
           {"last_keyframe", s.beams.back().keyframe},
           {"beams", s.beam_times},

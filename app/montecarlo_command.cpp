@@ -19,6 +19,7 @@
 #include "app/montecarlo_runs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
+#include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
@@ -31,10 +32,6 @@ namespace msislab::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string absolute(const std::string& path) {
-  return fs::absolute(path).lexically_normal().string();
-}
 
 void check_methods(const std::vector<std::string>& methods) {
   if (methods.empty()) throw io::InputError("--methods: no method given");
@@ -74,7 +71,7 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   lock.emplace(options.out_dir, "msislab montecarlo " + options.scenario_path);
   check_resumable(options.out_dir, ctx.scenario_text, !options.config_path.empty(), config_text,
                   options.scenario_path, manifest.executable_digest);
-  manifest.scenario_source = absolute(options.scenario_path);
+  manifest.scenario_source = io::absolute_path(options.scenario_path);
   manifest.first_seed = ctx.scenario.seed;
   manifest.runs = options.runs;
   manifest.methods = options.methods;

@@ -28,10 +28,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string absolute(const std::string& path) {
-  return fs::absolute(path).lexically_normal().string();
-}
-
 /// DIR/runs/<method>/.run_<rrrr>.partial: where a run's result is written before it is put in
 /// place, so a run directory is never half-written.
 std::string partial_dir(const std::string& dir, const std::string& method, int run) {
@@ -109,7 +105,7 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
     dataset_label = records->name;
     if (ctx.keep_datasets) {
-      dataset_label = absolute((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
+      dataset_label = io::absolute_path((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
       io::write_simulated_dataset(dataset_label, scenario, result, ctx.scenario_text);
     }
   } catch (const std::exception& e) {

@@ -53,8 +53,7 @@ RunOutcome run(const RunOptions& options) {
   method_info(options.method);  // an unknown method fails before anything is read
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
   const MethodResult result = run_method(options.method, in);
-  write_method_result(options.out_dir, result,
-                      fs::absolute(options.dataset_dir).lexically_normal().string());
+  write_method_result(options.out_dir, result, io::absolute_path(options.dataset_dir));
   return {result.trajectory, result.metrics};
 }
 

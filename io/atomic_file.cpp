@@ -64,4 +64,8 @@ void create_output_dir(const std::string& dir) {
   }
 }
 
+std::string absolute_path(const std::string& path) {
+  return std::filesystem::absolute(path).lexically_normal().string();
+}
+
 }  // namespace msislab::io

@@ -21,4 +21,7 @@ void replace_directory(const std::string& partial, const std::string& target);
 /// Creates the directory (and its parents) if needed; InputError naming it when that fails.
 void create_output_dir(const std::string& dir);
 
+/// The absolute, normalised form of a path, as result files record it.
+std::string absolute_path(const std::string& path);
+
 }  // namespace msislab::io

@@ -68,18 +68,6 @@ struct Header {
   std::size_t lines = 0;        ///< header lines
 };
 
-std::vector<std::string_view> split_blanks(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-    if (i > start) fields.push_back(line.substr(start, i - start));
-  }
-  return fields;
-}
-
 ScalarType required_type(std::string_view name, const std::string& path, std::size_t line) {
   const std::optional<ScalarType> type = scalar_type(name);
   if (!type) fail_at(path, line, "unknown property type '" + std::string(name) + "'");
@@ -87,7 +75,8 @@ ScalarType required_type(std::string_view name, const std::string& path, std::si
 }
 
 void header_line(Header& h, std::string_view line, const std::string& path, std::size_t number) {
-  const std::vector<std::string_view> f = split_blanks(line);
+  std::vector<std::string_view> f;
+  split_blanks(line, f);
   if (f.empty() || f[0] == "comment" || f[0] == "obj_info") return;
   if (f[0] == "format") {
     if (f.size() != 3) fail_at(path, number, "expected 'format TYPE 1.0'");
@@ -162,7 +151,7 @@ class DataReader {
           strip_cr(std::string_view(text_).substr(offset_, newline - offset_));
       offset_ = newline + 1;
       ++line_;
-      tokens_ = split_blanks(line);
+      split_blanks(line, tokens_);
       token_ = 0;
       if (!tokens_.empty()) return true;
     }

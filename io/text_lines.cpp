@@ -28,8 +28,9 @@ bool is_blank(char c) {
   return static_cast<unsigned char>(c) <= ' ' && (c == ' ' || c == '\t' || c == '\r');
 }
 
-// Splits on runs of blanks; a trailing '\r' (CRLF files) counts as a blank.
-void split_fields(std::string_view line, std::vector<std::string_view>& fields) {
+}  // namespace
+
+void split_blanks(std::string_view line, std::vector<std::string_view>& fields) {
   fields.clear();
   const char* p = line.data();
   const char* const end = p + line.size();
@@ -40,8 +41,6 @@ void split_fields(std::string_view line, std::vector<std::string_view>& fields) 
     if (p > start) fields.emplace_back(start, static_cast<std::size_t>(p - start));
   }
 }
-
-}  // namespace
 
 void fail_field(const FieldAt& at, std::string_view token, const std::string& what) {
   fail_at(at.path, at.line,
@@ -156,7 +155,7 @@ bool DataLines::next() {
     std::size_t first = 0;
     while (first < line.size() && is_blank(line[first])) ++first;
     if (first == line.size() || line[first] == comment_) continue;
-    split_fields(line.substr(first), fields_);
+    split_blanks(line.substr(first), fields_);
     return true;
   }
   fields_.clear();

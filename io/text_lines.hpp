@@ -35,6 +35,10 @@ double parse_finite(std::string_view token, const FieldAt& at);
 /// Parses the whole token as a decimal integer; otherwise InputError ("is not an integer").
 std::int64_t parse_integer(std::string_view token, const FieldAt& at);
 
+/// The fields of a line split on runs of spaces and tabs (a '\r' counts as a blank), into
+/// `fields` (cleared first).
+void split_blanks(std::string_view line, std::vector<std::string_view>& fields);
+
 /// Reads the whole file into memory; a missing or unreadable file is an InputError.
 std::string read_whole_file(const std::string& path);
 

@@ -116,8 +116,10 @@ std::vector<std::pair<std::string, double>> diagnostic_means(
     if (!run.metrics) continue;
     for (const auto& [name, value] : run.metrics->diagnostics) {
       if (!std::isfinite(value)) continue;
+      // C++17 lambdas cannot capture a structured binding (clang rejects it): a plain reference.
+      const std::string& key = name;
       auto it = std::find_if(diagnostics.begin(), diagnostics.end(),
-                             [&](const auto& d) { return d.first == name; });
+                             [&](const auto& d) { return d.first == key; });
       if (it == diagnostics.end()) it = diagnostics.insert(diagnostics.end(), {name, {0.0, 0}});
       it->second.first += value;
       ++it->second.second;

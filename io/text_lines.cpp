@@ -1,5 +1,6 @@
 #include "io/text_lines.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -74,14 +75,17 @@ std::string read_whole_file(const std::string& path) {
   std::error_code ec;
   const auto size_hint = std::filesystem::file_size(path, ec);
   std::string text;
-  if (!ec) text.reserve(static_cast<std::size_t>(size_hint));
+  // The first read asks for one byte more than the file's size (so a file that did not grow ends
+  // the loop at once, without zero-filling a large chunk a small file does not need).
   constexpr std::size_t kChunk = std::size_t{1} << 20;
+  std::size_t chunk = ec ? kChunk : static_cast<std::size_t>(size_hint) + 1;
   while (true) {
     const std::size_t old_size = text.size();
-    text.resize(old_size + kChunk);
-    const std::size_t got = std::fread(text.data() + old_size, 1, kChunk, file.get());
+    text.resize(old_size + chunk);
+    const std::size_t got = std::fread(text.data() + old_size, 1, chunk, file.get());
     text.resize(old_size + got);
-    if (got < kChunk) break;
+    if (got < chunk) break;
+    chunk = kChunk;
   }
   if (std::ferror(file.get())) fail_file(path, std::string("cannot read: ") + std::strerror(errno));
   return text;
@@ -94,7 +98,13 @@ LineReader::LineReader(std::string path) : path_(std::move(path)) {
   if (std::filesystem::is_directory(path_, error)) fail_file(path_, "cannot open: is a folder");
   file_.reset(gzopen(path_.c_str(), "rb"));
   if (!file_) fail_file(path_, std::string("cannot open: ") + std::strerror(errno));
-  gzbuffer(file_.get(), 1u << 20);
+  // zlib's buffers (this size in, twice it out): 1 MB for a large file, no more than the file
+  // for a small one (at least 16 kB), so that reading many small files allocates little.
+  constexpr std::uintmax_t kLargest = 1u << 20;
+  const std::uintmax_t size = std::filesystem::file_size(path_, error);
+  const std::uintmax_t buffer =
+      error ? kLargest : std::clamp<std::uintmax_t>(size, 1u << 14, kLargest);
+  gzbuffer(file_.get(), static_cast<unsigned>(buffer));
 }
 
 LineReader::~LineReader() = default;
@@ -102,17 +112,19 @@ LineReader::~LineReader() = default;
 // Appends up to one chunk of (decompressed) text; false once the data is exhausted. gzread
 // returns a cut gzip file's data without an error, so the error state is checked every time.
 bool LineReader::read_chunk() {
-  constexpr unsigned kChunk = 1u << 22;
   buffer_.erase(0, consumed_);
   consumed_ = 0;
   const std::size_t kept = buffer_.size();
-  buffer_.resize(kept + kChunk);
-  const int got = gzread(file_.get(), buffer_.data() + kept, kChunk);
+  buffer_.resize(kept + chunk_);
+  const int got = gzread(file_.get(), buffer_.data() + kept, chunk_);
   int code = Z_OK;
   const char* message = gzerror(file_.get(), &code);
   if (code == Z_BUF_ERROR) fail_file(path_, "truncated gzip data (unexpected end of file)");
   if (got < 0 || code != Z_OK) fail_file(path_, std::string("cannot read: ") + message);
   buffer_.resize(kept + static_cast<std::size_t>(got));
+  // Chunks grow from 16 kB to 4 MB: a small file costs no large zero-filled buffer, a large one
+  // is read in a few big steps.
+  chunk_ = std::min(chunk_ * 2, kMaxChunk);
   return got > 0;
 }
 

@@ -66,8 +66,10 @@ class LineReader {
   };
   std::string path_;
   std::unique_ptr<gzFile_s, Closer> file_;
+  static constexpr unsigned kMaxChunk = 1u << 22;
   std::string buffer_;
   std::size_t consumed_ = 0;
+  unsigned chunk_ = 1u << 14;  ///< the next read's size, doubling up to kMaxChunk
   bool more_ = true;
   std::size_t line_number_ = 0;
 };

@@ -7,6 +7,7 @@ packages=(
   libeigen3-dev libembree-dev libtbb-dev libopencv-dev libvtk9-dev libyaml-cpp-dev libcli11-dev libproj-dev
   libboost-dev libceres-dev nlohmann-json3-dev proj-data zlib1g-dev libgtest-dev libgmock-dev
   libbenchmark-dev xvfb xauth fonts-dejavu-core
+  clang libclang-rt-14-dev llvm  # tools/fuzz.sh (libFuzzer) and symbolized sanitizer reports
 )
 
 missing=()

@@ -78,15 +78,32 @@ class Printer {
   std::string text_;
 };
 
+std::size_t line_at(std::string_view text, std::size_t offset) {
+  const std::size_t at = std::min(offset, text.size());
+  return static_cast<std::size_t>(
+             std::count(text.begin(), text.begin() + static_cast<long>(at), '\n')) +
+         1;
+}
+
 }  // namespace
 
 Json parse_json(std::string_view text, const std::string& path) {
   try {
     return Json::parse(text.begin(), text.end());
   } catch (const Json::parse_error& e) {
-    const std::size_t at = std::min(e.byte == 0 ? 0 : e.byte - 1, text.size());
-    const auto newlines = std::count(text.begin(), text.begin() + static_cast<long>(at), '\n');
-    fail_at(path, static_cast<std::size_t>(newlines) + 1, parse_error_text(e));
+    fail_at(path, line_at(text, e.byte == 0 ? 0 : e.byte - 1), parse_error_text(e));
+  } catch (const Json::out_of_range& e) {
+    // A number beyond a double's range (found by fuzzing: 1e999 escaped as nlohmann's
+    // out_of_range). nlohmann names the number but not where it is: its first occurrence.
+    const std::string what = e.what();
+    const std::size_t open = what.find('\'');
+    const std::size_t close = what.rfind('\'');
+    const std::string number =
+        open < close ? what.substr(open + 1, close - open - 1) : std::string();
+    const std::size_t at = number.empty() ? std::string_view::npos : text.find(number);
+    const std::string message = "number " + number + " is out of range";
+    if (at == std::string_view::npos) fail_file(path, message);
+    fail_at(path, line_at(text, at), message);
   }
 }
 

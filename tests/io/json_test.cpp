@@ -55,6 +55,10 @@ TEST(Json, RejectsMalformedText) {
   expect_error("{\"a\": 01}", "f.json:1:");
   expect_error("{\"a\": 1.}", "f.json:1:");
   expect_error("{\"a\": 1,}", "f.json:1:");
+  // Found by fuzzing (tests/fuzz/findings): a number beyond a double's range escaped as
+  // nlohmann's out_of_range instead of an InputError.
+  expect_error("{\"a\": 1,\n\"b\": 1e999}", "f.json:2: number 1e999 is out of range");
+  expect_error("-4.4E1462197744", "f.json:1: number -4.4E1462197744 is out of range");
 }
 
 TEST(Json, ObjectAccessorsNameTheKey) {

@@ -3,6 +3,9 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -149,23 +152,27 @@ struct PoseGraph::Problem {
 PoseGraph::PoseGraph(const PoseGraphConfig& config)
     : config_(config), problem_(std::make_unique<Problem>()) {
   problem_->c2 = config_.robust_scale_chi2;
+  poses_.reserve(kMaxNodes);
 }
 
 PoseGraph::~PoseGraph() = default;
 
 std::size_t PoseGraph::add_node(const Pose2& initial_world) {
-  poses_.push_back(std::make_unique<Eigen::Vector3d>(initial_world.vector()));
-  problem_->problem.AddParameterBlock(poses_.back()->data(), 3);
+  if (poses_.size() == kMaxNodes) {
+    throw std::length_error("pose graph: more than " + std::to_string(kMaxNodes) + " nodes");
+  }
+  poses_.push_back(initial_world.vector());  // within the reserved capacity: nothing moves
+  problem_->problem.AddParameterBlock(poses_.back().data(), 3);
   return poses_.size() - 1;
 }
 
 void PoseGraph::fix_node(std::size_t i) {
-  problem_->problem.SetParameterBlockConstant(poses_.at(i)->data());
+  problem_->problem.SetParameterBlockConstant(poses_.at(i).data());
 }
 
 void PoseGraph::add_prior(std::size_t i, const GaussianPose2& z_world) {
   problem_->problem.AddResidualBlock(new PriorCost(z_world.mean, whitening(z_world.cov)), nullptr,
-                                     poses_.at(i)->data());
+                                     poses_.at(i).data());
 }
 
 void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
@@ -181,14 +188,14 @@ void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& 
   }
   const ceres::ResidualBlockId id =
       problem_->problem.AddResidualBlock(new RelativeCost(z.mean, whitening(S) * observed), loss,
-                                         poses_.at(i)->data(), poses_.at(j)->data());
+                                         poses_.at(i).data(), poses_.at(j).data());
   if (loss) problem_->robust.push_back(id);
 }
 
 void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_rad) {
   if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
   problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr,
-                                     poses_.at(i)->data());
+                                     poses_.at(i).data());
 }
 
 PoseGraphSolve PoseGraph::solve() {
@@ -216,81 +223,110 @@ PoseGraphSolve PoseGraph::solve() {
     out.edges_downweighted += 2.0 * cost > config_.robust_scale_chi2;
   }
   // Keep the yaws wrapped, so that poses read back as the filters' do.
-  for (const auto& p : poses_) (*p)(2) = normalize_angle((*p)(2));
+  for (Eigen::Vector3d& p : poses_) p(2) = normalize_angle(p(2));
   return out;
 }
 
-Pose2 PoseGraph::pose(std::size_t i) const { return Pose2(*poses_.at(i)); }
+Pose2 PoseGraph::pose(std::size_t i) const { return Pose2(poses_.at(i)); }
 
 const ceres::Problem& PoseGraph::problem_for_checks() const { return problem_->problem; }
 
 namespace {
 
-using RowMatrix3d = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
-using Poses = std::vector<std::unique_ptr<Eigen::Vector3d>>;
+using Poses = std::vector<Eigen::Vector3d>;
 
-ceres::Covariance::Options covariance_options() {
-  ceres::Covariance::Options options;
-  options.algorithm_type = ceres::SPARSE_QR;
-  options.num_threads = 1;
-  return options;
-}
-
-/// Computes the covariance blocks `pairs` (node indices) over the whole graph's information.
-void compute_covariance(ceres::Covariance& covariance, ceres::Problem& problem, const Poses& poses,
-                        const std::vector<std::size_t>& nodes,
-                        const std::vector<std::pair<std::size_t, std::size_t>>& pairs) {
-  for (const std::size_t i : nodes) {
-    std::vector<ceres::ResidualBlockId> edges;
-    problem.GetResidualBlocksForParameterBlock(poses.at(i)->data(), &edges);
-    if (edges.empty() && !problem.IsParameterBlockConstant(poses.at(i)->data())) {
-      throw std::runtime_error("pose graph: node " + std::to_string(i) + " has no edge");
+/// The graph's information J^T J at the current estimate, over every edge (robust ones at their
+/// weight there, as the solver sees them: Problem::Evaluate applies the losses), factored once by
+/// Eigen's sparse Cholesky (AMD ordering), J's columns the free nodes in index order. A fixed
+/// node's covariance blocks are zero.
+///
+/// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its
+/// sparse QR (SuiteSparse over BLAS) gave other last bits with another memory layout, against
+/// "same seed, same bytes" (issue 17, docs/pose_graph.md). This depends only on the values.
+class Information {
+ public:
+  Information(ceres::Problem& problem, Poses& poses) : problem_(problem), poses_(poses) {
+    std::vector<double*> free_blocks;
+    column_.assign(poses.size(), -1);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      if (problem.IsParameterBlockConstant(poses[i].data())) continue;
+      column_[i] = 3 * static_cast<Eigen::Index>(free_blocks.size());
+      free_blocks.push_back(poses[i].data());
     }
+    if (free_blocks.empty()) return;
+    ceres::Problem::EvaluateOptions options;
+    options.parameter_blocks = free_blocks;  // the other blocks are held constant
+    options.num_threads = 1;
+    ceres::CRSMatrix J;
+    problem.Evaluate(options, nullptr, nullptr, nullptr, &J);
+    const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J_map(
+        J.num_rows, J.num_cols, static_cast<Eigen::Index>(J.values.size()), J.rows.data(),
+        J.cols.data(), J.values.data());
+    llt_.compute(Eigen::SparseMatrix<double>(J_map.transpose() * J_map));
+    singular_ = llt_.info() != Eigen::Success;
   }
-  std::vector<std::pair<const double*, const double*>> blocks;
-  for (const auto& [a, b] : pairs) blocks.emplace_back(poses.at(a)->data(), poses.at(b)->data());
-  if (!covariance.Compute(blocks, &problem)) {
-    throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
+
+  /// The joint marginal covariance of `nodes` (3n x 3n, in that order): the information's
+  /// inverse, solved for those nodes' columns only.
+  Eigen::MatrixXd joint(const std::vector<std::size_t>& nodes) const {
+    for (const std::size_t i : nodes) {
+      std::vector<ceres::ResidualBlockId> edges;
+      problem_.GetResidualBlocksForParameterBlock(poses_.at(i).data(), &edges);
+      if (edges.empty() && column_[i] >= 0) {
+        throw std::runtime_error("pose graph: node " + std::to_string(i) + " has no edge");
+      }
+    }
+    if (singular_) {
+      throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
+    }
+    const auto n = static_cast<Eigen::Index>(nodes.size());
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+    if (llt_.rows() == 0) return C;
+    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(llt_.rows(), 3 * n);
+    for (Eigen::Index a = 0; a < n; ++a) {
+      const Eigen::Index c = column_[nodes[static_cast<std::size_t>(a)]];
+      if (c >= 0) unit.block<3, 3>(c, 3 * a).setIdentity();
+    }
+    const Eigen::MatrixXd solved = llt_.solve(unit);
+    for (Eigen::Index a = 0; a < n; ++a) {
+      const Eigen::Index c = column_[nodes[static_cast<std::size_t>(a)]];
+      if (c >= 0) C.middleRows<3>(3 * a) = solved.middleRows<3>(c);
+    }
+    return 0.5 * (C + C.transpose());  // exactly symmetric
   }
-}
+
+ private:
+  ceres::Problem& problem_;
+  const Poses& poses_;
+  std::vector<Eigen::Index> column_;
+  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
+  bool singular_ = false;
+};
 
 }  // namespace
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
-  ceres::Covariance covariance(covariance_options());
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (const std::size_t i : nodes) pairs.emplace_back(i, i);
-  compute_covariance(covariance, problem_->problem, poses_, nodes, pairs);
+  const Information information(problem_->problem, poses_);
   std::vector<Eigen::Matrix3d> out;
-  for (const std::size_t i : nodes) {
-    RowMatrix3d C;
-    covariance.GetCovarianceBlock(poses_.at(i)->data(), poses_.at(i)->data(), C.data());
-    out.emplace_back(C);
+  // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
+  constexpr std::size_t kBatch = 64;
+  for (std::size_t first = 0; first < nodes.size(); first += kBatch) {
+    const std::vector<std::size_t> batch(
+        nodes.begin() + static_cast<long>(first),
+        nodes.begin() + static_cast<long>(std::min(first + kBatch, nodes.size())));
+    const Eigen::MatrixXd joint = information.joint(batch);
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      out.emplace_back(
+          joint.block<3, 3>(3 * static_cast<Eigen::Index>(k), 3 * static_cast<Eigen::Index>(k)));
+    }
   }
   return out;
 }
 
 Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes) {
-  ceres::Covariance covariance(covariance_options());
-  std::vector<std::pair<std::size_t, std::size_t>> pairs;
-  for (std::size_t a = 0; a < nodes.size(); ++a) {
-    for (std::size_t b = a; b < nodes.size(); ++b) pairs.emplace_back(nodes[a], nodes[b]);
-  }
-  compute_covariance(covariance, problem_->problem, poses_, nodes, pairs);
-  const auto n = static_cast<Eigen::Index>(nodes.size());
-  Eigen::MatrixXd C(3 * n, 3 * n);
-  for (Eigen::Index a = 0; a < n; ++a) {
-    for (Eigen::Index b = a; b < n; ++b) {
-      RowMatrix3d block;
-      covariance.GetCovarianceBlock(poses_.at(nodes[a])->data(), poses_.at(nodes[b])->data(),
-                                    block.data());
-      C.block<3, 3>(3 * a, 3 * b) = block;
-      C.block<3, 3>(3 * b, 3 * a) = block.transpose();
-    }
-  }
-  return C;
+  return Information(problem_->problem, poses_).joint(nodes);
 }
 
-void PoseGraph::set_pose(std::size_t i, const Pose2& world) { *poses_.at(i) = world.vector(); }
+void PoseGraph::set_pose(std::size_t i, const Pose2& world) { poses_.at(i) = world.vector(); }
 
 }  // namespace msislab

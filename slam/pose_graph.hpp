@@ -104,8 +104,15 @@ class PoseGraph {
 
  private:
   struct Problem;
+  static constexpr std::size_t kMaxNodes = std::size_t{1} << 20;  ///< 24 MB of address space
   PoseGraphConfig config_;
-  std::vector<std::unique_ptr<Eigen::Vector3d>> poses_;  ///< stable addresses for Ceres
+  /// The nodes' poses in one buffer reserved up front for kMaxNodes (address space only: its
+  /// pages are touched as nodes come), so that their addresses never move (Ceres holds them) and
+  /// increase with the node index. ceres::Covariance orders its columns by parameter-block
+  /// address: with one allocation per node, the covariances, and through them the matches and
+  /// the estimate, changed in their last bits with the memory layout (the environment's size,
+  /// the output path's length), against "same seed, same bytes".
+  std::vector<Eigen::Vector3d> poses_;
   std::unique_ptr<Problem> problem_;
 };
 

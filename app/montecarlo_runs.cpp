@@ -79,6 +79,7 @@ void injected_fault(int run, const std::string& where) {
     if (how == "crash") {
       const rlimit no_core{0, 0};  // an injected crash leaves no core file behind
       ::setrlimit(RLIMIT_CORE, &no_core);
+      std::signal(SIGSEGV, SIG_DFL);  // a signal death under AddressSanitizer's handler too
       std::raise(SIGSEGV);
     }
     if (how == "throw") throw std::runtime_error("injected failure (MSISLAB_MONTECARLO_FAULTS)");

@@ -66,8 +66,8 @@ done
 printf '%-22s %10s %8s %7s %7s %7s  %s\n' target executions exec/s cov ft corpus result
 for target in "${targets[@]}"; do
   log="$logs/$target.log"
-  runs=$(grep -oP 'stat::number_of_executed_units: \K[0-9]+' "$log" || echo "?")
-  rate=$(grep -oP 'stat::average_exec_per_sec: \K[0-9]+' "$log" || echo "?")
+  runs=$(grep -oP 'stat::number_of_executed_units: +\K[0-9]+' "$log" || echo "?")
+  rate=$(grep -oP 'stat::average_exec_per_sec: +\K[0-9]+' "$log" || echo "?")
   # The last status line: "#N DONE cov: C ft: F corp: K/..." (or the last pulse before a finding).
   last=$(grep -E '^#[0-9]+' "$log" | tail -1)
   cov=$(grep -oP 'cov: \K[0-9]+' <<<"$last" || echo "?")

@@ -25,6 +25,12 @@ void add_commands(CLI::App& app, CommandLine& line) {
   add_fidelity_command(app, line);
 }
 
+void add_force_flag(CLI::App& command, bool& force) {
+  command.add_flag("--force", force,
+                   "Replace the output folder even when msislab did not write it (its contents "
+                   "are lost; an input of the command is never replaced)");
+}
+
 std::string method_list() {
   std::string methods;
   for (const std::string& m : method_names()) methods += (methods.empty() ? "" : ", ") + m;

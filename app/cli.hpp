@@ -31,6 +31,9 @@ void add_plot_command(CLI::App& app, CommandLine& line);
 void add_report_command(CLI::App& app, CommandLine& line);
 void add_fidelity_command(CLI::App& app, CommandLine& line);
 
+/// --force: the output folder may replace a folder that msislab did not write (never an input).
+void add_force_flag(CLI::App& command, bool& force);
+
 /// Every subcommand, in the order of `msislab --help`.
 void add_commands(CLI::App& app, CommandLine& line);
 

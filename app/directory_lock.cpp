@@ -9,7 +9,6 @@
 #include <filesystem>
 #include <string>
 
-#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 
 namespace msislab::app {
@@ -25,8 +24,9 @@ std::string read_fd(int fd) {
 }
 }  // namespace
 
-DirectoryLock::DirectoryLock(const std::string& dir, const std::string& command) {
-  io::create_output_dir(dir);
+DirectoryLock::DirectoryLock(const io::OutputRequest& output, const std::string& command) {
+  io::claim_output_folder(output);
+  const std::string& dir = output.path;
   const std::string path = (std::filesystem::path(dir) / ".lock").string();
   fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)

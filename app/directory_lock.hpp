@@ -4,14 +4,17 @@
 
 #include <string>
 
+#include "io/output_guard.hpp"
+
 namespace msislab::app {
 
 class DirectoryLock {
  public:
-  /// Creates dir if needed and locks it for `command` (written into the lock file, with this
-  /// process's id, for whoever finds it held). Throws io::InputError naming the directory and the
-  /// holder when another process holds it.
-  DirectoryLock(const std::string& dir, const std::string& command);
+  /// Claims the output folder (io::claim_output_folder: created with its marker, or an earlier
+  /// output of the same kind) and locks it for `holder` (written into the lock file, with this
+  /// process's id, for whoever finds it held). Throws io::InputError naming the directory: a
+  /// folder msislab may not write, or one another process holds.
+  DirectoryLock(const io::OutputRequest& output, const std::string& holder);
   ~DirectoryLock();
   DirectoryLock(const DirectoryLock&) = delete;
   DirectoryLock& operator=(const DirectoryLock&) = delete;

@@ -1,7 +1,5 @@
 #include "app/fidelity_command.hpp"
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
@@ -10,7 +8,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <set>
 
 #include "app/cli.hpp"
 #include "app/fidelity_figures.hpp"
@@ -19,6 +16,7 @@
 #include "io/atomic_file.hpp"
 #include "io/detections.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/text_lines.hpp"
 #include "plot/chart.hpp"
 #include "plot/display.hpp"
@@ -28,11 +26,6 @@ namespace msislab::app {
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::set<std::string>& output_names() {
-  static const std::set<std::string> names = {"fidelity.md", "fidelity.json", "figures"};
-  return names;
-}
 
 std::vector<double> times_s(const std::vector<io::BeamTimeRecord>& times) {
   std::vector<double> t_s;
@@ -141,18 +134,12 @@ void check_same_setup(const FidelitySide& real, const FidelitySide& sim) {
                     "): the statistics would not compare");
 }
 
-/// --out DIR is replaced whole at the end, so it must hold nothing but an earlier report.
-void check_out_dir(const std::string& out_dir) {
-  if (out_dir.empty() || !fs::exists(out_dir)) return;
-  if (!fs::is_directory(out_dir)) io::fail_file(out_dir, "--out exists and is not a directory");
-  for (const fs::directory_entry& entry : fs::directory_iterator(out_dir)) {
-    const std::string name = entry.path().filename().string();
-    if (output_names().count(name) == 0) {
-      io::fail_file(out_dir, "--out holds '" + name +
-                                 "', which msislab fidelity did not write; it replaces the "
-                                 "folder whole, so give a new or earlier fidelity folder");
-    }
-  }
+io::OutputRequest fidelity_output(const FidelityOptions& options) {
+  return {options.out_dir,
+          "fidelity report",
+          "fidelity",
+          {options.real_dir, options.sim_dir},
+          options.force};
 }
 
 std::string folder_name(const std::string& dir) {
@@ -209,7 +196,7 @@ void append_navigation_rows(const std::string& real_dir, const std::string& sim_
 }  // namespace
 
 FidelityReport compare_datasets(const FidelityOptions& options) {
-  check_out_dir(options.out_dir);
+  if (!options.out_dir.empty()) io::check_output_folder(fidelity_output(options));
   FidelityReport report;
   report.options = options;
   report.real = open_side(options.real_dir);
@@ -226,31 +213,21 @@ FidelityReport compare_datasets(const FidelityOptions& options) {
 }
 
 std::vector<std::string> write_fidelity(const FidelityReport& report) {
-  fs::path target = fs::absolute(report.options.out_dir).lexically_normal();
-  if (target.filename().empty()) target = target.parent_path();
-  const fs::path partial = target.parent_path() / ("." + target.filename().string() + ".partial-" +
-                                                   std::to_string(::getpid()));
-  std::error_code ec;
-  fs::remove_all(partial, ec);
+  io::StagedFolder staged(fidelity_output(report.options));
+  const fs::path partial(staged.path());
   io::create_output_dir((partial / "figures").string());
   const double range_m = report.real.setup.range_m;
   const FigureSide real = figure_side(report.real, "Real"),
                    sim = figure_side(report.sim, "Simulated");
-  try {
-    const plot::ChartWriter charts;
-    charts.write_png((partial / "figures" / "ranges.png").string(),
-                     range_charts(real, sim, range_m));
-    charts.write_png((partial / "figures" / "revolution.png").string(),
-                     revolution_charts(real, sim, range_m));
-    io::write_json_file((partial / "fidelity.json").string(), fidelity_json(report),
-                        kFidelityJsonLayout);
-    io::write_file_atomically((partial / "fidelity.md").string(),
-                              [&](std::ostream& out) { out << fidelity_page(report); });
-  } catch (...) {
-    fs::remove_all(partial, ec);
-    throw;
-  }
-  io::replace_directory(partial.string(), target.string());
+  const plot::ChartWriter charts;
+  charts.write_png((partial / "figures" / "ranges.png").string(), range_charts(real, sim, range_m));
+  charts.write_png((partial / "figures" / "revolution.png").string(),
+                   revolution_charts(real, sim, range_m));
+  io::write_json_file((partial / "fidelity.json").string(), fidelity_json(report),
+                      kFidelityJsonLayout);
+  io::write_file_atomically((partial / "fidelity.md").string(),
+                            [&](std::ostream& out) { out << fidelity_page(report); });
+  staged.commit();
   const fs::path out = report.options.out_dir;
   return {(out / "fidelity.md").string(), (out / "fidelity.json").string(),
           (out / "figures" / "ranges.png").string(), (out / "figures" / "revolution.png").string()};
@@ -274,6 +251,7 @@ void add_fidelity_command(CLI::App& app, CommandLine& line) {
       ->required();
   fidelity->add_option("--out,-o", options->out_dir,
                        "Report folder (fidelity.md, fidelity.json, figures/), replaced whole");
+  add_force_flag(*fidelity, options->force);
   fidelity->add_option("--revolution-real", options->revolution_real,
                        "Keyframe of the real detections drawn in revolution.png (default: the "
                        "middle one)");

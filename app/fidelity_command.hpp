@@ -22,6 +22,7 @@ struct FidelityOptions {
   std::string out_dir;                          ///< empty: print the table only
   std::optional<std::int32_t> revolution_real;  ///< keyframe drawn; default: the middle one
   std::optional<std::int32_t> revolution_sim;   ///< default: nearest in time to the real one
+  bool force = false;                           ///< replace a folder msislab did not write
 };
 
 /// One dataset's detections, read, checked and reduced to statistics.

@@ -10,6 +10,7 @@
 #include "io/acoustic_image.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 
 namespace msislab::app {
 
@@ -41,6 +42,8 @@ void draw_image(const ImageOptions& options) {
     throw io::InputError("--revolution " + std::to_string(options.revolution) +
                          ": must be 0 or more");
   }
+  io::check_output_file({options.out_path, "image", "image", {options.dataset_dir}, false},
+                        io::png_written_by_msislab);
   const SonarRevolution revolution = read_revolution(options.dataset_dir, options.revolution);
   io::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
                            options.size_px);

@@ -68,7 +68,13 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
       options.config_path.empty() ? "" : io::read_whole_file(options.config_path);
   manifest.executable_digest = executable_digest(self_executable());
 
-  lock.emplace(options.out_dir, "msislab montecarlo " + options.scenario_path);
+  lock.emplace(
+      io::OutputRequest{options.out_dir,
+                        "montecarlo",
+                        "montecarlo",
+                        {options.scenario_path, options.config_path, ctx.scenario.scene.mesh_path},
+                        false},
+      "msislab montecarlo " + options.scenario_path);
   check_resumable(options.out_dir, ctx.scenario_text, !options.config_path.empty(), config_text,
                   options.scenario_path, manifest.executable_digest);
   manifest.scenario_source = io::absolute_path(options.scenario_path);
@@ -91,7 +97,8 @@ void check_shard_and_jobs(const std::string& shard, int jobs, int& shard_index, 
     throw io::InputError("--shard '" + shard + "': expected i/N with 0 <= i < N");
   }
   if (jobs < 0) {
-    throw io::InputError("--jobs " + std::to_string(jobs) + ": must be 0 (default) or more");
+    throw io::InputError("--jobs " + std::to_string(jobs) +
+                         ": must be 1 or more (leave it out for one per hardware thread)");
   }
 }
 
@@ -224,7 +231,8 @@ void add_montecarlo_command(CLI::App& app, CommandLine& line) {
       ->delimiter(',');
   mc->add_option("--jobs,-j", options.jobs,
                  "Runs at once (default: one per hardware thread; above 1 each simulation uses "
-                 "one thread)");
+                 "one thread)")
+      ->check(CLI::PositiveNumber);
   mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
   mc->add_option("--shard", options.shard,
                  "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");

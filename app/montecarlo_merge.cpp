@@ -74,7 +74,9 @@ MonteCarloOutcome merge_montecarlo(const MergeOptions& options) {
   manifest.shard_index = 0;
   manifest.shard_count = 1;
   const ShardHeader& first = shards.front();
-  const DirectoryLock lock(options.out_dir, "msislab montecarlo merge");
+  const DirectoryLock lock(
+      {options.out_dir, "montecarlo", "montecarlo merge", options.shard_dirs, false},
+      "msislab montecarlo merge");
   check_resumable(options.out_dir, first.scenario_text, manifest.has_config, first.config_text,
                   (fs::path(options.shard_dirs.front()) / "scenario.yaml").string(),
                   manifest.executable_digest);

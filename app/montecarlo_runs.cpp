@@ -107,7 +107,8 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     dataset_label = records->name;
     if (ctx.keep_datasets) {
       dataset_label = io::absolute_path((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
-      io::write_simulated_dataset(dataset_label, scenario, result, ctx.scenario_text);
+      io::write_simulated_dataset({dataset_label, "dataset", "montecarlo", {}, false}, scenario,
+                                  result, ctx.scenario_text);
     }
   } catch (const std::exception& e) {
     for (const std::string& method : pending) {

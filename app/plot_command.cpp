@@ -13,6 +13,7 @@
 #include "app/sweep_figures.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/atomic_file.hpp"
+#include "io/output_guard.hpp"
 #include "plot/display.hpp"
 
 namespace msislab::app {
@@ -48,9 +49,10 @@ class FigureWriter {
   const std::vector<std::string>& written() const { return written_; }
 
  private:
-  /// Creates the folder and records the file (written atomically by the drawing call).
+  /// Claims the figures folder (created with msislab's marker, or one it wrote before) and
+  /// records the file (written atomically by the drawing call).
   std::string prepare(const fs::path& dir, const std::string& name) {
-    io::create_output_dir(dir.string());
+    io::claim_output_folder({dir.string(), "figures", "plot", {}, false});
     written_.push_back((dir / name).string());
     return written_.back();
   }

@@ -6,6 +6,7 @@
 
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/tum.hpp"
 
 namespace msislab::app {
@@ -100,8 +101,12 @@ std::optional<SonarRevolution> find_revolution(const Datasets& datasets, int rev
 
 std::vector<fs::path> result_subdirs(const fs::path& dir) {
   std::vector<fs::path> subdirs;
+  // A dataset's truth/ holds a trajectory.tum too, but it is what the results are scored against.
+  const bool dataset = io::output_kind(dir.string()) == "dataset" ||
+                       io::find_dataset_files(dir.string()).dvl.has_value();
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
+    if (dataset && name == "truth") continue;
     if (entry.is_directory() && name[0] != '.' && name != "figures" && is_result_dir(entry)) {
       subdirs.push_back(entry.path());
     }

@@ -1,7 +1,5 @@
 #include "app/report_command.hpp"
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <filesystem>
@@ -13,7 +11,9 @@
 #include "app/plot_figures.hpp"
 #include "app/plot_inputs.hpp"
 #include "io/atomic_file.hpp"
+#include "io/dataset.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 
 namespace msislab::app {
 
@@ -44,6 +44,20 @@ void copy_figure(const fs::path& from, const fs::path& to) {
   if (ec) io::fail_file(from.string(), "cannot copy to " + to.string() + ": " + ec.message());
 }
 
+/// A dataset's name: the prefix of its *_DVL.log ("stpere_replica", "_040825_1735"), else the name
+/// of its folder; empty when no dataset is recorded.
+std::string dataset_name(const std::string& dataset_dir) {
+  if (dataset_dir.empty()) return "";
+  if (fs::is_directory(dataset_dir)) {
+    const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
+    if (files.dvl) {
+      const std::string log = fs::path(*files.dvl).filename().string();
+      return log.substr(0, log.size() - std::string("_DVL.log").size());
+    }
+  }
+  return fs::path(dataset_dir).lexically_normal().filename().string();
+}
+
 }  // namespace
 
 ResultFolder read_result_folder(const std::string& dir, const std::string& label) {
@@ -65,6 +79,7 @@ ResultFolder read_result_folder(const std::string& dir, const std::string& label
                      return method_rank(a.method) < method_rank(b.method);
                    });
   folder.figures = figures_of(dir);
+  folder.scenario = dataset_name(folder.dataset);
   return folder;
 }
 
@@ -85,6 +100,11 @@ MonteCarloFolder read_montecarlo_folder(const std::string& dir) {
 
 ReportOutcome write_report(const ReportOptions& options) {
   if (options.out_path.empty()) throw io::InputError("report: no output page given");
+  if (fs::path(options.out_path).extension() != ".md") {
+    io::fail_file(options.out_path,
+                  "the page must end in .md (its figures go to the folder named "
+                  "after it, without .md)");
+  }
   if (options.sim_dir.empty() && options.real_dir.empty() && options.montecarlo_dirs.empty() &&
       options.sweep_dirs.empty()) {
     throw io::InputError("report: nothing to report (give --sim, --real, --montecarlo or --sweep)");
@@ -92,6 +112,14 @@ ReportOutcome write_report(const ReportOptions& options) {
   ResultsReport report;
   const fs::path page = fs::absolute(options.out_path).lexically_normal();
   report.figures_dir_name = page.stem().string();
+  const fs::path figures = fs::path(options.out_path).replace_extension();
+  std::vector<std::string> inputs = options.montecarlo_dirs;
+  inputs.insert(inputs.end(), options.sweep_dirs.begin(), options.sweep_dirs.end());
+  inputs.insert(inputs.end(), {options.sim_dir, options.real_dir});
+  io::check_output_file({options.out_path, "page", "report", inputs, false},
+                        io::page_written_by_msislab);
+  const io::OutputRequest figures_out{figures.string(), "report figures", "report", inputs, false};
+  io::check_output_folder(figures_out);
   if (!options.sim_dir.empty()) report.sim = read_result_folder(options.sim_dir, "sim");
   if (!options.real_dir.empty()) report.real = read_result_folder(options.real_dir, "real");
   for (const std::string& dir : options.montecarlo_dirs) {
@@ -112,34 +140,23 @@ ReportOutcome write_report(const ReportOptions& options) {
   }
   const std::string markdown = results_markdown(report);
 
-  // The figures go to a scratch sibling first, which then replaces <stem>/ whole.
-  const fs::path figures = page.parent_path() / report.figures_dir_name;
-  const fs::path scratch = page.parent_path() / ("." + report.figures_dir_name + ".partial-" +
-                                                 std::to_string(::getpid()));
-  std::error_code ec;
-  fs::remove_all(scratch, ec);
-  fs::create_directories(scratch, ec);  // and the page's folder
-  if (ec) io::fail_file(scratch.string(), "cannot create: " + ec.message());
+  // The figures are staged beside their folder, which they replace whole.
+  io::StagedFolder staged(figures_out);
+  const fs::path scratch(staged.path());
   ReportOutcome outcome;
-  try {
-    const auto copy_all = [&](const std::string& dir, const std::string& label,
-                              const std::vector<std::string>& names) {
-      for (const std::string& name : names) {
-        copy_figure(fs::path(dir) / "figures" / name, scratch / (label + "_" + name));
-        outcome.figures.push_back((figures / (label + "_" + name)).string());
-      }
-    };
-    if (report.sim) copy_all(report.sim->dir, "sim", report.sim->figures);
-    if (report.real) copy_all(report.real->dir, "real", report.real->figures);
-    for (const MonteCarloFolder& mc : report.montecarlo) copy_all(mc.dir, mc.label, mc.figures);
-  } catch (...) {
-    fs::remove_all(scratch, ec);
-    throw;
-  }
-  fs::remove_all(figures, ec);
-  fs::rename(scratch, figures, ec);
-  if (ec) io::fail_file(figures.string(), "cannot put the figures in place: " + ec.message());
-  io::write_file_atomically(page.string(), [&](std::ostream& out) { out << markdown; });
+  const auto copy_all = [&](const std::string& dir, const std::string& label,
+                            const std::vector<std::string>& names) {
+    for (const std::string& name : names) {
+      copy_figure(fs::path(dir) / "figures" / name, scratch / (label + "_" + name));
+      outcome.figures.push_back((figures / (label + "_" + name)).string());
+    }
+  };
+  if (report.sim) copy_all(report.sim->dir, "sim", report.sim->figures);
+  if (report.real) copy_all(report.real->dir, "real", report.real->figures);
+  for (const MonteCarloFolder& mc : report.montecarlo) copy_all(mc.dir, mc.label, mc.figures);
+  staged.commit();
+  io::write_file_atomically(
+      page.string(), [&](std::ostream& out) { out << io::page_signature("report") << markdown; });
   return outcome;
 }
 

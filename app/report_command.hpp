@@ -35,6 +35,7 @@ struct ResultFolder {
   std::string label;                 ///< "sim" or "real": prefix of its copied figures
   std::string dir;                   ///< as given
   std::string dataset;               ///< the dataset the results were run on (metrics.json)
+  std::string scenario;              ///< its name: the prefix of its logs, else its folder's name
   std::vector<RunMetrics> results;   ///< in the order robocentric, worldcentric, deadreckoning,
                                      ///< integration, then any other by name
   std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted

@@ -11,30 +11,16 @@
 #include "app/methods.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/results.hpp"
 
 namespace msislab::app {
 
 namespace fs = std::filesystem;
 
-namespace {
-
-/// Creates the result directory and removes result files a previous run left that this run
-/// will not rewrite, so the directory never mixes two runs.
-void prepare_out_dir(const std::string& out_dir, bool writes_metrics) {
-  io::create_output_dir(out_dir);
-  std::error_code ec;
-  for (const char* stale :
-       {"scans.csv", "matches.csv", "map.ply", "nees.csv", "trajectory_smoothed.tum"}) {
-    fs::remove(fs::path(out_dir) / stale, ec);
-  }
-  if (!writes_metrics) fs::remove(fs::path(out_dir) / "metrics.json", ec);
-}
-}  // namespace
-
 void write_method_result(const std::string& out_dir, const MethodResult& result,
                          const std::string& dataset_label, bool write_map) {
-  prepare_out_dir(out_dir, result.metrics.has_value());
+  io::create_output_dir(out_dir);
   const fs::path out(out_dir);
   io::write_trajectory_tum((out / "trajectory.tum").string(), result.trajectory, result.depth_m);
   if (result.smoothed_trajectory) {
@@ -51,9 +37,14 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
 
 RunOutcome run(const RunOptions& options) {
   method_info(options.method);  // an unknown method fails before anything is read
+  const io::OutputRequest out{
+      options.out_dir, "result", "run", {options.dataset_dir, options.config_path}, options.force};
+  io::check_output_folder(out);
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
   const MethodResult result = run_method(options.method, in);
-  write_method_result(options.out_dir, result, io::absolute_path(options.dataset_dir));
+  io::StagedFolder staged(out);
+  write_method_result(staged.path(), result, io::absolute_path(options.dataset_dir));
+  staged.commit();
   return {result.trajectory, result.metrics};
 }
 
@@ -74,6 +65,7 @@ void add_run_command(CLI::App& app, CommandLine&) {
       ->required();
   run_cli->add_option("--config,-c", options->config_path,
                       "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+  add_force_flag(*run_cli, options->force);
   run_cli->callback([options] {
     const RunOutcome outcome = run(*options);
     std::cout << "wrote " << options->out_dir << "/trajectory.tum (" << outcome.trajectory.size()

@@ -20,6 +20,7 @@ struct RunOptions {
   std::string method;
   std::string out_dir;
   std::string config_path;  ///< empty: the default SLAM config
+  bool force = false;       ///< replace a folder msislab did not write
 };
 
 struct RunOutcome {
@@ -27,15 +28,16 @@ struct RunOutcome {
   std::optional<RunMetrics> metrics;  ///< present when the dataset has truth (simulation or GPS)
 };
 
-/// Writes a result directory (docs/formats.md): trajectory.tum, trajectory_smoothed.tum, scans.csv,
-/// map.ply (with write_map), matches.csv, metrics.json and nees.csv, as far as the result has them,
-/// each atomically; result files of an earlier run it does not rewrite are removed. dataset_label
-/// is recorded in metrics.json as the dataset.
+/// Writes the files of a result directory (docs/formats.md) into the new folder out_dir:
+/// trajectory.tum, trajectory_smoothed.tum, scans.csv, map.ply (with write_map), matches.csv,
+/// metrics.json and nees.csv, as far as the result has them. dataset_label is recorded in
+/// metrics.json as the dataset.
 void write_method_result(const std::string& out_dir, const MethodResult& result,
                          const std::string& dataset_label, bool write_map = true);
 
-/// Reads every input first, then runs and writes the result files atomically. Throws
-/// io::InputError on bad input (unknown method, missing or malformed files or config).
+/// Checks the output path and reads every input first, then runs and puts the result directory in
+/// place whole (io::StagedFolder). Throws io::InputError on bad input (unknown method, missing or
+/// malformed files or config, an output path msislab may not write).
 RunOutcome run(const RunOptions& options);
 
 }  // namespace msislab::app

@@ -11,6 +11,7 @@
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/results.hpp"
 #include "io/scan_figures.hpp"
 #include "slam/scan_sequence.hpp"
@@ -71,7 +72,15 @@ void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
 
 }  // namespace
 
+namespace {
+io::OutputRequest scans_output(const ScansOptions& options) {
+  return {
+      options.out_dir, "scans", "scans", {options.dataset_dir, options.config_path}, options.force};
+}
+}  // namespace
+
 ScansSummary build_scans_command(const ScansOptions& options) {
+  io::check_output_folder(scans_output(options));
   const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
@@ -100,10 +109,11 @@ ScansSummary build_scans_command(const ScansOptions& options) {
     summary.uncompensated_error_m = without;
   }
 
-  io::create_output_dir(options.out_dir);
+  io::StagedFolder staged(scans_output(options));
   std::vector<Eigen::Vector2d> truth_track;
   for (const PositionFix& f : truth.positions) truth_track.push_back(f.p_world_m);
-  write_outputs(options.out_dir, scans, truth_track, truth.kind, options.figure_scan);
+  write_outputs(staged.path(), scans, truth_track, truth.kind, options.figure_scan);
+  staged.commit();
   return summary;
 }
 
@@ -120,6 +130,7 @@ void add_scans_command(CLI::App& app, CommandLine&) {
                     "SLAM config YAML (segmentation and dead_reckoning sections)");
   scans->add_option("--figure-scan", options->figure_scan,
                     "Scan drawn before/after compensation (default: the middle one)");
+  add_force_flag(*scans, options->force);
   scans->callback([options] {
     const ScansSummary s = build_scans_command(*options);
     std::cout << "wrote " << options->out_dir << ": " << s.scans << " scans, " << s.points

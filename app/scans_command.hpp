@@ -13,6 +13,7 @@ struct ScansOptions {
   std::string out_dir;
   std::string config_path;  ///< empty: defaults
   int figure_scan = -1;     ///< scan drawn before/after compensation; -1: the middle one
+  bool force = false;       ///< replace a folder msislab did not write
 };
 
 struct ScansSummary {

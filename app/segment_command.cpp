@@ -13,6 +13,7 @@
 #include "io/beam_truth.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/stpere_logs.hpp"
 
 namespace msislab::app {
@@ -109,6 +110,10 @@ std::string segmentation_markdown(const std::vector<SegmentRow>& rows) {
 
 SegmentReport segment(const SegmentOptions& options) {
   const std::vector<SegmentationMethod> methods = requested_methods(options.methods);
+  if (!options.out_path.empty()) {
+    io::check_output_file({options.out_path, "page", "segment", {options.dataset_dir}, false},
+                          io::page_written_by_msislab);
+  }
   const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
   if (!files.is_log) io::fail_file(options.dataset_dir, "no *_IS.log (raw sonar beams) to segment");
   if (!files.truth_beams) {
@@ -129,7 +134,9 @@ SegmentReport segment(const SegmentOptions& options) {
   }
   report.markdown = segmentation_markdown(report.rows);
   if (!options.out_path.empty()) {
-    io::write_file_atomically(options.out_path, [&](std::ostream& out) { out << report.markdown; });
+    io::write_file_atomically(options.out_path, [&](std::ostream& out) {
+      out << io::page_signature("segment") << report.markdown;
+    });
   }
   return report;
 }

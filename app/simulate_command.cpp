@@ -11,6 +11,7 @@
 #include "app/cli.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
+#include "io/output_guard.hpp"
 #include "io/scenario_yaml.hpp"
 #include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
@@ -31,6 +32,12 @@ SimulateSummary simulate(const SimulateOptions& options) {
   const auto t_start = Clock::now();
   sim::Scenario scenario = io::read_scenario(options.scenario_path);
   if (options.seed) scenario.seed = *options.seed;
+  const io::OutputRequest out{options.out_dir,
+                              "dataset",
+                              "simulate",
+                              {options.scenario_path, scenario.scene.mesh_path},
+                              options.force};
+  io::check_output_folder(out);  // before the rendering, which may take minutes
   io::MeshMaterials materials{scenario.scene.default_material, scenario.scene.group_materials};
   const sim::TriangleMesh mesh = io::read_mesh(scenario.scene.mesh_path, materials);
   std::unique_ptr<sim::Scene> scene;
@@ -47,8 +54,7 @@ SimulateSummary simulate(const SimulateOptions& options) {
   const sim::SimulationResult result = sim::simulate(scenario, *scene, threads);
   SimulateSummary summary;
   summary.render_s = seconds_since(t_render);
-  io::write_simulated_dataset(options.out_dir, scenario, result,
-                              io::read_whole_file(options.scenario_path));
+  io::write_simulated_dataset(out, scenario, result, io::read_whole_file(options.scenario_path));
   summary.beams = result.beams.size();
   summary.dvl_samples = result.dvl.size();
   summary.duration_s = result.truth.end_s() - result.truth.start_s();
@@ -66,6 +72,7 @@ void add_simulate_command(CLI::App& app, CommandLine&) {
       ->required();
   command->add_option("--out,-o", options->out_dir, "Dataset directory to write")->required();
   command->add_option("--seed", options->seed, "Seed overriding the scenario's");
+  add_force_flag(*command, options->force);
   command
       ->add_option("--threads,-j", options->threads,
                    "Worker threads (default: one per hardware thread; the output is the same "

@@ -12,6 +12,7 @@ struct SimulateOptions {
   std::string out_dir;
   std::optional<std::uint64_t> seed;  ///< overrides the scenario's seed
   int threads = 0;                    ///< 0: one per hardware thread
+  bool force = false;                 ///< replace a folder msislab did not write
 };
 
 struct SimulateSummary {

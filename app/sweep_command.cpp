@@ -105,7 +105,8 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   for (std::size_t c = 0; c < plan.cells.size(); ++c) inputs.push_back(io::cell_inputs(plan, c));
   const std::string sweep_text = io::read_whole_file(options.sweep_path);
 
-  const DirectoryLock lock(options.out_dir, "msislab sweep " + options.sweep_path);
+  const DirectoryLock lock({options.out_dir, "sweep", "sweep", {options.sweep_path}, false},
+                           "msislab sweep " + options.sweep_path);
   check_same_sweep(options.out_dir, sweep_text, options.sweep_path);
   write_text((fs::path(options.out_dir) / "sweep.yaml").string(), sweep_text);
 
@@ -155,7 +156,8 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
     }
   }
   const io::Sweep plan = io::read_sweep((fs::path(shard_dirs.front()) / "sweep.yaml").string());
-  const DirectoryLock lock(out_dir, "msislab sweep merge");
+  const DirectoryLock lock({out_dir, "sweep", "sweep merge", shard_dirs, false},
+                           "msislab sweep merge");
   check_same_sweep(out_dir, sweep_text, shard_dirs.front() + "/sweep.yaml");
   write_text((fs::path(out_dir) / "sweep.yaml").string(), sweep_text);
   SweepOutcome outcome;
@@ -222,7 +224,8 @@ void add_sweep_command(CLI::App& app, CommandLine& line) {
   cli->command->add_option("--out,-o", cli->options.out_dir,
                            "Sweep directory (required); an existing one is resumed");
   cli->command->add_option("--jobs,-j", cli->options.jobs,
-                           "Runs at once in each cell (default: one per hardware thread)");
+                           "Runs at once in each cell (default: one per hardware thread)")
+      ->check(CLI::PositiveNumber);
   cli->command->add_option("--shard", cli->options.shard,
                            "i/N: in every cell only the runs r with r % N == i; merge afterwards");
   cli->command->add_flag("--no-plot", cli->no_plot, "Do not draw the figures at the end");

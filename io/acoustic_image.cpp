@@ -3,12 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "geometry/se2.hpp"
-#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/png_file.hpp"
 
 namespace msislab::io {
 
@@ -84,14 +83,6 @@ cv::Mat draw_fan(const std::vector<SonarBeamRecord>& beams, const SonarSetup& se
   cv::applyColorMap(gray, image, cv::COLORMAP_INFERNO);
   draw_range_rings(image, px_per_m, setup.range_m);
   return image;
-}
-
-void write_png(const std::string& path, const cv::Mat& image) {
-  std::vector<std::uint8_t> png;
-  if (!cv::imencode(".png", image, png)) fail_file(path, "PNG encoding failed");
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
-  });
 }
 
 /// The inferno colour bar from 0 (bottom) to 255 (top) with its ticks, at `box`.

@@ -38,24 +38,6 @@ void write_file_atomically(const std::string& path,
   }
 }
 
-void replace_directory(const std::string& partial, const std::string& target) {
-  namespace fs = std::filesystem;
-  const fs::path target_path = fs::path(target).lexically_normal();
-  const fs::path old = target_path.parent_path() / ("." + target_path.filename().string() +
-                                                    ".old-" + std::to_string(::getpid()));
-  std::error_code ec;
-  const bool had_target = fs::exists(target_path);
-  if (had_target) fs::rename(target_path, old, ec);
-  if (!ec) fs::rename(partial, target_path, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    if (had_target && !fs::exists(target_path)) fs::rename(old, target_path, ec);
-    fs::remove_all(partial, ec);
-    fail_file(target, "cannot put the folder in place: " + why);
-  }
-  fs::remove_all(old, ec);
-}
-
 void create_output_dir(const std::string& dir) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);

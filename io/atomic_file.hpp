@@ -13,11 +13,6 @@ namespace msislab::io {
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
 
-/// Renames the complete folder `partial` to `target`, replacing an earlier `target` whole: that is
-/// moved aside first and removed after. When the rename fails the earlier target is put back,
-/// `partial` is removed and InputError names target.
-void replace_directory(const std::string& partial, const std::string& target);
-
 /// Creates the directory (and its parents) if needed; InputError naming it when that fails.
 void create_output_dir(const std::string& dir);
 

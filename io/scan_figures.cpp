@@ -2,11 +2,10 @@
 
 #include <Eigen/Geometry>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/png_file.hpp"
 
 namespace msislab::io {
 
@@ -43,14 +42,6 @@ void draw_scale_bar(cv::Mat& image, const View& view, double length_m) {
   cv::line(image, a, b, cv::Scalar(0, 0, 0), 2);
   cv::putText(image, std::to_string(static_cast<int>(length_m)) + " m", a + cv::Point(0, -6),
               cv::FONT_HERSHEY_SIMPLEX, 0.45, cv::Scalar(0, 0, 0), 1, cv::LINE_AA);
-}
-
-void write_png(const std::string& path, const cv::Mat& image) {
-  std::vector<std::uint8_t> png;
-  if (!cv::imencode(".png", image, png)) fail_file(path, "PNG encoding failed");
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
-  });
 }
 
 void draw_points(cv::Mat& image, const View& view, const std::vector<Eigen::Vector2d>& points,

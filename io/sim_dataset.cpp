@@ -1,7 +1,5 @@
 #include "io/sim_dataset.hpp"
 
-#include <unistd.h>
-
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -234,29 +232,12 @@ DatasetRecords simulated_records(const sim::Scenario& scenario, const sim::Simul
   return records;
 }
 
-void write_simulated_dataset(const std::string& dir, const sim::Scenario& scenario,
+void write_simulated_dataset(const OutputRequest& out, const sim::Scenario& scenario,
                              const sim::SimulationResult& result,
                              const std::string& scenario_text) {
-  const fs::path target = fs::absolute(dir).lexically_normal();
-  const fs::path parent = target.parent_path();
-  const std::string pid = std::to_string(::getpid());
-  const fs::path partial = parent / ("." + target.filename().string() + ".partial-" + pid);
-  std::error_code ec;
-  fs::create_directories(parent, ec);
-  fs::remove_all(partial, ec);
-  if (!fs::create_directory(partial, ec)) {
-    fail_file(dir, "cannot create the output directory: " + ec.message());
-  }
-  try {
-    write_files(partial, scenario, result, scenario_text);
-  } catch (...) {
-    fs::remove_all(partial, ec);
-    throw;
-  }
-  const fs::path old = parent / ("." + target.filename().string() + ".old-" + pid);
-  if (fs::exists(target)) fs::rename(target, old);
-  fs::rename(partial, target);
-  fs::remove_all(old, ec);
+  StagedFolder staged(out);
+  write_files(staged.path(), scenario, result, scenario_text);
+  staged.commit();
 }
 
 }  // namespace msislab::io

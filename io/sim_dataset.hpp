@@ -5,14 +5,15 @@
 #include <string>
 
 #include "io/dataset.hpp"
+#include "io/output_guard.hpp"
 #include "sim/simulator.hpp"
 
 namespace msislab::io {
 
-/// Writes every file into a temporary sibling of `dir`, then puts it in place of `dir` (an
-/// earlier dataset there is replaced only once the new one is complete). `scenario_text` is kept
-/// as scenario.yaml for provenance.
-void write_simulated_dataset(const std::string& dir, const sim::Scenario& scenario,
+/// Writes every file into a staging sibling of `out.path`, then puts it in place (io::StagedFolder:
+/// an earlier dataset there is replaced only once the new one is complete, and only when msislab
+/// wrote it). `scenario_text` is kept as scenario.yaml for provenance.
+void write_simulated_dataset(const OutputRequest& out, const sim::Scenario& scenario,
                              const sim::SimulationResult& result, const std::string& scenario_text);
 
 /// The records the dataset's files hold (every file but scenario.yaml and truth/beams.csv). With

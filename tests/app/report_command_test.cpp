@@ -13,6 +13,7 @@
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
+#include "io/output_guard.hpp"
 #include "io/results.hpp"
 #include "io/sweep_files.hpp"
 #include "test_support.hpp"
@@ -46,11 +47,12 @@ RunMetrics metrics(const std::string& method, double mean_m, std::optional<doubl
 /// A folder of results: one subdirectory per method with trajectory.tum and metrics.json, and
 /// figures/.
 fs::path result_folder(const fs::path& dir, const std::vector<RunMetrics>& results,
-                       const std::vector<std::string>& figures) {
+                       const std::vector<std::string>& figures,
+                       const std::string& dataset = "/data/stpere_replica") {
   for (const RunMetrics& m : results) {
     fs::create_directories(dir / m.method);
     write_text((dir / m.method / "trajectory.tum").string(), "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
-    io::write_metrics_json((dir / m.method / "metrics.json").string(), m, "/data/stpere_replica");
+    io::write_metrics_json((dir / m.method / "metrics.json").string(), m, dataset);
   }
   fs::create_directories(dir / "figures");
   for (const std::string& f : figures) write_text((dir / "figures" / f).string(), "png " + f);
@@ -205,17 +207,60 @@ TEST(ReportCommand, FurtherMonteCarloFoldersGetSectionsOfTheirOwn) {
 
 TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
   const Inputs in;
-  fs::create_directories(in.tmp.path() / "docs" / "results");
-  write_text(in.tmp.file("docs/results/sim_stale.png"), "old");
+  write_report(in.options());  // the earlier page and its figures
+  ASSERT_TRUE(fs::exists(in.tmp.path() / "docs" / "results" / "sim_robocentric.png"));
   ReportOptions only_real = in.options();
   only_real.sim_dir.clear();
   only_real.montecarlo_dirs.clear();
   write_report(only_real);
-  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results" / "sim_stale.png"));
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results" / "sim_robocentric.png"));
   EXPECT_TRUE(fs::exists(in.tmp.path() / "docs" / "results" / "real_errors.png"));
+  // Sections appear for what was asked, and nothing else.
   const std::string page = read_text(in.tmp.file("docs/results.md"));
-  position(page, "## Table I on the simulated St. Pere replica\n\nNot run");
-  position(page, "## Monte Carlo consistency\n\nNot run.");
+  EXPECT_EQ(page.find("## Table I on the simulated"), std::string::npos) << page;
+  EXPECT_EQ(page.find("## Monte Carlo consistency"), std::string::npos) << page;
+  EXPECT_EQ(page.find("Not run"), std::string::npos) << page;
+}
+
+TEST(ReportCommand, AForeignFiguresFolderOrPageIsRefusedAndKept) {
+  const Inputs in;
+  const auto expect_error = [](const ReportOptions& options, const std::string& part) {
+    try {
+      write_report(options);
+      ADD_FAILURE() << "no InputError, expected " << part;
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  fs::create_directories(in.tmp.path() / "docs" / "results");
+  write_text(in.tmp.file("docs/results/figure.png"), "the user's");
+  expect_error(in.options(), "docs/results: is a folder that msislab did not write");
+  EXPECT_EQ(read_text(in.tmp.file("docs/results/figure.png")), "the user's");
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results.md"));
+  fs::remove_all(in.tmp.path() / "docs" / "results");
+  write_text(in.tmp.file("docs/results.md"), "# the user's page\n");
+  expect_error(in.options(), "docs/results.md: is a file that msislab did not write");
+  EXPECT_EQ(read_text(in.tmp.file("docs/results.md")), "# the user's page\n");
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results"));
+}
+
+TEST(ReportCommand, AUsersOwnScenarioIsTitledByItsName) {
+  const TempDir tmp;
+  const fs::path dataset = tmp.path() / "basin_sim";
+  fs::create_directories(dataset);
+  write_text((dataset / "basin_pier_DVL.log").string(), "");
+  const RunMetrics m = metrics("robocentric", 0.76, 3.1, std::nullopt);
+  const fs::path sim =
+      result_folder(tmp.path() / "sim", {m}, {"robocentric.png"}, dataset.string());
+  ReportOptions options;
+  options.out_path = tmp.file("page.md");
+  options.sim_dir = sim.string();
+  write_report(options);
+  const std::string page = read_text(options.out_path);
+  position(page, "## Table I on the simulated dataset `basin_pier`");
+  EXPECT_EQ(page.find("St. Pere"), std::string::npos) << page;
+  EXPECT_EQ(page.find("1.15 m"), std::string::npos) << page;
+  EXPECT_EQ(page.find("Not run"), std::string::npos) << page;
 }
 
 TEST(ReportCommand, ThePoseGraphsSmoothedErrorBesideItsOnlineOne) {
@@ -294,7 +339,8 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
 TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs");
-  const std::string page = write_text(in.tmp.file("docs/results.md"), "the earlier page\n");
+  const std::string earlier = io::page_signature("report") + "the earlier page\n";
+  const std::string page = write_text(in.tmp.file("docs/results.md"), earlier);
   const auto expect_error = [&](const ReportOptions& options, const std::string& part) {
     try {
       write_report(options);
@@ -302,7 +348,7 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
     } catch (const io::InputError& e) {
       EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
     }
-    EXPECT_EQ(read_text(page), "the earlier page\n");
+    EXPECT_EQ(read_text(page), earlier);
     EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results"));
   };
   ReportOptions options = in.options();

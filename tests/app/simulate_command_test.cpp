@@ -569,10 +569,13 @@ TEST(SimulateCommand, BadScenarioLeavesAnExistingDatasetUntouched) {
 TEST(SimulateCommand, NewDatasetReplacesAnEarlierOneWhole) {
   const TempDir tmp;
   const fs::path out = tmp.path() / "out";
-  fs::create_directories(out);
-  write_text((out / "old_IS.log").string(), "stale\n");
-  // A short run with a cheap sonar is enough here.
-  simulate(options_for(write_box_scenario(tmp.path(), "sonar: {rays_vertical: 2}\n"), out));
+  // A short run with a cheap sonar is enough here; the earlier dataset is of a scenario "old".
+  const std::string scenario = write_box_scenario(tmp.path(), "sonar: {rays_vertical: 2}\n");
+  std::string old_scenario = read_text(scenario);
+  old_scenario.replace(old_scenario.find("name: box"), 9, "name: old");
+  simulate(options_for(write_text(tmp.file("old.yaml"), old_scenario), out));
+  ASSERT_TRUE(fs::exists(out / "old_IS.log"));
+  simulate(options_for(scenario, out));
   EXPECT_FALSE(fs::exists(out / "old_IS.log"));
   EXPECT_TRUE(fs::is_regular_file(out / "box_IS.log"));
   EXPECT_NO_THROW(io::find_dataset_files(out.string()));

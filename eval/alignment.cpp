@@ -33,8 +33,9 @@ Pose2 align_se2(const std::vector<Eigen::Vector2d>& p_estimate_m,
   }
   if (!has_two_distinct(p_estimate_m) || !has_two_distinct(p_truth_m)) {
     throw std::invalid_argument(
-        "SE(2) alignment needs at least 2 distinct positions in the estimate and in the truth (" +
-        std::to_string(p_estimate_m.size()) + " matched positions)");
+        "SE(2) alignment needs at least 2 distinct positions in the estimate and in the truth "
+        "(matched positions: " +
+        std::to_string(p_estimate_m.size()) + ")");
   }
   const Eigen::Vector2d mean_estimate = centroid(p_estimate_m);
   const Eigen::Vector2d mean_truth = centroid(p_truth_m);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/relative_pose_error.hpp"
 #include "geometry/gaussian_pose.hpp"
 #include "geometry/time_segment.hpp"
 
@@ -90,6 +91,22 @@ std::optional<double> match_translation_scale(const std::vector<MatchTranslation
                                               double min_displacement_m = 1.0,
                                               double max_fix_gap_s = 5.0);
 
+/// How `msislab eval` put an estimate onto the truth before scoring it (docs/cli.md): its stamps
+/// became t_s + t_offset_s, then every pose x became T_truth_estimate (+) x.
+struct EstimateAlignment {
+  std::string method = "none";     ///< "none" or "se2"
+  std::optional<double> window_s;  ///< se2 fitted over the first window_s seconds of the overlap
+  std::size_t positions = 0;       ///< matched positions the fit used; 0 for "none"
+  double t_offset_s = 0.0;
+  Pose2 T_truth_estimate;
+};
+
+/// What `msislab eval` adds to a run's figures.
+struct EvalScores {
+  EstimateAlignment alignment;
+  std::optional<RelativePoseError> rpe;  ///< nullopt: the truth has no headings (GPS)
+};
+
 /// What metrics.json holds (docs/formats.md).
 struct RunMetrics {
   std::string method;
@@ -103,6 +120,7 @@ struct RunMetrics {
   std::optional<double> anees;  ///< only with simulation truth
   /// Method-specific figures (e.g. DVL samples used, mean innovation NIS), name -> value.
   std::vector<std::pair<std::string, double>> diagnostics;
+  std::optional<EvalScores> eval_scores;  ///< only from `msislab eval`
 };
 
 }  // namespace msislab

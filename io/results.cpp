@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "io/atomic_file.hpp"
+#include "io/eval_scores_json.hpp"
 #include "io/input_error.hpp"
 #include "io/json.hpp"
 #include "io/text_lines.hpp"
@@ -46,6 +47,7 @@ void to_json(Json& json, const StoredMetrics& stored) {
   json["runtime_s"] = m.runtime_s;
   Json& diagnostics = json["diagnostics"] = Json::object();
   for (const auto& [name, value] : m.diagnostics) diagnostics[name] = value;
+  if (m.eval_scores) add_eval_scores(json, *m.eval_scores);
 }
 
 void write_metrics_json(const std::string& path, const RunMetrics& metrics,
@@ -161,6 +163,7 @@ void from_json(const JsonObject& json, StoredMetrics& stored) {
   for (const auto& [name, value] : diagnostics.value().items()) {
     m.diagnostics.emplace_back(name, number_or_nan(diagnostics, name));
   }
+  m.eval_scores = read_eval_scores(json);
 }
 
 StoredMetrics read_metrics_json(const std::string& path) {

@@ -1,5 +1,6 @@
-// `msislab eval`: re-scoring a result directory reproduces what `msislab run` wrote, byte for byte;
-// nees.csv against a hand computation; --truth, --config and a result without truth; bad input.
+// `msislab eval`: re-scoring a result directory reproduces what `msislab run` wrote, byte for byte,
+// and adds its alignment and RPE; nees.csv against a hand computation; --truth, --config and a
+// result without truth; bad input.
 #include "app/eval_command.hpp"
 
 #include <gtest/gtest.h>
@@ -44,6 +45,24 @@ const SmallBasin& small_basin() {
   return basin;
 }
 
+// metrics.json without the members only `msislab eval` writes (the last two: "alignment", "rpe").
+std::string without_eval_members(std::string json) {
+  const std::size_t at = json.find(",\n  \"alignment\": ");
+  EXPECT_NE(at, std::string::npos) << json;
+  EXPECT_NE(json.find("\n  \"rpe\": ", at), std::string::npos) << json;
+  if (at != std::string::npos) json.replace(at, json.rfind("\n}") - at, "");
+  return json;
+}
+
+EvalOptions options_for(const std::string& result_dir, const std::string& truth_path,
+                        const std::string& config_path) {
+  EvalOptions options;
+  options.result_dir = result_dir;
+  options.truth_path = truth_path;
+  options.config_path = config_path;
+  return options;
+}
+
 fs::path run_method(const std::string& method, const fs::path& out) {
   run({small_basin().dataset.string(), method, out.string(), small_basin().config});
   return out;
@@ -62,8 +81,17 @@ TEST(EvalCommand, ReproducesWhatRunWrote) {
     EXPECT_TRUE(fs::exists(out / "scans.csv") && fs::exists(out / "map.ply")) << method;
     const std::string nees = read_text((out / "nees.csv").string());
 
-    const EvalOutcome outcome = evaluate({out.string(), "", ""});
-    EXPECT_EQ(read_text((out / "metrics.json").string()), metrics) << method;
+    const EvalOutcome outcome = evaluate(options_for(out.string(), "", ""));
+    const std::string rescored = read_text((out / "metrics.json").string());
+    EXPECT_EQ(without_eval_members(rescored), metrics) << method;
+    // No alignment by default, and the RPE over 10 m against the simulation's poses.
+    EXPECT_NE(rescored.find("\"alignment\": {\"method\": \"none\", \"window_s\": null, "
+                            "\"positions\": 0, \"t_offset_s\": 0, \"rotation_deg\": 0, "
+                            "\"x_m\": 0, \"y_m\": 0}"),
+              std::string::npos)
+        << rescored;
+    EXPECT_NE(rescored.find("\"rpe\": {\"delta_m\": 10, \"pairs\": "), std::string::npos)
+        << rescored;
     EXPECT_TRUE(outcome.metrics.anees.has_value());
     EXPECT_EQ(read_text((out / "nees.csv").string()), nees);
     EXPECT_GT(outcome.nees_rows, 3u);
@@ -119,7 +147,7 @@ TEST(EvalCommand, TruthFileAndConfigOverride) {
   io::write_tum(truth_file, shifted);
   const std::string config = write_text(tmp.file("whole.yaml"), "segments:\n  all: [0, 1000]\n");
 
-  const EvalOutcome outcome = evaluate({out.string(), truth_file, config});
+  const EvalOutcome outcome = evaluate(options_for(out.string(), truth_file, config));
   const io::StoredMetrics after = io::read_metrics_json((out / "metrics.json").string());
   EXPECT_EQ(after.metrics.truth, "tum");
   EXPECT_GT(after.metrics.errors.mean_m, before.metrics.errors.mean_m + 1.0);
@@ -144,9 +172,9 @@ TEST(EvalCommand, ResultWithoutMetricsNeedsATruthFile) {
   const fs::path out = run_method("worldcentric", tmp.path() / "wc");
   fs::remove(out / "metrics.json");
   fs::remove(out / "nees.csv");
-  EXPECT_THROW(evaluate({out.string(), "", ""}), io::InputError);
+  EXPECT_THROW(evaluate(options_for(out.string(), "", "")), io::InputError);
   const std::string truth = (small_basin().dataset / "truth" / "trajectory.tum").string();
-  const EvalOutcome outcome = evaluate({out.string(), truth, ""});
+  const EvalOutcome outcome = evaluate(options_for(out.string(), truth, ""));
   EXPECT_EQ(outcome.metrics.method, "unknown");
   EXPECT_EQ(outcome.metrics.scans, static_cast<int>(outcome.nees_rows));
   EXPECT_TRUE(fs::exists(out / "metrics.json"));
@@ -165,7 +193,7 @@ void expect_rejected(const EvalOptions& options, const std::string& word) {
 
 TEST(EvalCommand, BadInput) {
   const TempDir tmp;
-  expect_rejected({tmp.file("missing"), "", ""}, tmp.file("missing"));
+  expect_rejected(options_for(tmp.file("missing"), "", ""), tmp.file("missing"));
   // The dataset recorded in metrics.json is gone.
   const fs::path out = tmp.path() / "dr";
   run({small_basin().dataset.string(), "deadreckoning", out.string(), ""});
@@ -173,12 +201,12 @@ TEST(EvalCommand, BadInput) {
   const std::string dataset = fs::absolute(small_basin().dataset).lexically_normal().string();
   json.replace(json.find(dataset), dataset.size(), tmp.file("gone"));
   write_text((out / "metrics.json").string(), json);
-  expect_rejected({out.string(), "", ""}, "--truth");
+  expect_rejected(options_for(out.string(), "", ""), "--truth");
   // A malformed metrics.json names its key.
   write_text((out / "metrics.json").string(), "{\"method\": 3}");
-  expect_rejected({out.string(), "", ""}, "key 'method'");
+  expect_rejected(options_for(out.string(), "", ""), "key 'method'");
   write_text((out / "metrics.json").string(), "{\"method\": \"x\",");
-  expect_rejected({out.string(), "", ""}, "metrics.json:1:");
+  expect_rejected(options_for(out.string(), "", ""), "metrics.json:1:");
 }
 
 }  // namespace

@@ -1,0 +1,82 @@
+#include "io/eval_scores_json.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace msislab::io {
+
+namespace {
+
+constexpr double kDegPerRad = 180.0 / M_PI;
+
+Json summary_json(const RelativePoseError& rpe, const SampleSummary& s) {
+  if (rpe.pairs == 0) return Json();
+  Json json = Json::object();
+  json["mean"] = s.mean;
+  json["rmse"] = s.rmse;
+  json["median"] = s.median;
+  json["max"] = s.max;
+  return json;
+}
+
+SampleSummary read_summary(const JsonObject& rpe, const std::string& key) {
+  SampleSummary s;
+  if (!rpe.has_value(key)) return s;
+  const JsonObject json = rpe.object(key);
+  s.mean = json.number("mean");
+  s.rmse = json.number("rmse");
+  s.median = json.number("median");
+  s.max = json.number("max");
+  return s;
+}
+
+std::size_t count_of(const JsonObject& json, const std::string& key) {
+  return static_cast<std::size_t>(json.integer(key, 0, std::numeric_limits<int>::max()));
+}
+
+}  // namespace
+
+void add_eval_scores(Json& json, const EvalScores& scores) {
+  const EstimateAlignment& a = scores.alignment;
+  Json& alignment = json["alignment"] = Json::object();
+  alignment["method"] = a.method;
+  alignment["window_s"] = a.window_s ? Json(*a.window_s) : Json();
+  alignment["positions"] = a.positions;
+  alignment["t_offset_s"] = a.t_offset_s;
+  alignment["rotation_deg"] = a.T_truth_estimate.yaw() * kDegPerRad;
+  alignment["x_m"] = a.T_truth_estimate.x();
+  alignment["y_m"] = a.T_truth_estimate.y();
+  if (!scores.rpe) {
+    json["rpe"] = Json();
+    return;
+  }
+  Json& rpe = json["rpe"] = Json::object();
+  rpe["delta_m"] = scores.rpe->delta_m;
+  rpe["pairs"] = scores.rpe->pairs;
+  rpe["translation_m"] = summary_json(*scores.rpe, scores.rpe->translation_m);
+  rpe["rotation_deg"] = summary_json(*scores.rpe, scores.rpe->rotation_deg);
+}
+
+std::optional<EvalScores> read_eval_scores(const JsonObject& json) {
+  if (!json.has("alignment")) return std::nullopt;
+  EvalScores scores;
+  const JsonObject alignment = json.object("alignment");
+  EstimateAlignment& a = scores.alignment;
+  a.method = alignment.string("method");
+  a.window_s = alignment.number_or_null("window_s");
+  a.positions = count_of(alignment, "positions");
+  a.t_offset_s = alignment.number("t_offset_s");
+  a.T_truth_estimate = Pose2(alignment.number("x_m"), alignment.number("y_m"),
+                             alignment.number("rotation_deg") / kDegPerRad);
+  if (json.has_value("rpe")) {
+    const JsonObject rpe = json.object("rpe");
+    scores.rpe = RelativePoseError{};
+    scores.rpe->delta_m = rpe.number("delta_m");
+    scores.rpe->pairs = count_of(rpe, "pairs");
+    scores.rpe->translation_m = read_summary(rpe, "translation_m");
+    scores.rpe->rotation_deg = read_summary(rpe, "rotation_deg");
+  }
+  return scores;
+}
+
+}  // namespace msislab::io

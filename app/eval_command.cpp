@@ -17,6 +17,7 @@
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
 
@@ -74,6 +75,23 @@ void write_scores(const std::string& out_dir, const RunMetrics& metrics,
 }
 
 namespace {
+
+/// eval adds its scores to the folder: a result that msislab wrote, or a folder of the user's with
+/// a trajectory.tum, where the score files are msislab's only when it wrote them before (its marker
+/// of kind "scores"); a score file of the user's is never replaced.
+void check_scores_folder(const std::string& dir) {
+  const std::string kind = io::output_kind(dir);
+  if (kind == "result" || kind == "scores") return;
+  for (const char* name : {"metrics.json", "nees.csv"}) {
+    const fs::path file = fs::path(dir) / name;
+    if (fs::exists(file)) {
+      io::fail_file(file.string(),
+                    "is a file that msislab did not write; eval writes its scores "
+                    "there, so move it away");
+    }
+  }
+  io::write_output_marker(dir, "scores", "eval", nullptr);
+}
 
 /// The run's own record. A result written without truth has none: then only --truth can score it,
 /// and the run's figures are unknown.
@@ -240,6 +258,7 @@ EvalOutcome evaluate(const EvalOptions& options) {
   if (scans) nees = scan_nees(*scans, truth.truth);
   metrics.anees = average_nees(nees);
   outcome.nees_rows = nees.size();
+  check_scores_folder(options.result_dir);
   write_scores(options.result_dir, metrics, nees, stored.dataset_dir,
                options.truth_path.empty() ? "" : io::absolute_path(options.truth_path));
   return outcome;

@@ -17,6 +17,7 @@
 #include "app/worker_processes.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
+#include "io/output_guard.hpp"
 #include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
 #include "sim/scene.hpp"
@@ -43,6 +44,7 @@ void put_in_place(const std::string& dir, const std::string& method, int run,
   fs::remove_all(partial, ec);
   io::create_output_dir(partial);
   write(partial);
+  io::write_output_marker(partial, "result", "montecarlo", nullptr);
   const std::string target = run_dir(dir, method, run);
   fs::remove_all(target, ec);
   fs::rename(partial, target, ec);

@@ -148,5 +148,19 @@ TEST_F(OutputSafety, MonteCarloRefusesAForeignFolderAndADataset) {
       "montecarlo " + shell_quote(kScenario) + " --runs 1 --methods deadreckoning -o sim", "sim");
 }
 
+TEST_F(OutputSafety, EvalAddsScoresToAnOutsideFolderButNeverReplacesTheUsersOwn) {
+  fs::create_directory(tmp.path() / "theirs");
+  fs::copy_file(tmp.path() / "res" / "trajectory.tum", tmp.path() / "theirs" / "trajectory.tum");
+  const std::string eval = "eval theirs --truth sim/truth/trajectory.tum --name mine";
+  const CliResult first = msislab(eval);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_EQ(io::output_kind(tmp.file("theirs")), "scores");
+  EXPECT_EQ(msislab(eval).exit_code, 0) << "its own scores are replaced";
+  fs::create_directory(tmp.path() / "other");
+  fs::copy_file(tmp.path() / "res" / "trajectory.tum", tmp.path() / "other" / "trajectory.tum");
+  write_text(tmp.file("other/metrics.json"), "{\"theirs\": true}\n");
+  expect_refused("eval other --truth sim/truth/trajectory.tum", "other/metrics.json");
+}
+
 }  // namespace
 }  // namespace msislab::app

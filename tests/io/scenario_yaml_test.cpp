@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/input_error.hpp"
+#include "io/yaml_fields.hpp"
 #include "test_support.hpp"
 
 namespace msislab::io {
@@ -392,6 +393,40 @@ TEST(ScenarioYaml, MissingRequiredKeys) {
       0, "vehicle", "required");
   expect_bad(minimal_with(5, ""), 0, "vehicle.depth_m", "required");
   expect_bad(minimal_with(6, ""), 0, "vehicle.speed_mps", "required");
+}
+
+// A misspelt key, required or optional, is named at its own line with the known key nearest to it;
+// before, a misspelt required key was reported as the required key missing.
+TEST(ScenarioYaml, MisspeltKeysAreNamedWithTheClosestKnownKey) {
+  expect_bad(minimal_with(6, "  sped_mps: 0.5\n"), 6, "vehicle.sped_mps",
+             "unknown key (did you mean 'speed_mps'?)");
+  expect_bad(minimal_with(5, "  depht_m: 1.5\n"), 5, "vehicle.depht_m", "did you mean 'depth_m'?");
+  expect_bad(minimal_with(7, "  pth: [[0, 0], [10, 0]]\n"), 7, "vehicle.pth",
+             "did you mean 'path'?");
+  expect_bad(minimal_with(3, "  mseh: basin.obj\n"), 3, "scene.mseh", "did you mean 'mesh'?");
+  expect_bad(minimal_with(1, "sed: 7\n"), 1, "sed", "did you mean 'seed'?");
+  expect_bad(minimal_with(4, "vehicel:\n"), 4, "vehicel", "did you mean 'vehicle'?");
+  expect_bad(minimal_with(2, "scen:\n"), 2, "scen", "did you mean 'scene'?");
+  // Optional keys, as before, but with the nearest one rather than the whole list.
+  expect_bad(std::string(kMinimal) + "sonar: {bims: 100}\n", 8, "sonar.bims",
+             "did you mean 'bins'?");
+  expect_bad(std::string(kMinimal) + "sonnar: {}\n", 8, "sonnar", "did you mean 'sonar'?");
+  // Nothing near: the known keys are listed.
+  expect_bad(std::string(kMinimal) + "sonar: {xyzzy: 1}\n", 8, "sonar.xyzzy", "known here: ");
+  // A required key far from every key present is still missing, at its mapping's line.
+  expect_bad(minimal_with(6, "  knots: 1\n"), 4, "vehicle.speed_mps", "is required");
+}
+
+TEST(YamlFields, ClosestKeyCountsOneEditPerTypo) {
+  const std::vector<std::string> known = {"speed_mps", "depth_m", "path", "seed", "scene"};
+  EXPECT_EQ(closest_key("sped_mps", known), "speed_mps");    // a deletion
+  EXPECT_EQ(closest_key("speeed_mps", known), "speed_mps");  // an insertion
+  EXPECT_EQ(closest_key("depht_m", known), "depth_m");       // a swap of neighbours
+  EXPECT_EQ(closest_key("seen", known), "seed");             // a substitution
+  EXPECT_EQ(closest_key("speed_mps", known), "");            // itself is not a typo
+  EXPECT_EQ(closest_key("pathway", known), "");              // 3 edits from a 4-letter key
+  EXPECT_EQ(closest_key("depth", known), "depth_m");         // 2 edits from a 7-letter key
+  EXPECT_EQ(closest_key("spd", known), "");
 }
 
 // A section written with no value (`scene:`) is an empty mapping: its missing keys are reported

@@ -10,8 +10,7 @@
 
 #include "app/cli.hpp"
 #include "io/input_error.hpp"
-#include "io/mesh_io.hpp"
-#include "io/scenario_yaml.hpp"
+#include "io/scenario_scene.hpp"
 #include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
 #include "sim/simulator.hpp"
@@ -29,10 +28,11 @@ double seconds_since(Clock::time_point start) {
 
 SimulateSummary simulate(const SimulateOptions& options) {
   const auto t_start = Clock::now();
-  sim::Scenario scenario = io::read_scenario(options.scenario_path);
+  io::CheckedScenario checked = io::read_checked_scenario(options.scenario_path);
+  for (const std::string& warning : checked.warnings) std::cerr << "msislab: " << warning << '\n';
+  sim::Scenario& scenario = checked.scenario;
   if (options.seed) scenario.seed = *options.seed;
-  io::MeshMaterials materials{scenario.scene.default_material, scenario.scene.group_materials};
-  const sim::TriangleMesh mesh = io::read_mesh(scenario.scene.mesh_path, materials);
+  const sim::TriangleMesh& mesh = checked.mesh;
   std::unique_ptr<sim::Scene> scene;
   try {
     scene = std::make_unique<sim::Scene>(mesh, scenario.scene.surface);

@@ -38,6 +38,7 @@ void read_scene(YamlMap map, const std::string& scenario_dir, sim::SceneConfig& 
   map.text("mesh", mesh);
   scene.mesh_path = (std::filesystem::path(scenario_dir) / mesh).lexically_normal().string();
   read_material_keys(map, scene.default_material);
+  read_material(map.map("bottom"), scene.bottom_material);
   YamlMap groups = map.map("groups");
   for (const std::string& name : groups.keys()) {
     sim::Material material = scene.default_material;

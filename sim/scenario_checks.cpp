@@ -70,7 +70,7 @@ class LegCheck {
       if (!faces.empty() && faces.front().distance_m <= t_m) {
         error = ScenarioFinding{
             ScenarioKey::kWaypoint, from_ + 1, true,
-            leg() + " crosses the mesh " + face_at(faces.front()) + " and leaves the water"};
+            leg() + " crosses the mesh " + face_at(faces.front()) + ", and leaves the water"};
       }
       return {*error};
     }

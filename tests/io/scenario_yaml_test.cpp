@@ -101,6 +101,7 @@ TEST(ScenarioYaml, MinimalScenarioKeepsEveryDefault) {
   EXPECT_EQ(s.name, d.name);
   EXPECT_EQ(s.scene.mesh_path, (dir.path() / "basin.obj").string());
   expect_same_material(s.scene.default_material, d.scene.default_material);
+  expect_same_material(s.scene.bottom_material, d.scene.bottom_material);
   expect_same_material(s.scene.surface, d.scene.surface);
   EXPECT_TRUE(s.scene.group_materials.empty());
 
@@ -354,6 +355,33 @@ TEST(ScenarioYaml, SceneMaterialsAndGroups) {
   EXPECT_EQ(s.scene.surface.name, "water_surface");
   EXPECT_EQ(s.scene.surface.backscatter, 0.01f);
   EXPECT_EQ(s.scene.surface.specular, 0.95f);
+}
+
+// The defaults a first scene lives with (docs/scenes.md): concrete walls, a mud floor 22 dB darker.
+TEST(ScenarioYaml, DefaultMaterialsAreAHarbours) {
+  const sim::SceneConfig d;
+  EXPECT_EQ(d.default_material.backscatter, 0.5f);
+  EXPECT_EQ(d.default_material.specular, 0.05f);
+  EXPECT_EQ(d.bottom_material.backscatter, 0.003f);
+  EXPECT_EQ(d.bottom_material.specular, 0.3f);
+  EXPECT_LT(10.0 * std::log10(d.bottom_material.backscatter / d.default_material.backscatter),
+            -20.0);
+}
+
+TEST(ScenarioYaml, SceneBottomSetsTheDefaultFloorMaterial) {
+  const TempDir dir;
+  const sim::Scenario s = read_scenario(write_text(
+      dir.file("s.yaml"),
+      minimal_with(3,
+                   "  mesh: basin.obj\n  bottom: {backscatter: 0.01, incidence_exponent: 1}\n")));
+  EXPECT_EQ(s.scene.bottom_material.backscatter, 0.01f);
+  EXPECT_EQ(s.scene.bottom_material.specular, 0.3f);
+  EXPECT_EQ(s.scene.bottom_material.incidence_exponent, 1.0f);
+  EXPECT_EQ(s.scene.default_material.backscatter, 0.5f);
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  bottom: {backscatter: 2}\n"), 4,
+             "scene.bottom.backscatter", "[0, 1]");
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  bottom: {specullar: 0.1}\n"), 4,
+             "scene.bottom.specullar", "did you mean 'specular'?");
 }
 
 TEST(ScenarioYaml, MeshPathIsRelativeToTheScenarioFolder) {

@@ -22,9 +22,8 @@
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
-#include "io/mesh_io.hpp"
 #include "io/montecarlo_files.hpp"
-#include "io/scenario_yaml.hpp"
+#include "io/scenario_scene.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::app {
@@ -54,14 +53,10 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   if (options.runs < 1) {
     throw io::InputError("--runs " + std::to_string(options.runs) + ": must be at least 1");
   }
-  ctx.scenario = io::read_scenario(options.scenario_path);
-  if (!fs::is_regular_file(ctx.scenario.scene.mesh_path)) {
-    io::fail_file(options.scenario_path,
-                  "key 'scene.mesh': '" + ctx.scenario.scene.mesh_path + "' does not exist");
-  }
-  const io::MeshMaterials materials{ctx.scenario.scene.default_material,
-                                    ctx.scenario.scene.group_materials};
-  ctx.mesh = io::read_mesh(ctx.scenario.scene.mesh_path, materials);
+  io::CheckedScenario checked = io::read_checked_scenario(options.scenario_path);
+  for (const std::string& warning : checked.warnings) std::cerr << "msislab: " << warning << '\n';
+  ctx.scenario = std::move(checked.scenario);
+  ctx.mesh = std::move(checked.mesh);
   if (!options.config_path.empty()) ctx.config = io::read_slam_config(options.config_path);
   ctx.scenario_text = io::read_whole_file(options.scenario_path);
   const std::string config_text =

@@ -10,9 +10,8 @@
 
 #include "app/cli.hpp"
 #include "io/input_error.hpp"
-#include "io/mesh_io.hpp"
 #include "io/output_guard.hpp"
-#include "io/scenario_yaml.hpp"
+#include "io/scenario_scene.hpp"
 #include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
 #include "sim/simulator.hpp"
@@ -30,7 +29,8 @@ double seconds_since(Clock::time_point start) {
 
 SimulateSummary simulate(const SimulateOptions& options) {
   const auto t_start = Clock::now();
-  sim::Scenario scenario = io::read_scenario(options.scenario_path);
+  io::CheckedScenario checked = io::read_checked_scenario(options.scenario_path);
+  sim::Scenario& scenario = checked.scenario;
   if (options.seed) scenario.seed = *options.seed;
   const io::OutputRequest out{options.out_dir,
                               "dataset",
@@ -38,8 +38,8 @@ SimulateSummary simulate(const SimulateOptions& options) {
                               {options.scenario_path, scenario.scene.mesh_path},
                               options.force};
   io::check_output_folder(out);  // before the rendering, which may take minutes
-  io::MeshMaterials materials{scenario.scene.default_material, scenario.scene.group_materials};
-  const sim::TriangleMesh mesh = io::read_mesh(scenario.scene.mesh_path, materials);
+  for (const std::string& warning : checked.warnings) std::cerr << "msislab: " << warning << '\n';
+  const sim::TriangleMesh& mesh = checked.mesh;
   std::unique_ptr<sim::Scene> scene;
   try {
     scene = std::make_unique<sim::Scene>(mesh, scenario.scene.surface);

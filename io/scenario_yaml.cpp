@@ -33,11 +33,12 @@ void read_material(YamlMap map, sim::Material& material) {
 }
 
 void read_scene(YamlMap map, const std::string& scenario_dir, sim::SceneConfig& scene) {
-  if (!map.has("mesh")) map.fail("mesh", "is required");
+  if (!map.has("mesh")) map.fail_required("mesh", "is required");
   std::string mesh;
   map.text("mesh", mesh);
   scene.mesh_path = (std::filesystem::path(scenario_dir) / mesh).lexically_normal().string();
   read_material_keys(map, scene.default_material);
+  read_material(map.map("bottom"), scene.bottom_material);
   YamlMap groups = map.map("groups");
   for (const std::string& name : groups.keys()) {
     sim::Material material = scene.default_material;
@@ -51,7 +52,7 @@ void read_scene(YamlMap map, const std::string& scenario_dir, sim::SceneConfig& 
 }
 
 void read_path(YamlMap& map, std::vector<Eigen::Vector2d>& path) {
-  if (!map.has("path")) map.fail("path", "is required");
+  if (!map.has("path")) map.fail_required("path", "is required");
   const YAML::Node node = map.node("path");
   if (!node.IsSequence()) map.fail_node(node, "path", "expected a list of [x, y] waypoints");
   path.clear();
@@ -257,11 +258,11 @@ sim::Scenario scenario_from_yaml(const YAML::Node& node, const std::string& path
   sim::Scenario s;
   root.text("name", s.name);
   long long seed = 0;
-  if (!root.integer("seed", seed)) root.fail("seed", "is required");
+  if (!root.integer("seed", seed)) root.fail_required("seed", "is required");
   if (seed < 0) root.fail("seed", "must be >= 0");
   s.seed = static_cast<std::uint64_t>(seed);
-  if (!root.has("scene")) root.fail("scene", "is required (scene.mesh)");
-  if (!root.has("vehicle")) root.fail("vehicle", "is required (depth_m, speed_mps, path)");
+  if (!root.has("scene")) root.fail_required("scene", "is required (scene.mesh)");
+  if (!root.has("vehicle")) root.fail_required("vehicle", "is required (depth_m, speed_mps, path)");
   read_scene(root.map("scene"), dir, s.scene);
   read_vehicle(root.map("vehicle"), s.vehicle);
   s.segments = read_segments(root.map("segments"));

@@ -1,5 +1,6 @@
 #include "io/yaml_fields.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -25,6 +26,41 @@ YAML::Node load_yaml_text(const std::string& text, const std::string& name) {
   } catch (const YAML::ParserException& e) {
     fail_at(name, static_cast<std::size_t>(e.mark.line + 1), "malformed YAML: " + e.msg);
   }
+}
+
+namespace {
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  // d[i][j]: edits from a's first i characters to b's first j (Damerau's swap of neighbours
+  // included, each character edited once at most).
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t cost = a[i - 1] == b[j - 1] ? 0 : 1;
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + cost});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) {
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+      }
+    }
+  }
+  return d[a.size()][b.size()];
+}
+}  // namespace
+
+std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = 0;
+  for (const std::string& candidate : candidates) {
+    const std::size_t limit = candidate.size() <= 4 ? 1 : candidate.size() <= 8 ? 2 : 3;
+    const std::size_t distance = edit_distance(key, candidate);
+    if (distance == 0 || distance > limit) continue;
+    if (best.empty() || distance < best_distance) {
+      best = candidate;
+      best_distance = distance;
+    }
+  }
+  return best;
 }
 
 bool parse_finite_scalar(const std::string& text, double& out) {
@@ -69,6 +105,11 @@ int YamlMap::key_line(const std::string& key) const {
   return node_ && node_.IsMap() ? node_.Mark().line : -1;
 }
 
+std::string YamlMap::location(const YAML::Node& at, const std::string& key) const {
+  const int line = at && !at.IsNull() ? at.Mark().line : key_line(key);
+  return line >= 0 ? file_ + ":" + std::to_string(line + 1) : file_;
+}
+
 void YamlMap::fail_node(const YAML::Node& at, const std::string& key,
                         const std::string& what) const {
   // An empty value's mark points past its key, so empty and absent values use the key's line.
@@ -109,8 +150,21 @@ bool YamlMap::number(const std::string& key, double& out) {
 
 double YamlMap::required_number(const std::string& key) {
   double out = 0.0;
-  if (!number(key, out)) fail(key, "is required");
+  if (!number(key, out)) fail_required(key, "is required");
   return out;
+}
+
+void YamlMap::fail_required(const std::string& key, const std::string& what) const {
+  // The key the user meant may be there, misspelt: it is the one to name, at its own line.
+  if (node_ && node_.IsMap()) {
+    for (const auto& item : node_) {
+      const std::string present = item.first.Scalar();
+      if (read_.count(present) == 0 && closest_key(present, {key}) == key) {
+        fail_node(item.first, present, "unknown key (did you mean '" + key + "'?)");
+      }
+    }
+  }
+  fail(key, what);
 }
 
 bool YamlMap::integer(const std::string& key, long long& out) {
@@ -180,6 +234,8 @@ void YamlMap::finish() const {
   for (const auto& item : node_) {
     const std::string key = item.first.Scalar();
     if (read_.count(key)) continue;
+    const std::string near = closest_key(key, {read_.begin(), read_.end()});
+    if (!near.empty()) fail_node(item.first, key, "unknown key (did you mean '" + near + "'?)");
     std::string known;
     for (const std::string& k : read_) known += (known.empty() ? "" : ", ") + k;
     fail_node(item.first, key, "unknown key (known here: " + known + ")");

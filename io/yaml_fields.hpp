@@ -28,6 +28,9 @@ class YamlMap {
   bool number(const std::string& key, double& out);
   /// Like number() but the key must be present.
   double required_number(const std::string& key);
+  /// Fails for a required key that is absent: names a present key that looks like a typo of it
+  /// ("unknown key 'sped_mps' (did you mean 'speed_mps'?)"), else "key: what" at the mapping.
+  [[noreturn]] void fail_required(const std::string& key, const std::string& what) const;
   bool integer(const std::string& key, long long& out);
   bool text(const std::string& key, std::string& out);
   /// true/false (YAML 1.2 core spelling only).
@@ -49,6 +52,9 @@ class YamlMap {
   [[noreturn]] void fail_node(const YAML::Node& at, const std::string& key,
                               const std::string& what) const;
   std::string path_of(const std::string& key) const;
+  /// "FILE:LINE" of a node (of the key's line when `at` is empty or null), or "FILE" when unknown:
+  /// what fail_node() puts in front, for messages that are not errors (warnings).
+  std::string location(const YAML::Node& at, const std::string& key) const;
   /// 0-based line of a key in the file (of the mapping when the key is absent; -1 when unknown).
   int key_line(const std::string& key) const;
   const std::string& file() const { return file_; }
@@ -63,6 +69,11 @@ class YamlMap {
 
 /// How a value reads in an error message: 'text', an empty value, a list or a mapping.
 std::string describe(const YAML::Node& value);
+
+/// The candidate nearest to `key` by edit distance (optimal string alignment: an insertion, a
+/// deletion, a substitution or a swap of neighbours counts 1), if it is near enough to be a typo:
+/// at most 1 edit for candidates of up to 4 characters, 2 up to 8, 3 beyond. "" when none is.
+std::string closest_key(const std::string& key, const std::vector<std::string>& candidates);
 
 /// Parses a YAML scalar as a finite double; false when it is not one.
 bool parse_finite_scalar(const std::string& text, double& out);

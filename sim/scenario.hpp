@@ -15,9 +15,15 @@
 
 namespace msislab::sim {
 
+/// Materials by default are a harbour's (docs/scenes.md): concrete or stone walls, the calibrated
+/// St. Pere values, and a mud floor 22 dB darker. The floor is found by geometry
+/// (sim/scene_materials), so a mesh with a single group gets both.
 struct SceneConfig {
   std::string mesh_path;  ///< resolved against the scenario file's folder
-  Material default_material{"", 0.5f, 0.3f};
+  /// Faces of groups without a material of their own that are not the bottom.
+  Material default_material{"", 0.5f, 0.05f};
+  /// Faces of groups without a material of their own that sim::bottom_faces finds to be the floor.
+  Material bottom_material{"", 0.003f, 0.3f};
   std::map<std::string, Material> group_materials;  ///< by OBJ group name
   Material surface{"water_surface", 0.001f, 0.9f};  ///< the z = 0 plane
 };

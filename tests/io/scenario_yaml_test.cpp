@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/input_error.hpp"
+#include "io/yaml_fields.hpp"
 #include "test_support.hpp"
 
 namespace msislab::io {
@@ -100,6 +101,7 @@ TEST(ScenarioYaml, MinimalScenarioKeepsEveryDefault) {
   EXPECT_EQ(s.name, d.name);
   EXPECT_EQ(s.scene.mesh_path, (dir.path() / "basin.obj").string());
   expect_same_material(s.scene.default_material, d.scene.default_material);
+  expect_same_material(s.scene.bottom_material, d.scene.bottom_material);
   expect_same_material(s.scene.surface, d.scene.surface);
   EXPECT_TRUE(s.scene.group_materials.empty());
 
@@ -355,6 +357,33 @@ TEST(ScenarioYaml, SceneMaterialsAndGroups) {
   EXPECT_EQ(s.scene.surface.specular, 0.95f);
 }
 
+// The defaults a first scene lives with (docs/scenes.md): concrete walls, a mud floor 22 dB darker.
+TEST(ScenarioYaml, DefaultMaterialsAreAHarbours) {
+  const sim::SceneConfig d;
+  EXPECT_EQ(d.default_material.backscatter, 0.5f);
+  EXPECT_EQ(d.default_material.specular, 0.05f);
+  EXPECT_EQ(d.bottom_material.backscatter, 0.003f);
+  EXPECT_EQ(d.bottom_material.specular, 0.3f);
+  EXPECT_LT(10.0 * std::log10(d.bottom_material.backscatter / d.default_material.backscatter),
+            -20.0);
+}
+
+TEST(ScenarioYaml, SceneBottomSetsTheDefaultFloorMaterial) {
+  const TempDir dir;
+  const sim::Scenario s = read_scenario(write_text(
+      dir.file("s.yaml"),
+      minimal_with(3,
+                   "  mesh: basin.obj\n  bottom: {backscatter: 0.01, incidence_exponent: 1}\n")));
+  EXPECT_EQ(s.scene.bottom_material.backscatter, 0.01f);
+  EXPECT_EQ(s.scene.bottom_material.specular, 0.3f);
+  EXPECT_EQ(s.scene.bottom_material.incidence_exponent, 1.0f);
+  EXPECT_EQ(s.scene.default_material.backscatter, 0.5f);
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  bottom: {backscatter: 2}\n"), 4,
+             "scene.bottom.backscatter", "[0, 1]");
+  expect_bad(minimal_with(3, "  mesh: basin.obj\n  bottom: {specullar: 0.1}\n"), 4,
+             "scene.bottom.specullar", "did you mean 'specular'?");
+}
+
 TEST(ScenarioYaml, MeshPathIsRelativeToTheScenarioFolder) {
   const TempDir dir;
   fs::create_directories(dir.path() / "scenarios");
@@ -392,6 +421,40 @@ TEST(ScenarioYaml, MissingRequiredKeys) {
       0, "vehicle", "required");
   expect_bad(minimal_with(5, ""), 0, "vehicle.depth_m", "required");
   expect_bad(minimal_with(6, ""), 0, "vehicle.speed_mps", "required");
+}
+
+// A misspelt key, required or optional, is named at its own line with the known key nearest to it;
+// before, a misspelt required key was reported as the required key missing.
+TEST(ScenarioYaml, MisspeltKeysAreNamedWithTheClosestKnownKey) {
+  expect_bad(minimal_with(6, "  sped_mps: 0.5\n"), 6, "vehicle.sped_mps",
+             "unknown key (did you mean 'speed_mps'?)");
+  expect_bad(minimal_with(5, "  depht_m: 1.5\n"), 5, "vehicle.depht_m", "did you mean 'depth_m'?");
+  expect_bad(minimal_with(7, "  pth: [[0, 0], [10, 0]]\n"), 7, "vehicle.pth",
+             "did you mean 'path'?");
+  expect_bad(minimal_with(3, "  mseh: basin.obj\n"), 3, "scene.mseh", "did you mean 'mesh'?");
+  expect_bad(minimal_with(1, "sed: 7\n"), 1, "sed", "did you mean 'seed'?");
+  expect_bad(minimal_with(4, "vehicel:\n"), 4, "vehicel", "did you mean 'vehicle'?");
+  expect_bad(minimal_with(2, "scen:\n"), 2, "scen", "did you mean 'scene'?");
+  // Optional keys, as before, but with the nearest one rather than the whole list.
+  expect_bad(std::string(kMinimal) + "sonar: {bims: 100}\n", 8, "sonar.bims",
+             "did you mean 'bins'?");
+  expect_bad(std::string(kMinimal) + "sonnar: {}\n", 8, "sonnar", "did you mean 'sonar'?");
+  // Nothing near: the known keys are listed.
+  expect_bad(std::string(kMinimal) + "sonar: {xyzzy: 1}\n", 8, "sonar.xyzzy", "known here: ");
+  // A required key far from every key present is still missing, at its mapping's line.
+  expect_bad(minimal_with(6, "  knots: 1\n"), 4, "vehicle.speed_mps", "is required");
+}
+
+TEST(YamlFields, ClosestKeyCountsOneEditPerTypo) {
+  const std::vector<std::string> known = {"speed_mps", "depth_m", "path", "seed", "scene"};
+  EXPECT_EQ(closest_key("sped_mps", known), "speed_mps");    // a deletion
+  EXPECT_EQ(closest_key("speeed_mps", known), "speed_mps");  // an insertion
+  EXPECT_EQ(closest_key("depht_m", known), "depth_m");       // a swap of neighbours
+  EXPECT_EQ(closest_key("seen", known), "seed");             // a substitution
+  EXPECT_EQ(closest_key("speed_mps", known), "");            // itself is not a typo
+  EXPECT_EQ(closest_key("pathway", known), "");              // 3 edits from a 4-letter key
+  EXPECT_EQ(closest_key("depth", known), "depth_m");         // 2 edits from a 7-letter key
+  EXPECT_EQ(closest_key("spd", known), "");
 }
 
 // A section written with no value (`scene:`) is an empty mapping: its missing keys are reported

@@ -241,7 +241,6 @@ void read_gps(YamlMap map, sim::GpsConfig& g) {
 
 void read_detections(YamlMap map, DetectionModelConfig& d) {
   read_count(map, "smoothing_bins", d.smoothing_bins, 1, 999);
-  if (d.smoothing_bins % 2 == 0) map.fail("smoothing_bins", "must be odd (a centred window)");
   map.number("ramp_max", d.ramp_max);
   map.number("threshold", d.threshold);
   map.number("min_range_m", d.min_range_m);

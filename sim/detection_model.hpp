@@ -1,7 +1,9 @@
-// The detector that made the St. Pere detections file (../shared/datasets/stpere/README.md): an
-// echo intensity profile in, the bins it marks as detected out. The real data have only these
-// marks, so the simulator runs the same detector on its profiles and every statistic and every
-// pipeline stage after it sees both datasets the same way (docs/front_end.md).
+// The detector that made the St. Pere detections file, exactly as the publisher's MATLAB code runs
+// it (loadingDataset/createDatasetSonarData.m and binsToPCL.m in the public repository
+// timzarhansen/matlabTestEnvironment; docs/front_end.md): an echo intensity profile in, the bins it
+// marks as detected out. The real data have only these marks, so the simulator runs the same
+// detector on its profiles and every statistic and every pipeline stage after it sees both
+// datasets the same way.
 #pragma once
 
 #include <cstdint>
@@ -10,16 +12,26 @@
 namespace msislab {
 
 struct DetectionModelConfig {
-  int smoothing_bins = 5;    ///< centred moving-mean window, bins (odd; the README does not say)
-  double ramp_max = 30.0;    ///< intensity subtracted at the last bin; 0 at the first, linear
-  double threshold = 45.0;   ///< a bin is detected when smoothed minus ramp exceeds this
-  double min_range_m = 1.0;  ///< bins closer than this are dropped
+  int smoothing_bins = 5;    ///< movmean window along range, bins (MATLAB picks it per revolution
+                             ///< from the data and does not record it: docs/simulator.md)
+  double ramp_max = 30.0;    ///< subtracted at the last kept bin; 0 at the first, linear
+  double threshold = 45.0;   ///< a bin is detected when smoothed minus ramp exceeds this (strict)
+  double min_range_m = 1.0;  ///< bins closer than this are dropped before the smoothing
 };
 
-/// Indices j of the detected bins of a profile whose bin j lies at (j + 1) x bin_m, ascending:
-///   s_j = mean of intensity over the window centred on j (shrunk at the profile's ends),
-///   ramp_j = ramp_max x j / (N - 1),
-///   detected  <=>  s_j - ramp_j > threshold  and  (j + 1) x bin_m >= min_range_m.
+/// MATLAB's movmean(x, window) with its shrinking ends: the mean of x over [i - kb, i + kf] cut to
+/// the profile, kb = kf = (window - 1) / 2 for an odd window, kb = window / 2 and
+/// kf = window / 2 - 1 for an even one.
+std::vector<double> moving_mean(const std::vector<double>& x, int window);
+
+/// Indices j of the detected bins of a profile whose bin j lies at (j + 1) x bin_m, ascending.
+/// With K the first bin at or beyond min_range_m and n the profile's length, over the kept bins
+/// j = K .. n - 1 only (the dropped bins never enter a mean):
+///   s_j    = moving_mean(intensity[K .. n - 1], smoothing_bins) at j,
+///   ramp_j = ramp_max x (j - K) / (n - 1 - K)     (MATLAB's linspace(0, ramp_max, n - K)),
+///   detected  <=>  s_j - ramp_j > threshold.
+/// (The publisher also zeroes values under 30 before the threshold; that never changes a bin
+/// above 45, so it is not modelled.)
 std::vector<int> detect_bins(const std::vector<std::uint8_t>& intensity, double bin_m,
                              const DetectionModelConfig& config);
 

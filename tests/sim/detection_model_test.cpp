@@ -1,11 +1,13 @@
-// The St. Pere detector on synthetic profiles with known answers: the smoothing widens a box echo
-// by half a window each side, the range ramp cuts a flat profile where ramp + threshold reaches
-// it, the threshold is strict, the minimum range drops near bins, and the window shrinks at the
-// profile's ends. Every answer is exact (integers).
+// The St. Pere detector on synthetic profiles with known answers: MATLAB's movmean (its documented
+// examples, odd and even windows), the smoothing widening a box echo by half a window each side and
+// keeping it centred, the range ramp over the kept bins cutting a flat profile where ramp +
+// threshold reaches it, the strict threshold, the near bins dropped before the smoothing, and the
+// window shrinking at both ends of the kept bins. Every answer is exact.
 #include "sim/detection_model.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <vector>
@@ -34,10 +36,42 @@ TEST(DetectionModel, BoxEchoWidensByHalfTheWindowEachSide) {
   EXPECT_EQ(detect_bins(p, kBin_m, unsmoothed), range_of_bins(100, 109));
 }
 
+TEST(DetectionModel, MovingMeanIsMatlabsMovmean) {
+  // MATLAB's documentation examples: movmean(A, 3) and movmean(A, 4) of the same vector. An even
+  // window reaches w/2 back and w/2 - 1 ahead; both shrink at the ends.
+  const std::vector<double> a = {4, 8, 6, -1, -2, -3, -1, 3, 4, 5};
+  const std::vector<double> three = {6, 6,  4.3333333333333333, 1, -2, -2, -0.3333333333333333, 2,
+                                     4, 4.5};
+  const std::vector<double> four = {6, 6, 4.25, 2.75, 0, -1.75, -0.75, 0.75, 2.75, 4.0};
+  const std::vector<double> m3 = moving_mean(a, 3), m4 = moving_mean(a, 4);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_NEAR(m3[i], three[i], 1e-12) << i;
+    EXPECT_NEAR(m4[i], four[i], 1e-12) << i;
+  }
+  EXPECT_EQ(moving_mean(a, 1), a);
+  EXPECT_TRUE(moving_mean({}, 5).empty());
+}
+
+TEST(DetectionModel, AnIsolatedEchoStaysCentredUnderAnyWindow) {
+  // A 3-bin echo centred on bin 200, far from the ends: the detected run is centred on it within
+  // one bin (an even window, one bin off centre by construction, shifts it by half a bin).
+  Profile p(kBins, 0);
+  for (int j = 199; j <= 201; ++j) p[j] = 255;
+  for (const int w : {1, 4, 5, 9, 11}) {
+    DetectionModelConfig config;
+    config.smoothing_bins = w;
+    const std::vector<int> run = detect_bins(p, kBin_m, config);
+    ASSERT_FALSE(run.empty()) << w;
+    EXPECT_EQ(static_cast<std::size_t>(run.back() - run.front() + 1), run.size()) << w;
+    EXPECT_LE(std::abs(0.5 * (run.front() + run.back()) - 200.0), 1.0) << w;
+  }
+}
+
 TEST(DetectionModel, RangeRampEndsAFlatProfile) {
-  // 60 - 30 j / 499 > 45  <=>  j < 249.5; bins under 1 m (j < 9) dropped.
+  // The ramp runs over the kept bins 9..499 (linspace(0, 30, 491)):
+  // 60 - 30 (j - 9) / 490 > 45  <=>  j - 9 < 245  <=>  j <= 253; bins under 1 m (j < 9) dropped.
   const Profile p(kBins, 60);
-  EXPECT_EQ(detect_bins(p, kBin_m, {}), range_of_bins(9, 249));
+  EXPECT_EQ(detect_bins(p, kBin_m, {}), range_of_bins(9, 253));
 }
 
 TEST(DetectionModel, ThresholdIsStrict) {
@@ -58,9 +92,21 @@ TEST(DetectionModel, MinimumRangeDropsNearBins) {
   EXPECT_EQ(detect_bins(p, kBin_m, config), range_of_bins(19, 29));
 }
 
+TEST(DetectionModel, DroppedNearBinsNeverEnterAMean) {
+  // Bins under 1 m at full intensity: the real detector drops them before smoothing, so the
+  // first kept bin (j = 9) sees only its own zeros and the two after it.
+  Profile p(kBins, 0);
+  for (int j = 0; j < 9; ++j) p[j] = 255;
+  EXPECT_TRUE(detect_bins(p, kBin_m, {}).empty());
+  // At the start of the kept bins the window shrinks too: at j = 9, 10, 11 it holds 3, 4 and 5
+  // kept bins with the one strong bin, means 85, 63.75 and 51 (> 45 + ramp); at j = 12 none.
+  p[9] = 255;
+  EXPECT_EQ(detect_bins(p, kBin_m, {}), (std::vector<int>{9, 10, 11}));
+}
+
 TEST(DetectionModel, WindowShrinksAtTheEnds) {
   // A lone strong last bin: the window there holds the last 3 bins only, mean 255 / 3 = 85,
-  // minus the full ramp 30 = 55 > 45; one bin earlier 4 bins, 63.75 - 29.9 = 33.8 < 45.
+  // minus the full ramp 30 = 55 > 45; one bin earlier 4 bins, 63.75 - 29.94 = 33.8 < 45.
   Profile p(kBins, 0);
   p[kBins - 1] = 255;
   EXPECT_EQ(detect_bins(p, kBin_m, {}), std::vector<int>{kBins - 1});
@@ -70,7 +116,10 @@ TEST(DetectionModel, EmptyAndShortProfiles) {
   EXPECT_TRUE(detect_bins({}, kBin_m, {}).empty());
   DetectionModelConfig near;
   near.min_range_m = 0.0;
+  // One kept bin: MATLAB's linspace(0, 30, 1) is 30, so 200 - 30 > 45.
   EXPECT_EQ(detect_bins(Profile{200}, kBin_m, near), std::vector<int>{0});
+  EXPECT_TRUE(detect_bins(Profile{70}, kBin_m, near).empty());
+  EXPECT_TRUE(detect_bins(Profile(5, 255), kBin_m, {}).empty());  // nothing beyond 1 m
 }
 
 }  // namespace

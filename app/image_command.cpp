@@ -9,6 +9,7 @@
 #include "app/cli.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/dataset.hpp"
+#include "io/detections.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 
@@ -37,6 +38,37 @@ SonarRevolution read_revolution(const std::string& dataset_dir, int revolution) 
   return out;
 }
 
+SonarRevolution read_detected_revolution(const std::string& dataset_dir, int keyframe) {
+  const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
+  if (!files.detections) {
+    io::fail_file(dataset_dir, "no *_detections.csv[.gz] to draw --keyframe from");
+  }
+  SonarRevolution out;
+  out.dataset_dir = dataset_dir;
+  out.index = keyframe;
+  out.setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
+  out.mount = io::load_calibration(files).sonar;
+  const auto bins = static_cast<std::size_t>(std::lround(out.setup.range_m / out.setup.bin_m));
+  std::int32_t keyframes = 0;
+  std::int64_t beam_row = -1;
+  for (const io::DetectionRecord& row : io::read_detections(*files.detections)) {
+    keyframes = std::max(keyframes, row.keyframe);
+    if (row.keyframe != keyframe) continue;
+    if (row.beam_row != beam_row) {
+      beam_row = row.beam_row;
+      out.beams.push_back({row.t_log_s, static_cast<double>(row.sensor_time_ms), row.angle_rad,
+                           std::vector<std::uint8_t>(bins, 0)});
+    }
+    const long bin = std::lround(row.range_m / out.setup.bin_m) - 1;
+    if (bin >= 0 && bin < static_cast<long>(bins)) out.beams.back().intensity[bin] = 255;
+  }
+  if (out.beams.empty()) {
+    throw io::InputError("--keyframe " + std::to_string(keyframe) + ": " + *files.detections +
+                         " has keyframes 1.." + std::to_string(keyframes));
+  }
+  return out;
+}
+
 void draw_image(const ImageOptions& options) {
   if (options.revolution < 0) {
     throw io::InputError("--revolution " + std::to_string(options.revolution) +
@@ -44,7 +76,9 @@ void draw_image(const ImageOptions& options) {
   }
   io::check_output_file({options.out_path, "image", "image", {options.dataset_dir}, false},
                         io::png_written_by_msislab);
-  const SonarRevolution revolution = read_revolution(options.dataset_dir, options.revolution);
+  const SonarRevolution revolution =
+      options.keyframe > 0 ? read_detected_revolution(options.dataset_dir, options.keyframe)
+                           : read_revolution(options.dataset_dir, options.revolution);
   io::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
                            options.size_px);
 }
@@ -58,6 +92,11 @@ void add_image_command(CLI::App& app, CommandLine&) {
   image->add_option("--out,-o", options->out_path, "PNG file to write")->required();
   image->add_option("--revolution,-r", options->revolution, "0-based revolution to draw")
       ->check(CLI::NonNegativeNumber);
+  image
+      ->add_option("--keyframe,-k", options->keyframe,
+                   "Draw keyframe K (1-based) of *_detections.csv[.gz] instead, detected bins at "
+                   "full intensity (the real St. Pere data have only detections)")
+      ->check(CLI::PositiveNumber);
   image->add_option("--size", options->size_px, "Image width and height in pixels")
       ->check(CLI::Range(100, 4000));
   image->callback([options] {

@@ -240,7 +240,16 @@ void read_gps(YamlMap map, sim::GpsConfig& g) {
 }
 
 void read_detections(YamlMap map, DetectionModelConfig& d) {
-  read_count(map, "smoothing_bins", d.smoothing_bins, 1, 999);
+  std::string window;
+  if (map.text("smoothing_bins", window) && window == "auto") {
+    d.smoothing_bins = 0;  // MATLAB's default window, per revolution
+  } else {
+    read_count(map, "smoothing_bins", d.smoothing_bins, 1, 999);
+  }
+  map.number("smoothing_factor", d.smoothing_factor);
+  if (d.smoothing_factor < 0.0 || d.smoothing_factor > 1.0) {
+    map.fail("smoothing_factor", "must be in [0, 1]");
+  }
   map.number("ramp_max", d.ramp_max);
   map.number("threshold", d.threshold);
   map.number("min_range_m", d.min_range_m);

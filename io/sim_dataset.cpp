@@ -90,6 +90,26 @@ std::vector<BeamTimeRecord> beam_time_records(const std::vector<SonarBeamRecord>
   return rows;
 }
 
+/// The detector's window for each keyframe (index 1 .. keyframes): the scenario's, or with
+/// smoothing_bins 0 MATLAB's default window of that keyframe's kept bins, as smoothdata chooses it.
+std::vector<int> keyframe_windows(const std::vector<SonarBeamRecord>& beams,
+                                  const std::vector<std::pair<std::size_t, std::int32_t>>& swept,
+                                  std::int32_t keyframes, const sim::Scenario& scenario) {
+  const DetectionModelConfig& d = scenario.detections;
+  std::vector<int> windows(static_cast<std::size_t>(keyframes) + 1, d.smoothing_bins);
+  if (d.smoothing_bins > 0) return windows;
+  std::vector<std::vector<double>> rows;
+  for (std::size_t k = 0; k < swept.size(); ++k) {
+    rows.push_back(kept_bins(beams[swept[k].first].intensity, scenario.sonar.bin_m, d.min_range_m));
+    if (k + 1 == swept.size() || swept[k + 1].second != swept[k].second) {
+      windows[static_cast<std::size_t>(swept[k].second)] =
+          matlab_default_window(rows, d.smoothing_factor);
+      rows.clear();
+    }
+  }
+  return windows;
+}
+
 /// The detections file as the real one is laid out: the detector of the scenario run on every
 /// profile; keyframe k (from 1) is the k-th complete revolution, a sweep of the transducer angle
 /// index from steps - 1 down to 0; beam_row is the beam's row in *_IS_timestamps.log. Beams
@@ -114,11 +134,13 @@ std::vector<DetectionRecord> detection_records(const std::vector<SonarBeamRecord
     }
     start += static_cast<std::size_t>(steps) - 1;
   }
+  const std::vector<int> windows = keyframe_windows(beams, swept, keyframe, scenario);
   std::vector<std::vector<int>> detected(swept.size());
   std::size_t total = 0;
   for (std::size_t k = 0; k < swept.size(); ++k) {
-    detected[k] =
-        detect_bins(beams[swept[k].first].intensity, scenario.sonar.bin_m, scenario.detections);
+    DetectionModelConfig config = scenario.detections;
+    config.smoothing_bins = windows[static_cast<std::size_t>(swept[k].second)];
+    detected[k] = detect_bins(beams[swept[k].first].intensity, scenario.sonar.bin_m, config);
     total += detected[k].size();
   }
   std::vector<DetectionRecord> rows;

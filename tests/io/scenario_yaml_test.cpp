@@ -521,6 +521,14 @@ TEST(ScenarioYaml, SonarPhysicsAndDetectorKeys) {
             4);
   expect_bad(std::string(kMinimal) + "detections:\n  smoothing_bins: 0\n", 9,
              "detections.smoothing_bins", "[1, 999]");
+  // auto: MATLAB's default window, chosen per revolution (smoothing_bins 0 in the config).
+  const sim::Scenario automatic = read_scenario(write_text(
+      dir.file("auto.yaml"),
+      std::string(kMinimal) + "detections: {smoothing_bins: auto, smoothing_factor: 0.3}\n"));
+  EXPECT_EQ(automatic.detections.smoothing_bins, 0);
+  EXPECT_EQ(automatic.detections.smoothing_factor, 0.3);
+  expect_bad(std::string(kMinimal) + "detections:\n  smoothing_factor: 2\n", 9,
+             "detections.smoothing_factor", "[0, 1]");
   expect_bad(std::string(kMinimal) + "detections:\n  treshold: 45\n", 9, "detections.treshold");
 }
 

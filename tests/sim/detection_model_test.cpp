@@ -122,5 +122,38 @@ TEST(DetectionModel, EmptyAndShortProfiles) {
   EXPECT_TRUE(detect_bins(Profile(5, 255), kBin_m, {}).empty());  // nothing beyond 1 m
 }
 
+/// A revolution of `beams` identical rows: the kept bins (491, from 1.0 m) of a profile with an
+/// E-bin box echo of 200 starting at bin 200.
+std::vector<std::vector<double>> box_revolution(int echo_bins, int beams = 200) {
+  Profile p(kBins, 0);
+  for (int j = 200; j < 200 + echo_bins; ++j) p[j] = 200;
+  return std::vector<std::vector<double>>(static_cast<std::size_t>(beams),
+                                          kept_bins(p, kBin_m, 1.0));
+}
+
+TEST(DetectionModel, MatlabsDefaultWindowIsAboutTheEchosWidth) {
+  // smoothdata's rule (0.44294 x 2N / (rho - 1) for the -3 dB point where three quarters of the
+  // energy lie below): a box echo of E bins gives a window of about E.
+  ASSERT_EQ(box_revolution(8).front().size(), 491u);
+  EXPECT_EQ(matlab_default_window(box_revolution(4)), 4);
+  EXPECT_EQ(matlab_default_window(box_revolution(8)), 8);
+  EXPECT_EQ(matlab_default_window(box_revolution(12)), 12);
+  EXPECT_EQ(matlab_default_window(box_revolution(20)), 19);
+  EXPECT_EQ(matlab_default_window(box_revolution(40)), 37);
+}
+
+TEST(DetectionModel, ConstantBeamsCountAsNoEnergyInTheDefaultWindow) {
+  // A constant beam's normalised spectrum is 0/0, which MATLAB's cumsum(..., 'omitnan') counts as
+  // zeros: with a quarter of the beams constant the average never exceeds 0.75 (window 1), with
+  // a fifth it reaches 0.75 later (a wider band: a narrower window).
+  std::vector<std::vector<double>> rows = box_revolution(8, 3);
+  rows.push_back(std::vector<double>(491, 0.0));
+  EXPECT_EQ(matlab_default_window(rows), 1);
+  rows = box_revolution(8, 4);
+  rows.push_back(std::vector<double>(491, 7.0));
+  EXPECT_EQ(matlab_default_window(rows), 3);
+  EXPECT_EQ(matlab_default_window({}), 1);
+}
+
 }  // namespace
 }  // namespace msislab

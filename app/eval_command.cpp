@@ -93,6 +93,13 @@ void check_scores_folder(const std::string& dir) {
   io::write_output_marker(dir, "scores", "eval", nullptr);
 }
 
+/// Lists eval's files in a result folder's marker, so that run replaces the folder later.
+void record_scores(const std::string& dir) {
+  std::vector<std::string> names = {"metrics.json"};
+  if (fs::exists(fs::path(dir) / "nees.csv")) names.push_back("nees.csv");
+  io::record_output_entries(dir, names);
+}
+
 /// The run's own record. A result written without truth has none: then only --truth can score it,
 /// and the run's figures are unknown.
 io::StoredMetrics read_run_record(const EvalOptions& options, const fs::path& dir) {
@@ -261,6 +268,7 @@ EvalOutcome evaluate(const EvalOptions& options) {
   check_scores_folder(options.result_dir);
   write_scores(options.result_dir, metrics, nees, stored.dataset_dir,
                options.truth_path.empty() ? "" : io::absolute_path(options.truth_path));
+  record_scores(options.result_dir);
   return outcome;
 }
 

@@ -94,7 +94,10 @@ std::vector<std::string> unlisted_entries(const fs::path& dir) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name != kOutputMarkerName && listed.count(name) == 0) unlisted.push_back(name);
+    if (name == kOutputMarkerName || listed.count(name) > 0) continue;
+    // A folder msislab wrote into the output later (plot's figures/, a result) is msislab's too.
+    if (entry.is_directory(ec) && !output_kind(entry.path().string()).empty()) continue;
+    unlisted.push_back(name);
   }
   std::sort(unlisted.begin(), unlisted.end());
   return unlisted;
@@ -178,6 +181,27 @@ void write_output_marker(const std::string& dir, const std::string& kind,
   }
   out.flush();
   if (!out) fail_file(path.string(), "cannot write msislab's output marker");
+}
+
+void record_output_entries(const std::string& dir, const std::vector<std::string>& names) {
+  const fs::path marker = fs::path(dir) / kOutputMarkerName;
+  std::ifstream in(marker);
+  std::vector<std::string> lines;
+  std::set<std::string> listed;
+  bool listing = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line == kEntriesLine) listing = true;
+    if (listing && line.rfind("  ", 0) == 0) listed.insert(line.substr(2));
+    lines.push_back(line);
+  }
+  in.close();
+  if (!listing) return;  // a folder filled in place lists nothing
+  std::ofstream out(marker, std::ios::binary | std::ios::app);
+  for (const std::string& name : names) {
+    if (listed.insert(name).second) out << "  " << name << "\n";
+  }
+  out.flush();
+  if (!out) fail_file(marker.string(), "cannot write msislab's output marker");
 }
 
 bool check_output_folder(const OutputRequest& request) {

@@ -34,8 +34,14 @@ std::string output_kind(const std::string& dir);
 void write_output_marker(const std::string& dir, const std::string& kind,
                          const std::string& command, const std::vector<std::string>* entries);
 
+/// Adds `names` (files msislab writes into an existing output later, such as eval's scores) to the
+/// entries the folder's marker lists, so that a later replacement of the folder knows them for
+/// msislab's. Nothing happens to a folder whose marker lists nothing.
+void record_output_entries(const std::string& dir, const std::vector<std::string>& names);
+
 /// Checks that the folder request.path may be written as request.kind: absent, empty, or holding
-/// msislab's marker of the same kind and nothing the marker does not list (or any folder with
+/// msislab's marker of the same kind and nothing the marker does not list but folders with a
+/// marker of their own (or any folder with
 /// request.force). Refuses, naming the path: a non-folder, an input, a folder holding an input or
 /// the current directory, a foreign folder, another kind of output, a file the user put into one.
 /// Returns true when the folder exists (a later write replaces or adds to it).

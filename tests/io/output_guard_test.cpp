@@ -80,6 +80,22 @@ TEST(OutputGuard, AFileTheUserPutIntoAnOutputIsKept) {
   EXPECT_EQ(entries(tmp.path()), 1u) << "no staging folder left";
 }
 
+TEST(OutputGuard, WhatMsislabAddsToAnOutputLaterIsItsOwnToo) {
+  const TempDir tmp;
+  const OutputRequest result{tmp.file("res"), "result", "run", {}, false};
+  StagedFolder first(result);
+  write_text(first.path() + "/trajectory.tum", "t");
+  first.commit();
+  claim_output_folder({tmp.file("res/figures"), "figures", "plot", {}, false});  // plot, later
+  write_text(tmp.file("res/metrics.json"), "{}");                                // eval, later
+  record_output_entries(tmp.file("res"), {"metrics.json"});
+  StagedFolder second(result);  // accepted: nothing in res/ is the user's
+  second.commit();
+  EXPECT_FALSE(fs::exists(tmp.path() / "res" / "figures"));
+  fs::create_directory(tmp.path() / "res" / "mine");  // a folder without a marker is the user's
+  EXPECT_NE(refusal([&] { StagedFolder third(result); }).find("holds 'mine'"), std::string::npos);
+}
+
 TEST(OutputGuard, AnEmptyFolderIsFilled) {
   const TempDir tmp;
   fs::create_directory(tmp.path() / "out");

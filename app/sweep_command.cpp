@@ -223,8 +223,9 @@ void add_sweep_command(CLI::App& app, CommandLine& line) {
   cli->command->add_option("SWEEP", cli->options.sweep_path, "Sweep YAML (required unless merge)");
   cli->command->add_option("--out,-o", cli->options.out_dir,
                            "Sweep directory (required); an existing one is resumed");
-  cli->command->add_option("--jobs,-j", cli->options.jobs,
-                           "Runs at once in each cell (default: one per hardware thread)")
+  cli->command
+      ->add_option("--jobs,-j", cli->options.jobs,
+                   "Runs at once in each cell (default: one per hardware thread)")
       ->check(CLI::PositiveNumber);
   cli->command->add_option("--shard", cli->options.shard,
                            "i/N: in every cell only the runs r with r % N == i; merge afterwards");

@@ -8,6 +8,8 @@
 
 #include <Eigen/Cholesky>
 
+#include "eval/alignment.hpp"
+
 namespace msislab {
 
 Pose2 interpolate_pose(const std::vector<StampedPose>& trajectory, double t_s) {
@@ -38,12 +40,8 @@ Eigen::Vector2d interpolate_position(const std::vector<PositionFix>& track, doub
 std::vector<ErrorSample> position_errors(const std::vector<StampedPose>& estimate,
                                          const std::vector<PositionFix>& truth) {
   std::vector<ErrorSample> errors;
-  if (estimate.empty()) return errors;
-  const double t_begin = estimate.front().t_s, t_end = estimate.back().t_s;
-  for (const PositionFix& fix : truth) {
-    if (fix.t_s < t_begin || fix.t_s > t_end) continue;
-    const Pose2 p = interpolate_pose(estimate, fix.t_s);
-    errors.push_back({fix.t_s, (p.translation() - fix.p_world_m).norm()});
+  for (const MatchedPosition& m : matched_positions(estimate, truth)) {
+    errors.push_back({m.t_s, (m.p_estimate_m - m.p_truth_m).norm()});
   }
   return errors;
 }

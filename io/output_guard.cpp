@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 
 #include "io/input_error.hpp"
@@ -79,9 +80,8 @@ std::string some_entries(const fs::path& dir) {
   return listed;
 }
 
-/// The folder's entries that its marker does not list; none when the marker lists nothing (a folder
-/// msislab fills in place, never replaces whole).
-std::vector<std::string> unlisted_entries(const fs::path& dir) {
+/// The entries a folder's marker lists; nullopt when it lists none (a folder filled in place).
+std::optional<std::set<std::string>> listed_entries(const fs::path& dir) {
   std::ifstream in(dir / kOutputMarkerName);
   std::set<std::string> listed;
   bool listing = false;
@@ -89,12 +89,20 @@ std::vector<std::string> unlisted_entries(const fs::path& dir) {
     if (line == kEntriesLine) listing = true;
     if (listing && line.rfind("  ", 0) == 0) listed.insert(line.substr(2));
   }
+  if (!listing) return std::nullopt;
+  return listed;
+}
+
+/// The folder's entries that its marker does not list; none when the marker lists nothing (a folder
+/// msislab fills in place, never replaces whole).
+std::vector<std::string> unlisted_entries(const fs::path& dir) {
   std::vector<std::string> unlisted;
-  if (!listing) return unlisted;
+  const std::optional<std::set<std::string>> listed = listed_entries(dir);
+  if (!listed) return unlisted;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
     const std::string name = entry.path().filename().string();
-    if (name == kOutputMarkerName || listed.count(name) > 0) continue;
+    if (name == kOutputMarkerName || listed->count(name) > 0) continue;
     // A folder msislab wrote into the output later (plot's figures/, a result) is msislab's too.
     if (entry.is_directory(ec) && !output_kind(entry.path().string()).empty()) continue;
     unlisted.push_back(name);
@@ -184,21 +192,12 @@ void write_output_marker(const std::string& dir, const std::string& kind,
 }
 
 void record_output_entries(const std::string& dir, const std::vector<std::string>& names) {
+  std::optional<std::set<std::string>> listed = listed_entries(dir);
+  if (!listed) return;  // a folder filled in place lists nothing
   const fs::path marker = fs::path(dir) / kOutputMarkerName;
-  std::ifstream in(marker);
-  std::vector<std::string> lines;
-  std::set<std::string> listed;
-  bool listing = false;
-  for (std::string line; std::getline(in, line);) {
-    if (line == kEntriesLine) listing = true;
-    if (listing && line.rfind("  ", 0) == 0) listed.insert(line.substr(2));
-    lines.push_back(line);
-  }
-  in.close();
-  if (!listing) return;  // a folder filled in place lists nothing
   std::ofstream out(marker, std::ios::binary | std::ios::app);
   for (const std::string& name : names) {
-    if (listed.insert(name).second) out << "  " << name << "\n";
+    if (listed->insert(name).second) out << "  " << name << "\n";
   }
   out.flush();
   if (!out) fail_file(marker.string(), "cannot write msislab's output marker");

@@ -282,6 +282,10 @@ int main(int argc, char** argv) {
                  "Revolutions that must see an echo cluster for it to be an object")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--wall-offset", trace.wall_offset_m,
+                 "The outline lies this far into the band of first detections, m")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--max-track-distance", trace.max_track_distance_m,
                  "Water lies within this distance of the GPS track, m")
       ->check(CLI::PositiveNumber)

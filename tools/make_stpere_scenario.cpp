@@ -94,6 +94,14 @@ Waypoints place_waypoints(const std::vector<msislab::PositionFix>& fixes, const 
   return waypoints;
 }
 
+// The St. Pere MiniKing as its detections show it (docs/simulator.md, "Echo shape"): a 500 us
+// box pulse with no receiver tail, a 6 deg (two-way -3 dB) horizontal beam traced over 2.5
+// beamwidths either side, and the publisher's detector with a 23-bin window.
+constexpr const char* kStPereSonar =
+    "sonar:\n  pulse_length_us: 500\n  receiver_time_constant_us: 0\n"
+    "  horizontal_beamwidth_deg: 6\n  horizontal_span_beamwidths: 2.5\n  rays_horizontal: 24\n"
+    "detections: {smoothing_bins: 23}\n";
+
 std::string scenario_yaml(const Options& options, const Path& path,
                           const std::vector<double>& leg_speeds_mps, const std::string& mesh_ref) {
   std::ostringstream yaml;
@@ -105,11 +113,12 @@ std::string scenario_yaml(const Options& options, const Path& path,
           "real "
           "one did, so the\n# segments are the real times. Written by msislab_make_stpere_scenario "
           "(docs/scenes.md).\n";
-  // Materials: rough quay walls and moored objects with little specular reflection, a mud
-  // bottom about 22 dB below them (docs/simulator.md, "Calibration against St. Pere").
+  // Materials: rough quay walls and moored objects with little specular reflection whose
+  // backscatter falls as cos(incidence), a mud bottom about 22 dB below them (docs/simulator.md,
+  // "Calibration against St. Pere").
   yaml << "name: stpere_replica\nseed: 42\nscene:\n  mesh: " << mesh_ref
-       << "\n  groups:\n    walls: {backscatter: 0.5, specular: 0.05}\n"
-          "    clutter: {backscatter: 0.5, specular: 0.05}\n"
+       << "\n  groups:\n    walls: {backscatter: 0.5, specular: 0.05, incidence_exponent: 1}\n"
+          "    clutter: {backscatter: 0.5, specular: 0.05, incidence_exponent: 1}\n"
           "    bottom: {backscatter: 0.003, specular: 0.3}\nvehicle:\n  depth_m: "
        << options.depth_m << "\n  speed_mps: 0.2\n  path:\n"
        << std::fixed << std::setprecision(2);
@@ -119,7 +128,7 @@ std::string scenario_yaml(const Options& options, const Path& path,
   yaml << std::setprecision(0) << "segments: {loop: [0, " << options.leave_basin_s << "], canal: ["
        << options.leave_basin_s << ", " << options.segments_end_s << "], exit: [" << options.exit_s
        << ", " << options.segments_end_s << "]}\n"
-       << "sonar: {}\ndvl: {}\nmru: {}\ngps: {}\n";
+       << kStPereSonar << "dvl: {}\nmru: {}\ngps: {}\n";
   return yaml.str();
 }
 

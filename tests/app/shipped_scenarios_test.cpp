@@ -111,16 +111,17 @@ TEST(ShippedScenarios, StPereReplicaSimulatesAndAgreesWithItsTruth) {
             << "%, strongest echo from another surface (bottom): " << 100 * other << "%\n";
   EXPECT_GT(a.with_hit, static_cast<int>(summary.beams / 2));
   // Within 1.5 m, not 0.3 m as with point echoes: each ray is a surface patch whose echo
-  // spreads over its ranges and the receiver's 0.9 m tail, so an oblique wall's strongest bin
-  // lies up to a metre or so beyond the axis's first hit (docs/simulator.md). Measured at seed
-  // 42: 92.4 % within 1.5 m (98.9 % within 0.3 m with point echoes).
-  EXPECT_GE(within, 0.90);
+  // spreads over its ranges and the 0.375 m pulse, so an oblique wall's strongest bin lies up to
+  // a metre or so beyond the axis's first hit (docs/simulator.md). Measured at seed 42: 84.7 %
+  // within 1.5 m (92.4 % with the earlier 3 deg beam, 98.9 % within 0.3 m with point echoes).
+  EXPECT_GE(within, 0.82);
   // The rest is explained by the truth: a multipath route, or the bottom outshining a far wall;
-  // but for about 3 %, a nearer wall under the beam's +-6 deg (2 beamwidths) whose bright patch
-  // (10 dB roughness) outshines a dark or grazing one on the axis, which the per-beam truth
-  // cannot name (tests/app/simulate_command_test.cpp checks that case against the box's
-  // geometry). Measured: 97.3 %; it was 99.5 % or more with point echoes on even walls.
-  EXPECT_GE(within + flagged + other, 0.965);
+  // but for about 6 %, a nearer wall under the beam's +-15 deg (2.5 of its 6 deg beamwidths)
+  // whose bright patch (10 dB roughness) outshines a dark or grazing one on the axis, which the
+  // per-beam truth cannot name (tests/app/simulate_command_test.cpp checks that case against the
+  // box's geometry). Measured: 93.8 % (97.3 % with the 3 deg beam; 99.5 % or more with point
+  // echoes on even walls).
+  EXPECT_GE(within + flagged + other, 0.92);
 
   // The pipeline reads it: dead reckoning against the simulation truth, drift of a few metres.
   const RunOutcome dr = run({out, "deadreckoning", tmp.file("dr"), ""});

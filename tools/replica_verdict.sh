@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Does the replica's SLAM verdict transfer to the real run? Simulates N replica runs (default 20,
+# seeds 42..42+N-1, config/stpere_replica.yaml, detections path) with robocentric and dead
+# reckoning, then scores each run twice: against the simulation's exact truth (the Monte Carlo's
+# own figures) and, like the real run, against the run's simulated GPS buoy (the dataset without
+# truth/). Prints one line per run and the summary that docs/results.md quotes: the share of runs
+# where robocentric beats dead reckoning, the 5-95 % band of the GPS-scored robocentric errors
+# against the real run's figure, how often the exit is the worst segment, and the spIC scale.
+# Usage: tools/replica_verdict.sh [--runs N] [--out DIR] [--real-error M]   (after a release build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+runs=20
+out=out/verdict
+real_error=2.84
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    --real-error) real_error="$2"; shift 2 ;;
+    -h|--help) sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "tools/replica_verdict.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+
+msislab=build/release/tools/msislab
+[ -x "$msislab" ] || { echo "tools/replica_verdict.sh: build first (cmake --preset release && cmake --build --preset release)" >&2; exit 2; }
+source tools/run_fresh.sh
+
+mc="$out/montecarlo"
+run_fresh "$mc" "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" \
+  --out "$mc" --methods robocentric,deadreckoning --config config/stpere_replica.yaml \
+  --keep-datasets --no-plot >/dev/null
+gps="$out/gps"
+# The GPS-scored runs are this script's own (the marker says so); anything else there is refused.
+if [ -e "$gps" ] && [ ! -f "$gps/.replica-verdict" ]; then
+  echo "tools/replica_verdict.sh: $gps exists and was not written by this script; choose another --out" >&2
+  exit 2
+fi
+rm -rf "$gps"
+mkdir -p "$gps"
+touch "$gps/.replica-verdict"
+for dataset in "$mc"/datasets/run_*; do
+  r=$(basename "$dataset")
+  copy="$gps/$r/dataset"
+  mkdir -p "$copy"
+  # The same files without truth/: the run is scored against its simulated GPS, as the real one.
+  cp "$dataset"/*_DVL.log "$dataset"/*_MTi.log "$dataset"/*_DGPS.log "$dataset"/*_SETUP.log \
+    "$dataset"/*_IS_timestamps.log "$dataset"/*_detections.csv.gz "$dataset"/calibration.yaml \
+    "$copy"/
+  for m in robocentric deadreckoning; do
+    "$msislab" run "$copy" --method "$m" --out "$gps/$r/$m" --config config/stpere_replica.yaml \
+      >/dev/null
+  done
+  rm -rf "$copy"
+done
+
+python3 - "$mc" "$gps" "$real_error" <<'EOF'
+import glob, json, os, sys
+mc, gps, real = sys.argv[1], sys.argv[2], float(sys.argv[3])
+def metrics(path):
+    with open(path) as f:
+        return json.load(f)
+def diag(m, key):
+    return m.get("diagnostics", {}).get(key, float("nan"))
+rows = []
+for run_dir in sorted(glob.glob(os.path.join(mc, "runs", "robocentric", "run_*"))):
+    r = os.path.basename(run_dir)
+    try:
+        rc, dr = (metrics(os.path.join(mc, "runs", m, r, "metrics.json")) for m in ("robocentric", "deadreckoning"))
+        rg, dg = (metrics(os.path.join(gps, r, m, "metrics.json")) for m in ("robocentric", "deadreckoning"))
+    except FileNotFoundError:
+        continue
+    seg = rc["segments"]
+    rows.append(dict(run=r, rc=rc["mean_error_m"], dr=dr["mean_error_m"], rc_gps=rg["mean_error_m"],
+                     dr_gps=dg["mean_error_m"], worst=max(seg, key=seg.get),
+                     worst_gps=max(rg["segments"], key=rg["segments"].get),
+                     scale=diag(rc, "consecutive_match_scale"),
+                     scale_gps=diag(rg, "consecutive_match_scale")))
+print("run       robocentric  dead reckoning  robocentric(GPS)  dead reckoning(GPS)  worst segment (truth/GPS)  spIC scale (truth/GPS)")
+for x in rows:
+    print(f"{x['run']}  {x['rc']:11.2f}  {x['dr']:14.2f}  {x['rc_gps']:16.2f}  {x['dr_gps']:19.2f}  "
+          f"{x['worst']:>12s}/{x['worst_gps']:<12s}  {x['scale']:.3f}/{x['scale_gps']:.3f}")
+n = len(rows)
+if n == 0:
+    sys.exit("tools/replica_verdict.sh: no finished run")
+def quantile(values, q):  # linear interpolation between order statistics (numpy's default)
+    v = sorted(values); h = (len(v) - 1) * q; i = int(h)
+    return v[i] + (v[min(i + 1, len(v) - 1)] - v[i]) * (h - i)
+better = sum(x["rc"] < x["dr"] for x in rows)
+better_gps = sum(x["rc_gps"] < x["dr_gps"] for x in rows)
+lo, hi = quantile([x["rc_gps"] for x in rows], 0.05), quantile([x["rc_gps"] for x in rows], 0.95)
+exit_worst = sum(x["worst"] == "exit" for x in rows)
+mean = lambda k: sum(x[k] for x in rows) / n
+print(f"\nruns: {n}")
+print(f"robocentric below dead reckoning: {better}/{n} ({100 * better / n:.0f} %) against the truth, "
+      f"{better_gps}/{n} ({100 * better_gps / n:.0f} %) against the simulated GPS")
+print(f"robocentric against the simulated GPS: mean {mean('rc_gps'):.2f} m, 5-95 % band "
+      f"{lo:.2f}-{hi:.2f} m; the real run's {real:.2f} m is {'inside' if lo <= real <= hi else 'outside'}")
+print(f"exit the worst segment: {exit_worst}/{n} runs (truth)")
+print(f"spIC scale: {mean('scale'):.3f} against the truth, {mean('scale_gps'):.3f} against the GPS "
+      f"(real run 1.024 against its GPS)")
+EOF

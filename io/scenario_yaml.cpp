@@ -129,6 +129,10 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
     map.number(key, *value);
     require_positive(map, key, *value);
   }
+  if (double stop_s = 0.0; map.number("stop_s", stop_s)) {
+    require_positive(map, "stop_s", stop_s);
+    s.stop_s = stop_s;
+  }
   map.number("tilt_deg", s.tilt_deg);
   map.number("absorption_db_per_m", s.absorption_db_per_m);
   if (s.absorption_db_per_m < 0.0) map.fail("absorption_db_per_m", "must be >= 0");

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -49,6 +50,9 @@ enum class BeamPattern {
 struct SonarConfig {
   int steps_per_revolution = 200;
   double revolution_s = 13.8;
+  /// The sonar logs beams until this time, s after the run's start (absent: the whole run), as
+  /// the real St. Pere sonar log ends 3020 s into its GPS track.
+  std::optional<double> stop_s;
   int bins = 500;
   double bin_m = 0.1;
   double horizontal_beamwidth_deg = 3.0;  ///< two-way -3 dB full width

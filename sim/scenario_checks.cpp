@@ -33,6 +33,25 @@ RayHit mesh_hit(const Scene& scene, const Eigen::Vector3d& origin_m,
   return hit.water_surface ? RayHit{} : hit;
 }
 
+/// How many mesh faces lie straight above origin_m, up to any height (the water surface
+/// skipped): odd inside a closed solid, even under closed objects that float above the point.
+int faces_above(const Scene& scene, const Eigen::Vector3d& origin_m) {
+  constexpr double kStep_m = 1e-3;  // past each face before looking for the next
+  constexpr int kMaxFaces = 64;
+  Ray ray;
+  ray.origin_m = origin_m.cast<float>();
+  ray.direction = Eigen::Vector3f::UnitZ();
+  ray.t_max_m = 1e6f;
+  int faces = 0;
+  for (int k = 0; k < kMaxFaces; ++k) {
+    const RayHit hit = scene.intersect(ray);
+    if (!hit.hit) break;
+    if (!hit.water_surface) ++faces;
+    ray.origin_m.z() += hit.distance_m + static_cast<float>(kStep_m);
+  }
+  return faces;
+}
+
 std::string group_of(const Scene& scene, const RayHit& hit) {
   return "'" + scene.materials()[hit.material_id].name + "'";
 }
@@ -141,15 +160,19 @@ class LegCheck {
   std::optional<ScenarioFinding> check_point(const Eigen::Vector2d& p, std::size_t j,
                                              LowestPoint& lowest) {
     const std::size_t key_index = j == 0 ? from_ : from_ + 1;
+    // Something under the surface above the vehicle is an error when the vehicle is below the
+    // floor (nothing under it) or inside a closed solid (an odd count of faces above); under a
+    // closed object that floats (a moored hull: an even count) it is where the real vehicle was.
     const RayHit up = mesh_hit(scene_, at(p), Eigen::Vector3d::UnitZ(), -z_m_);
-    if (up.hit) {
+    const RayHit under = mesh_hit(scene_, at(p), -Eigen::Vector3d::UnitZ(), 1e6);
+    if (up.hit && (!under.hit || faces_above(scene_, at(p)) % 2 == 1)) {
       return ScenarioFinding{ScenarioKey::kDepth, 0, true,
                              format("%g m puts the vehicle under the mesh (group ", v_.depth_m) +
                                  group_of(scene_, up) +
                                  format(" at %.2f m depth) at ", -z_m_ - up.distance_m) +
                                  where(p, j) + ": below the floor or inside a solid"};
     }
-    const RayHit down = mesh_hit(scene_, at(p), -Eigen::Vector3d::UnitZ(), 1e6);
+    const RayHit& down = under;
     if (!down.hit) {
       return ScenarioFinding{ScenarioKey::kWaypoint, key_index, true,
                              where(p, j) + " has no floor under it: the path leaves the scene"};

@@ -22,7 +22,10 @@ namespace {
 std::vector<RenderedBeam> render_beams(const Scenario& scenario, const Scene& scene,
                                        const VehicleTrajectory& truth, int threads) {
   const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
-  const std::vector<BeamSlot> slots = beam_schedule(scenario.sonar, truth.start_s(), truth.end_s());
+  const double stop_s = scenario.sonar.stop_s
+                            ? std::min(truth.end_s(), truth.start_s() + *scenario.sonar.stop_s)
+                            : truth.end_s();
+  const std::vector<BeamSlot> slots = beam_schedule(scenario.sonar, truth.start_s(), stop_s);
   std::vector<RenderedBeam> beams(slots.size());
   // TBB (Embree's own task scheduler) spreads the beams over `threads` threads; each beam owns
   // its slot in the output and its random stream, so the bytes do not depend on which thread

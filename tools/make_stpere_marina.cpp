@@ -41,6 +41,10 @@ struct Options {
   double wall_top_m = 1.0;          ///< walls rise this far above the surface, m
   double wall_foot_offset_m = 0.0;  ///< a wall's foot lies this far into the water, m
   double clutter_top_m = 0.5;       ///< clutter objects rise from the bottom to this height, m
+  double hull_draught_m = 1.0;      ///< ... or, where the real track crosses them, float this deep
+  /// How far the detector's first bin lies before a wall at normal incidence (the centred window
+  /// starts a run before its echo): the replica's, measured (docs/scenes.md, step 5), m.
+  double detector_lead_m = 0.6;
   msislab::sim::MarinaTraceConfig trace;
 };
 
@@ -112,7 +116,30 @@ std::pair<double, double> median_altitudes_m(const std::string& dvl_path, double
   return {median(before), median(after)};
 }
 
+/// Whether the GPS track (sampled every 0.25 m between fixes) enters a convex ccw footprint.
+bool track_crosses(const std::vector<Eigen::Vector2d>& track_m,
+                   const std::vector<Eigen::Vector2d>& ccw_footprint_m) {
+  const auto inside = [&](const Eigen::Vector2d& p) {
+    for (std::size_t i = 0; i < ccw_footprint_m.size(); ++i) {
+      const Eigen::Vector2d& a = ccw_footprint_m[i];
+      const Eigen::Vector2d edge = ccw_footprint_m[(i + 1) % ccw_footprint_m.size()] - a;
+      const Eigen::Vector2d to_p = p - a;
+      if (edge.x() * to_p.y() - edge.y() * to_p.x() < 0.0) return false;
+    }
+    return true;
+  };
+  for (std::size_t k = 0; k + 1 < track_m.size(); ++k) {
+    const Eigen::Vector2d step = track_m[k + 1] - track_m[k];
+    const int samples = 1 + static_cast<int>(step.norm() / 0.25);
+    for (int i = 0; i <= samples; ++i) {
+      if (inside(track_m[k] + step * (static_cast<double>(i) / samples))) return true;
+    }
+  }
+  return false;
+}
+
 msislab::sim::TriangleMesh marina_mesh(const msislab::sim::MarinaTrace& trace,
+                                       const std::vector<Eigen::Vector2d>& track_m,
                                        const Options& options) {
   msislab::sim::MeshBuilder builder;
   const std::uint32_t walls = builder.group("walls", 0.6f, 0.3f);
@@ -125,8 +152,12 @@ msislab::sim::TriangleMesh marina_mesh(const msislab::sim::MarinaTrace& trace,
   if (!trace.clutter.empty()) {
     const std::uint32_t clutter = builder.group("clutter", 0.5f, 0.3f);
     for (const msislab::sim::ClutterObject& object : trace.clutter) {
-      msislab::sim::add_prism(builder, object.ccw_footprint_m(), profile.z_bottom_m,
-                              options.clutter_top_m, clutter);
+      // An object the real vehicle went through is a moored hull it passed under (or one the
+      // GPS misplaces): it floats, so the replica's vehicle passes under it too.
+      const std::vector<Eigen::Vector2d> footprint = object.ccw_footprint_m();
+      const double z_low_m =
+          track_crosses(track_m, footprint) ? -options.hull_draught_m : profile.z_bottom_m;
+      msislab::sim::add_prism(builder, footprint, z_low_m, options.clutter_top_m, clutter);
     }
   }
   return builder.mesh();
@@ -232,13 +263,22 @@ void make_marina(const Options& options) {
   std::vector<Eigen::Vector2d> track_m;
   for (const msislab::PositionFix& fix : gps) track_m.push_back(fix.p_world_m);
 
-  const msislab::sim::MarinaTrace trace = msislab::sim::trace_marina(beams, track_m, options.trace);
-  const msislab::sim::TriangleMesh mesh = marina_mesh(trace, options);
+  msislab::sim::MarinaTraceConfig trace_config = options.trace;
+  trace_config.wall_offset_m += options.detector_lead_m;  // the walls behind the first detections
+  const msislab::sim::MarinaTrace trace = msislab::sim::trace_marina(beams, track_m, trace_config);
+  const msislab::sim::TriangleMesh mesh = marina_mesh(trace, track_m, options);
   io::write_obj(options.out_path, mesh);
   if (!options.preview_path.empty()) write_preview(options.preview_path, beams, gps, trace);
   const std::size_t echoes = std::count_if(beams.begin(), beams.end(),
                                            [](const auto& b) { return b.first_range_m > 0.0; });
   print_summary(trace, mesh, beams.size(), echoes);
+  for (const msislab::sim::ClutterObject& o : trace.clutter) {
+    if (track_crosses(track_m, o.ccw_footprint_m())) {
+      std::cout << "  the GPS track crosses (" << o.centre_m.x() << ", " << o.centre_m.y()
+                << "): a hull from " << options.clutter_top_m << " m down to -"
+                << options.hull_draught_m << " m\n";
+    }
+  }
   constexpr double kShallowEndS = 2600.0;  // the DVL altitude drops from here on
   const auto [before_m, after_m] = median_altitudes_m(*files.dvl, gps.front().t_s, kShallowEndS);
   std::cout << std::setprecision(2) << "DVL altitude (median, bottom lock): " << before_m
@@ -263,6 +303,10 @@ int main(int argc, char** argv) {
                  "Bottom below the vehicle (the DVL's median altitude), m")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--hull-draught", options.hull_draught_m,
+                 "A clutter object the GPS track crosses floats this deep, m")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--wall-foot-offset-m", options.wall_foot_offset_m,
                  "A wall's foot lies this far into the water from its top (0: vertical walls), m")
       ->check(CLI::NonNegativeNumber)
@@ -284,6 +328,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--wall-offset", trace.wall_offset_m,
                  "The outline lies this far into the band of first detections, m")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--detector-lead", options.detector_lead_m,
+                 "... plus this much: how far the first detected bin lies before a wall, m")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_option("--max-track-distance", trace.max_track_distance_m,

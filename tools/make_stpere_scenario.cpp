@@ -20,6 +20,7 @@
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/mesh_io.hpp"
+#include "io/stpere_logs.hpp"
 #include "sim/scenario_path.hpp"
 
 namespace {
@@ -96,14 +97,20 @@ Waypoints place_waypoints(const std::vector<msislab::PositionFix>& fixes, const 
 
 // The St. Pere MiniKing as its detections show it (docs/simulator.md, "Echo shape"): a 500 us
 // box pulse with no receiver tail, a 6 deg (two-way -3 dB) horizontal beam traced over 2.5
-// beamwidths either side, and the publisher's detector with a 23-bin window.
-constexpr const char* kStPereSonar =
-    "sonar:\n  pulse_length_us: 500\n  receiver_time_constant_us: 0\n"
-    "  horizontal_beamwidth_deg: 6\n  horizontal_span_beamwidths: 2.5\n  rays_horizontal: 24\n"
-    "detections: {smoothing_bins: 23}\n";
+// beamwidths either side, and the publisher's detector with a 23-bin window. The sonar logs until
+// the real one stopped, stop_s after the first fix.
+std::string stpere_sonar_yaml(double stop_s) {
+  std::ostringstream yaml;
+  yaml << std::fixed << std::setprecision(1) << "sonar:\n  stop_s: " << stop_s
+       << "\n  pulse_length_us: 500\n  receiver_time_constant_us: 0\n"
+          "  horizontal_beamwidth_deg: 6\n  horizontal_span_beamwidths: 2.5\n"
+          "  rays_horizontal: 24\ndetections: {smoothing_bins: 23}\n";
+  return yaml.str();
+}
 
 std::string scenario_yaml(const Options& options, const Path& path,
-                          const std::vector<double>& leg_speeds_mps, const std::string& mesh_ref) {
+                          const std::vector<double>& leg_speeds_mps, const std::string& mesh_ref,
+                          double sonar_stop_s) {
   std::ostringstream yaml;
   yaml << "# The St. Pere replica: the real GPS track in the local frame (x East, y North, m from "
           "the\n# first fix), smoothed over "
@@ -128,14 +135,18 @@ std::string scenario_yaml(const Options& options, const Path& path,
   yaml << std::setprecision(0) << "segments: {loop: [0, " << options.leave_basin_s << "], canal: ["
        << options.leave_basin_s << ", " << options.segments_end_s << "], exit: [" << options.exit_s
        << ", " << options.segments_end_s << "]}\n"
-       << kStPereSonar << "dvl: {}\nmru: {}\ngps: {}\n";
+       << stpere_sonar_yaml(sonar_stop_s) << "dvl: {}\nmru: {}\ngps: {}\n";
   return yaml.str();
 }
 
 void make_scenario(const Options& options) {
   const msislab::io::DatasetFiles files = msislab::io::find_dataset_files(options.dataset_dir);
-  const std::vector<msislab::PositionFix> fixes =
-      msislab::io::load_gps_fixes(files, msislab::io::load_calibration(files));
+  const msislab::Calibration calibration = msislab::io::load_calibration(files);
+  const std::vector<msislab::PositionFix> fixes = msislab::io::load_gps_fixes(files, calibration);
+  if (!files.beam_times) throw std::runtime_error(options.dataset_dir + ": no *_IS_timestamps.log");
+  // The last beam on the navigation clock (docs/simulator.md, "Sonar clock offset").
+  const double sonar_stop_s = msislab::io::read_beam_times_log(*files.beam_times).back().t_log_s +
+                              calibration.sonar.time_offset_s - fixes.front().t_s;
   const SceneOutline outline = load_outline(options.scene_path);
   const Path smoothed = smooth_track(fixes, options.smooth_s);
   const Waypoints waypoints = place_waypoints(fixes, smoothed, outline, options);
@@ -165,7 +176,7 @@ void make_scenario(const Options& options) {
     const auto out_dir = std::filesystem::absolute(options.out_path).parent_path();
     mesh_ref = std::filesystem::relative(std::filesystem::absolute(options.scene_path), out_dir);
   }
-  const std::string yaml = scenario_yaml(options, path, leg_speeds_mps, mesh_ref);
+  const std::string yaml = scenario_yaml(options, path, leg_speeds_mps, mesh_ref, sonar_stop_s);
   if (options.out_path.empty()) {
     std::cout << yaml;
     return;

@@ -424,6 +424,27 @@ TEST(SimulateCommand, AnotherSeedGivesAnotherSonarLog) {
             read_text((box.dir / "truth" / "trajectory.tum").string()));
 }
 
+TEST(SimulateCommand, SonarStopsAtStopSAndNavigationRunsOn) {
+  // sonar.stop_s: the sonar logs beams for the first 20 s only (as the real St. Pere sonar log
+  // ends before its GPS track); the DVL, MTi and truth still cover the whole run.
+  const BoxDataset& box = box_dataset();
+  const TempDir tmp;
+  const std::string scenario = write_box_scenario(tmp.path(), "sonar: {stop_s: 20}\n");
+  const SimulateSummary stopped = simulate(options_for(scenario, tmp.path() / "stopped"));
+  const double period_s = 13.8 / 200;
+  EXPECT_EQ(stopped.beams, static_cast<std::size_t>(std::floor(20.0 / period_s)) + 1);
+  EXPECT_GT(box.summary.beams, 2 * stopped.beams);
+  EXPECT_EQ(stopped.dvl_samples, box.summary.dvl_samples);
+  EXPECT_EQ(stopped.duration_s, box.summary.duration_s);
+  const auto times =
+      io::read_beam_times_log((tmp.path() / "stopped" / "box_IS_timestamps.log").string());
+  ASSERT_EQ(times.size(), stopped.beams);
+  const auto all_times = io::read_beam_times_log((box.dir / "box_IS_timestamps.log").string());
+  EXPECT_LE(times.back().t_log_s - all_times.front().t_log_s, 20.0);
+  // The beams it keeps are the same beams, byte for byte.
+  EXPECT_EQ(times.back().t_log_s, all_times[times.size() - 1].t_log_s);
+}
+
 TEST(SimulateCommand, DeadReckoningRunsOnTheSimulatedDataset) {
   const BoxDataset& box = box_dataset();
   const TempDir tmp;

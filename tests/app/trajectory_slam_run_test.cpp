@@ -115,23 +115,32 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
   // the canal gains (3.74 -> 2.87 m) and the loop loses (1.00 -> 1.25 m: restarts there drop a
   // direction or reject some matches that were right), so the loop's bound was re-derived from
   // 0.4 to 0.5 of dead reckoning (0.41 now); the other bounds hold unchanged.
-  // With the short, centred echoes and the 6 deg beam of docs/simulator.md ("Echo shape"):
-  // robocentric 1.647 m (loop 0.78, canal 2.94), ANEES 3.43, 658 matches accepted.
+  // With the short, centred echoes and the 6 deg beam of docs/simulator.md ("Echo shape") on the
+  // earlier mesh: robocentric 1.647 m (loop 0.78, canal 2.94), ANEES 3.43. On the retraced mesh
+  // (walls 0.6 m further out, the sonar clock offset, the sonar stopping at 3020 s;
+  // docs/scenes.md): robocentric 2.736 m (loop 1.69, canal 4.30, 0.76 of dead reckoning), ANEES
+  // 7.69, world-centric 2.684 m, 588 matches accepted. One seed is one draw: on that mesh seeds
+  // 43-45 give 1.38-2.62 m (ANEES 3.8-4.6) against dead reckoning's 6.0-11.4 m, and on the
+  // earlier mesh the same seeds 1.40-2.00 m (ANEES 2.2-7.7): the mesh moves seed 42 from one end
+  // of that spread to the other. The bounds sit 10-20 % above seed 42's figures; the ANEES
+  // bound records that this run is overconfident, which the consistency work on the replica takes
+  // on (docs/trajectory_slam.md).
   for (const RunOutcome* slam : {&wc, &rc}) {
     const RunMetrics& m = *slam->metrics;
     EXPECT_GT(m.scans, 200);
     EXPECT_GT(m.matches_accepted, m.scans);
     ASSERT_TRUE(m.anees);
-    EXPECT_LT(m.errors.mean_m, 0.7 * dr.metrics->errors.mean_m) << m.method;          // 0.53
-    EXPECT_LT(m.errors.mean_m, 2.6) << m.method;                                      // 1.90
-    EXPECT_LT(segment(m, "loop"), 0.5 * segment(*dr.metrics, "loop")) << m.method;    // 0.41
-    EXPECT_LT(segment(m, "canal"), 1.0 * segment(*dr.metrics, "canal")) << m.method;  // 0.65
-    EXPECT_LT(segment(m, "canal"), 4.5) << m.method;                                  // 2.87
-    // One run's ANEES over 242 correlated scans: 2.97; 3.19 before validation (4.35 with point
-    // echoes; ten seeds then: 5.3 on average; one-way association: 14).
-    EXPECT_LT(*m.anees, 5.0) << m.method;
+    EXPECT_LT(m.errors.mean_m, 0.85 * dr.metrics->errors.mean_m) << m.method;          // 0.76
+    EXPECT_LT(m.errors.mean_m, 3.2) << m.method;                                       // 2.74
+    EXPECT_LT(segment(m, "loop"), 0.65 * segment(*dr.metrics, "loop")) << m.method;    // 0.55
+    EXPECT_LT(segment(m, "canal"), 1.05 * segment(*dr.metrics, "canal")) << m.method;  // 0.98
+    EXPECT_LT(segment(m, "canal"), 5.0) << m.method;                                   // 4.30
+    // One run's ANEES over 218 correlated scans: 7.69 (2.97 on the earlier mesh and echoes;
+    // 4.35 with point echoes, ten seeds then: 5.3 on average; one-way association: 14).
+    EXPECT_LT(*m.anees, 9.0) << m.method;
   }
-  EXPECT_LT(rc.metrics->errors.mean_m, wc.metrics->errors.mean_m + 0.02);
+  // The two parameterisations agree to within a few centimetres (docs/trajectory_slam.md).
+  EXPECT_LT(rc.metrics->errors.mean_m, wc.metrics->errors.mean_m + 0.08);
   for (const char* dir : {"wc", "rc"}) {
     for (const char* file :
          {"trajectory.tum", "scans.csv", "matches.csv", "map.ply", "metrics.json"}) {

@@ -514,6 +514,13 @@ TEST(ScenarioYaml, SonarPhysicsAndDetectorKeys) {
   expect_bad(std::string(kMinimal) + "sonar:\n  roughness_length_m: 0\n", 9,
              "sonar.roughness_length_m");
   expect_bad(std::string(kMinimal) + "sonar:\n  speckle_looks: 0\n", 9, "sonar.speckle_looks");
+  // stop_s: the sonar logs until then (s from the start); absent, for the whole run.
+  EXPECT_FALSE(s.sonar.stop_s);
+  EXPECT_EQ(read_scenario(write_text(dir.file("stop.yaml"),
+                                     std::string(kMinimal) + "sonar: {stop_s: 3020.5}\n"))
+                .sonar.stop_s,
+            3020.5);
+  expect_bad(std::string(kMinimal) + "sonar:\n  stop_s: 0\n", 9, "sonar.stop_s");
   // MATLAB's window may be even (movmean reaches w/2 back and w/2 - 1 ahead); it is at least 1.
   EXPECT_EQ(read_scenario(write_text(dir.file("even.yaml"),
                                      std::string(kMinimal) + "detections: {smoothing_bins: 4}\n"))

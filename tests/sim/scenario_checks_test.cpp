@@ -11,15 +11,20 @@ namespace msislab::sim {
 namespace {
 
 /// The basin: x 0..60, y 0..30, floor at -4 m, walls to +1 m; the pier a closed box x 28..32 from
-/// the north wall (y 30) to y 20, floor to +1 m.
+/// the north wall (y 30) to y 20, floor to +1 m; a moored hull floating from +0.5 m down to -1 m
+/// at x 10..14, y 20..24; a submerged crate from -3.5 m to -0.5 m at x 45..50, y 20..25.
 TriangleMesh basin_with_pier() {
   MeshBuilder b;
   const auto walls = b.group("walls", 0.5f, 0.05f);
   const auto bottom = b.group("bottom", 0.003f, 0.3f);
   const auto pier = b.group("pier", 0.5f, 0.05f);
+  const auto hull = b.group("hull", 0.5f, 0.05f);
+  const auto crate = b.group("crate", 0.5f, 0.05f);
   add_basin(b, {{{0, 0}, {60, 0}, {60, 30}, {0, 30}}, {true, true, true, true}}, {1.0, -4.0, 0.0},
             walls, bottom);
   add_prism(b, {{28, 20}, {32, 20}, {32, 29.9}, {28, 29.9}}, -4.0, 1.0, pier);
+  add_prism(b, {{10, 20}, {14, 20}, {14, 24}, {10, 24}}, -1.0, 0.5, hull);
+  add_prism(b, {{45, 20}, {50, 20}, {50, 25}, {45, 25}}, -3.5, -0.5, crate);
   return b.mesh();
 }
 
@@ -91,6 +96,20 @@ TEST(ScenarioChecks, ADepthBelowTheFloorIsAnErrorAboutTheDepth) {
   EXPECT_TRUE(has(e->what, "4.5 m puts the vehicle under the mesh (group 'bottom' at 4.00 m"))
       << e->what;
   EXPECT_TRUE(has(e->what, "below the floor")) << e->what;
+}
+
+TEST(ScenarioChecks, PassingUnderAFloatingHullIsNoFinding) {
+  // The St. Pere replica's vehicle passes under a moored hull as the real one did.
+  const Checked c = check({{5, 22}, {12, 22}, {20, 22}});
+  EXPECT_TRUE(c.findings.empty()) << c.all();
+}
+
+TEST(ScenarioChecks, AWaypointInsideASubmergedSolidIsAnError) {
+  const Checked c = check({{40, 22}, {47, 22}});
+  const ScenarioFinding* e = c.first_error();
+  ASSERT_NE(e, nullptr) << c.all();
+  EXPECT_EQ(e->key, ScenarioKey::kDepth);
+  EXPECT_TRUE(has(e->what, "under the mesh (group 'crate' at 0.50 m depth)")) << e->what;
 }
 
 TEST(ScenarioChecks, ALowAltitudeIsAWarning) {

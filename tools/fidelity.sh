@@ -81,8 +81,8 @@ forward up, range rings every 10 m: the real data's keyframe $kf_real from its d
 archive keeps no raw intensities: a detected bin is drawn at 255), the replica's keyframe $kf_sim
 (the nearest in time; each vehicle heads its own way, so the scenes turn against each other)
 from its detections, and the replica's raw profiles of that revolution
-(\`--revolution $((kf_sim - 1))\`, one beam earlier), where each echo's one-sided receiver tail
-shows as a radial smear behind the wall.*
+(\`--revolution $((kf_sim - 1))\`, one beam earlier): each echo about the pulse's 0.4 m deep
+where the beam meets a wall squarely, longer along oblique walls, which the 6 deg beam spans.*
 PAGE
 rm -rf docs/fidelity
 mv "$scratch/fidelity" docs/fidelity

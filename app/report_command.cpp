@@ -106,8 +106,9 @@ ReportOutcome write_report(const ReportOptions& options) {
                   "after it, without .md)");
   }
   if (options.sim_dir.empty() && options.real_dir.empty() && options.montecarlo_dirs.empty() &&
-      options.sweep_dirs.empty()) {
-    throw io::InputError("report: nothing to report (give --sim, --real, --montecarlo or --sweep)");
+      options.sweep_dirs.empty() && options.sensitivity_csv.empty()) {
+    throw io::InputError(
+        "report: nothing to report (give --sim, --real, --montecarlo, --sweep or --sensitivity)");
   }
   ResultsReport report;
   const fs::path page = fs::absolute(options.out_path).lexically_normal();
@@ -115,7 +116,7 @@ ReportOutcome write_report(const ReportOptions& options) {
   const fs::path figures = fs::path(options.out_path).replace_extension();
   std::vector<std::string> inputs = options.montecarlo_dirs;
   inputs.insert(inputs.end(), options.sweep_dirs.begin(), options.sweep_dirs.end());
-  inputs.insert(inputs.end(), {options.sim_dir, options.real_dir});
+  inputs.insert(inputs.end(), {options.sim_dir, options.real_dir, options.sensitivity_csv});
   io::check_output_file({options.out_path, "page", "report", inputs, false},
                         io::page_written_by_msislab);
   const io::OutputRequest figures_out{figures.string(), "report figures", "report", inputs, false};
@@ -137,6 +138,10 @@ ReportOutcome write_report(const ReportOptions& options) {
   }
   for (const std::string& dir : options.sweep_dirs) {
     report.sweeps.push_back({dir, io::read_sweep_csv((fs::path(dir) / "sweep.csv").string())});
+  }
+  if (!options.sensitivity_csv.empty()) {
+    report.sensitivity_source = options.sensitivity_csv;
+    report.sensitivity = io::read_sensitivity_csv(options.sensitivity_csv);
   }
   const std::string markdown = results_markdown(report);
 
@@ -179,6 +184,9 @@ void add_report_command(CLI::App& app, CommandLine&) {
                      "consistency test first");
   report->add_option("--sweep", options->sweep_dirs,
                      "Sweep directory (msislab sweep): its sweep.csv as a table; repeatable");
+  report->add_option("--sensitivity", options->sensitivity_csv,
+                     "The CSV of tools/real_sensitivity.sh: the real result's sensitivity to each "
+                     "parameter, as a section");
   report->callback([options] {
     const ReportOutcome outcome = write_report(*options);
     std::cout << "wrote " << options->out_path << " and " << outcome.figures.size()

@@ -1,10 +1,10 @@
-// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR ...] [--sweep DIR ...]`: the
-// results page
+// `msislab report OUT.md [--sim DIR] [--real DIR] [--montecarlo DIR ...] [--sweep DIR ...]
+// [--sensitivity CSV]`: the results page
 // (docs/results.md, written by tools/results.sh) from result folders that `msislab run` and
 // `msislab plot` filled and Monte Carlo directories: the paper's Table I on simulated and real
 // data, a Monte Carlo consistency table per directory, a table per sweep (its cells' mean errors,
-// paired differences, ANEES and linearisation errors) and the figures, copied beside the page
-// (docs/cli.md).
+// paired differences, ANEES and linearisation errors), the real result's sensitivity to each
+// parameter and the figures, copied beside the page (docs/cli.md).
 #pragma once
 
 #include <optional>
@@ -15,6 +15,7 @@
 #include "eval/monte_carlo.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
+#include "io/sensitivity_csv.hpp"
 #include "io/sweep_files.hpp"
 
 namespace msislab::app {
@@ -28,6 +29,8 @@ struct ReportOptions {
   std::vector<std::string> montecarlo_dirs;
   /// Sweep directories (may be none), each a section with its sweep.csv as a table.
   std::vector<std::string> sweep_dirs;
+  /// The CSV of tools/real_sensitivity.sh (may be empty): the real result's sensitivity section.
+  std::string sensitivity_csv;
 };
 
 /// One folder of results: each method's metrics and the figures `msislab plot` drew.
@@ -59,7 +62,9 @@ struct ResultsReport {
   std::optional<ResultFolder> real;
   std::vector<MonteCarloFolder> montecarlo;  ///< in the order given
   std::vector<SweepFolder> sweeps;           ///< in the order given
-  std::string figures_dir_name;              ///< where the page links its figures, relative to it
+  std::string sensitivity_source;            ///< the CSV's path as given (empty: no section)
+  std::vector<io::SensitivityRow> sensitivity;
+  std::string figures_dir_name;  ///< where the page links its figures, relative to it
 };
 
 /// Reads a result folder: every subdirectory with a metrics.json, and DIR/figures/*.png (which

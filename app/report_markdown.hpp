@@ -1,11 +1,12 @@
 // The Markdown of `msislab report`'s page (app/report_command.hpp): Table I, the figure lists,
-// a section per Monte Carlo directory (app/report_page.cpp) and per sweep (app/report_sweep.cpp),
-// and the cell formats they share.
+// a section per Monte Carlo directory (app/report_page.cpp), per sweep (app/report_sweep.cpp) and
+// for the real result's sensitivity (app/report_sensitivity.cpp), and the cell formats they share.
 #pragma once
 
 #include <optional>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/report_command.hpp"
 
@@ -21,5 +22,11 @@ std::string percent(const std::optional<double>& fraction);
 /// further method's paired difference to the first with its 95 % interval, and the linearisation
 /// errors when measured; then the cells where the paired difference is beyond the noise.
 void sweep_section(std::ostringstream& md, const SweepFolder& sweep);
+
+/// The real result's sensitivity (tools/real_sensitivity.sh): a row per parameter, its error
+/// moved down and up with the change in percent, the parameters that move it by more than a
+/// quarter in bold, and how many they are.
+void sensitivity_section(std::ostringstream& md, const std::string& source,
+                         const std::vector<io::SensitivityRow>& rows);
 
 }  // namespace msislab::app

@@ -284,6 +284,9 @@ std::string results_markdown(const ResultsReport& report) {
   for (std::size_t i = 0; i < report.montecarlo.size(); ++i) {
     montecarlo_section(md, report.montecarlo[i], report.figures_dir_name, i == 0);
   }
+  if (!report.sensitivity.empty()) {
+    sensitivity_section(md, report.sensitivity_source, report.sensitivity);
+  }
   for (const SweepFolder& sweep : report.sweeps) sweep_section(md, sweep);
   return md.str();
 }

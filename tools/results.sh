@@ -7,7 +7,9 @@
 #     interrupted sweep keeps its finished runs when this is run again), and its NEES figure;
 #  3. the failure scenarios of issue 12 with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
-#  4. msislab report: writes the page from those folders and copies the figures beside it, with
+#  4. with the real dataset, tools/real_sensitivity.sh: the real run with each parameter moved
+#     10 % (out/sensitivity/real.csv);
+#  5. msislab report: writes the page from those folders and copies the figures beside it, with
 #     the robocentric study's heading-noise and stress sweeps when tools/robocentric_study.sh
 #     has filled out/study (docs/robocentric.md).
 # Usage: tools/results.sh [--runs N] [--jobs J]     (about 6 minutes on 2 cores with 50 runs)
@@ -20,7 +22,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -49,7 +51,13 @@ montecarlo scenarios/open_area.yaml 10 "$open_area"
 
 report=(--sim out/sim --montecarlo "$mc" --montecarlo "$channel" --montecarlo "$open_area")
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
-if [ -f "$stpere/_040825_1735_DVL.log" ]; then report+=(--real out/stpere); fi
+if [ -f "$stpere/_040825_1735_DVL.log" ]; then
+  report+=(--real out/stpere)
+  # How far the real figure can be trusted: every parameter moved 10 % (about 90 s).
+  echo "== tools/real_sensitivity.sh into out/sensitivity/real.csv"
+  tools/real_sensitivity.sh --csv out/sensitivity/real.csv 2>/dev/null
+  report+=(--sensitivity out/sensitivity/real.csv)
+fi
 for sweep in heading_noise stress; do
   if [ -f "out/study/$sweep/sweep.csv" ]; then
     report+=(--sweep "out/study/$sweep")

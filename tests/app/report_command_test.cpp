@@ -102,7 +102,7 @@ struct Inputs {
     mc = montecarlo_folder(tmp.path() / "mc", 5.0, 18.68);
   }
   ReportOptions options() const {
-    return {tmp.file("docs/results.md"), sim.string(), real.string(), {mc.string()}, {}};
+    return {tmp.file("docs/results.md"), sim.string(), real.string(), {mc.string()}, {}, ""};
   }
 };
 
@@ -336,6 +336,44 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
   EXPECT_THROW(write_report(options), io::InputError);
 }
 
+TEST(ReportCommand, SensitivityTableMarksTheCliffs) {
+  // tools/real_sensitivity.sh --csv: a parameter whose 10 % change moves the error by more than a
+  // quarter is in bold and counted; a bad table names its file and line.
+  const auto expect_error = [](const ReportOptions& options, const std::string& part) {
+    try {
+      write_report(options);
+      ADD_FAILURE() << "no InputError, expected " << part;
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+    }
+  };
+  const Inputs in;
+  ReportOptions options = in.options();
+  options.sensitivity_csv = write_text(
+      in.tmp.file("sensitivity.csv"),
+      std::string(io::kSensitivityHeader) +
+          "\ntrajectory_slam.innovation_gate_chi2,11.34,robocentric,2.84,10.206,4.65,12.474,2.82\n"
+          "segmentation.sigma_range_m,0.1,robocentric,2.84,0.09,2.83,0.11,2.88\n");
+  write_report(options);
+  const std::string page = read_text(options.out_path);
+  EXPECT_NE(page.find("## How far the real result can be trusted"), std::string::npos);
+  EXPECT_NE(
+      page.find("| `trajectory_slam.innovation_gate_chi2` | 11.34 | Robocentric SLAM | 2.84 | "
+                "10.206 | **4.65 (+64 %)** | 12.474 | 2.82 (-1 %) |"),
+      std::string::npos)
+      << page;
+  EXPECT_NE(page.find("| 0.09 | 2.83 (0 %) | 0.11 | 2.88 (+1 %) |"), std::string::npos) << page;
+  EXPECT_NE(page.find("more than 25 %: 1 of 2."), std::string::npos) << page;
+
+  write_text(options.sensitivity_csv, std::string(io::kSensitivityHeader) +
+                                          "\ngate,11.34,robocentric,2.84,10.2,nan,12.5,2.8\n");
+  expect_error(options, "sensitivity.csv:2: field 6 (low_mean_error_m) 'nan'");
+  write_text(options.sensitivity_csv, "parameter,value\n");
+  expect_error(options, "sensitivity.csv:1: wrong header");
+  write_text(options.sensitivity_csv, std::string(io::kSensitivityHeader) + "\ngate,11.34\n");
+  expect_error(options, "sensitivity.csv:2: truncated line");
+}
+
 TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs");
@@ -363,7 +401,7 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   write_text((in.sim / "robocentric" / "metrics.json").string(), "{\"method\": 3}\n");
   options.montecarlo_dirs.clear();
   expect_error(options, "metrics.json");
-  expect_error(ReportOptions{page, "", "", {}, {}}, "nothing to report");
+  expect_error(ReportOptions{page, "", "", {}, {}, ""}, "nothing to report");
 }
 
 TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {

@@ -14,6 +14,7 @@
 #include "io/result_readers.hpp"
 #include "io/results.hpp"
 #include "io/scenario_yaml.hpp"
+#include "io/sensitivity_csv.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/sweep_files.hpp"
 #include "io/sweep_yaml.hpp"
@@ -101,6 +102,7 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"error_histogram_csv", "error_histogram.csv",
        [](const std::string& p) { io::read_error_histogram_csv(p); }},
       {"sweep_csv", "sweep.csv", [](const std::string& p) { io::read_sweep_csv(p); }},
+      {"sensitivity_csv", "real.csv", [](const std::string& p) { io::read_sensitivity_csv(p); }},
   };
   return targets;
 }

@@ -9,6 +9,8 @@
 # moves its complement 1 - p by 10 %. The pose graph's own parameters are scored on the pose
 # graph (its smoothed trajectory), every other one on --method (default robocentric).
 #   tools/real_sensitivity.sh [--method M] [--csv FILE] [--step F]   (about 2 s per run)
+#       [--dataset DIR --config FILE]   another dataset (a simulated one: scored against its
+#                                       truth) and its config instead of the real run's
 #   tools/real_sensitivity.sh --gates G...   the innovation gate alone at the given values, all
 #                                            three back ends (the earlier form of this script)
 # After a release build; needs the real dataset (MSISLAB_STPERE_DIR, default ../shared/...).
@@ -16,6 +18,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 method=robocentric
+dataset=""
+config=config/stpere.yaml
 csv=""
 step=0.1
 gates=()
@@ -24,8 +28,10 @@ while [ $# -gt 0 ]; do
     --method) method="$2"; shift 2 ;;
     --csv) csv="$2"; shift 2 ;;
     --step) step="$2"; shift 2 ;;
+    --dataset) dataset="$2"; shift 2 ;;
+    --config) config="$2"; shift 2 ;;
     --gates) shift; while [ $# -gt 0 ] && [[ "$1" != --* ]]; do gates+=("$1"); shift; done ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/real_sensitivity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -35,10 +41,13 @@ msislab=build/release/tools/msislab
   exit 2
 }
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
-[ -f "$stpere/_040825_1735_DVL.log" ] || {
+if [ -n "$dataset" ]; then
+  stpere="$dataset"
+elif [ ! -f "$stpere/_040825_1735_DVL.log" ]; then
   echo "tools/real_sensitivity.sh: no real St. Pere dataset at $stpere (MSISLAB_STPERE_DIR)" >&2
   exit 2
-}
+fi
+[ -f "$config" ] || { echo "tools/real_sensitivity.sh: no config file $config" >&2; exit 2; }
 if [ -n "$csv" ] && [ -e "$csv" ] && ! head -1 "$csv" | grep -q '^parameter,default,'; then
   echo "tools/real_sensitivity.sh: $csv exists and is not a table of this script; choose another --csv" >&2
   exit 2
@@ -49,9 +58,9 @@ trap 'rm -rf "$out"' EXIT
 # value DIR KEY: a number from a result's metrics.json.
 value() { sed -n "s/.*\"$2\": \([0-9.e+-]*\).*/\1/p" "$1/metrics.json" | head -1; }
 
-# nested_yaml a.b.c VALUE: the YAML that sets a.b.c.
+# nested_yaml a.b.c VALUE [INDENT]: the YAML that sets a.b.c.
 nested_yaml() {
-  local path="$1" value="$2" indent="" part
+  local path="$1" value="$2" indent="${3:-}" part
   IFS=. read -r -a parts <<<"$path"
   for part in "${parts[@]:0:${#parts[@]}-1}"; do
     printf '%s%s:\n' "$indent" "$part"
@@ -60,10 +69,23 @@ nested_yaml() {
   printf '%s%s: %s\n' "$indent" "${parts[-1]}" "$value"
 }
 
+# with_key CONFIG a.b.c VALUE: CONFIG with a.b.c set; when CONFIG has the top-level section a
+# (block style), the rest goes under it, else the whole path is appended.
+with_key() {
+  local config="$1" path="$2" value="$3" top="${2%%.*}"
+  if [ "$top" != "$path" ] && grep -q "^$top:[[:space:]]*$" "$config"; then
+    awk -v top="$top:" -v block="$(nested_yaml "${path#*.}" "$value" "  ")" \
+      '{ print } $0 ~ "^" top "[[:space:]]*$" { print block }' "$config"
+  else
+    cat "$config"
+    nested_yaml "$path" "$value"
+  fi
+}
+
 # run_with METHOD KEY VALUE: the mean error (the pose graph's smoothed one) with KEY set.
 run_with() {
   local m="$1" key="$2" val="$3" dir="$out/run"
-  { cat config/stpere.yaml; [ -z "$key" ] || nested_yaml "$key" "$val"; } >"$out/config.yaml"
+  if [ -z "$key" ]; then cp "$config" "$out/config.yaml"; else with_key "$config" "$key" "$val" >"$out/config.yaml"; fi
   rm -rf "$dir"
   "$msislab" run "$stpere" --method "$m" --out "$dir" --config "$out/config.yaml" >/dev/null
   if [ "$m" = posegraph ]; then value "$dir" smoothed_mean_error_m; else value "$dir" mean_error_m; fi

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "io/config_fields.hpp"
+#include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 
 namespace msislab::io {
@@ -90,7 +91,7 @@ void read_leg_speeds(YamlMap& map, sim::VehicleConfig& v) {
   }
 }
 
-void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
+void read_vehicle(YamlMap map, const std::string& scenario_dir, sim::VehicleConfig& v) {
   v.depth_m = map.required_number("depth_m");
   v.speed_mps = map.required_number("speed_mps");
   require_positive(map, "speed_mps", v.speed_mps);
@@ -112,6 +113,13 @@ void read_vehicle(YamlMap map, sim::VehicleConfig& v) {
   map.number("start_time_s", v.start_time_s);
   map.number("step_s", v.step_s);
   if (!(v.step_s > 0.0 && v.step_s <= 0.1)) map.fail("step_s", "must be in (0, 0.1]");
+  if (std::string heading; map.text("heading_csv", heading)) {
+    const std::filesystem::path file = std::filesystem::path(scenario_dir) / heading;
+    if (!std::filesystem::is_regular_file(file)) {
+      map.fail("heading_csv", "no file " + file.lexically_normal().string());
+    }
+    v.heading_deg = read_heading_csv(file.lexically_normal().string());
+  }
   map.finish();
 }
 
@@ -276,7 +284,7 @@ sim::Scenario scenario_from_yaml(const YAML::Node& node, const std::string& path
   if (!root.has("scene")) root.fail_required("scene", "is required (scene.mesh)");
   if (!root.has("vehicle")) root.fail_required("vehicle", "is required (depth_m, speed_mps, path)");
   read_scene(root.map("scene"), dir, s.scene);
-  read_vehicle(root.map("vehicle"), s.vehicle);
+  read_vehicle(root.map("vehicle"), dir, s.vehicle);
   s.segments = read_segments(root.map("segments"));
   read_sonar(root.map("sonar"), s.sonar);
   read_dvl(root.map("dvl"), s.dvl);

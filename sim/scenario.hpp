@@ -35,10 +35,14 @@ struct VehicleConfig {
   std::vector<Eigen::Vector2d> path_m;  ///< waypoints in the scene frame, followed in order
   std::vector<double> leg_speeds_mps;   ///< optional, one per leg (path_m[i] to [i + 1]), m/s;
                                         ///< empty: every leg at speed_mps
-  double max_turn_rate_radps = 0.15;    ///< bound on |yaw rate|
-  double lookahead_m = 3.0;             ///< pure-pursuit carrot distance along the path
-  double start_time_s = 1093455407.0;   ///< log time of the first sample (Unix s)
-  double step_s = 0.01;                 ///< integration step of the truth
+  /// Optional heading history, (t_s from the start, yaw_deg in the scene frame) rows in time
+  /// order: the vehicle points this way while it follows the path (crabbing, as the real St.
+  /// Pere vehicle did); empty: along its course.
+  std::vector<Eigen::Vector2d> heading_deg;
+  double max_turn_rate_radps = 0.15;   ///< bound on |yaw rate|
+  double lookahead_m = 3.0;            ///< pure-pursuit carrot distance along the path
+  double start_time_s = 1093455407.0;  ///< log time of the first sample (Unix s)
+  double step_s = 0.01;                ///< integration step of the truth
 };
 
 /// Shape of the transducer's one-way power pattern in each plane.

@@ -120,6 +120,43 @@ VehicleTrajectory follow_path(const VehicleConfig& config) {
     // Exact integration of a constant-speed arc over dt.
     pose = pose.compose(arc_step(speed_mps, r, dt));
   }
+  if (!config.heading_deg.empty()) {
+    return with_heading(VehicleTrajectory(std::move(samples)), config.heading_deg);
+  }
+  return VehicleTrajectory(std::move(samples));
+}
+
+VehicleTrajectory with_heading(const VehicleTrajectory& course,
+                               const std::vector<Eigen::Vector2d>& heading_deg) {
+  const double start_s = course.start_s();
+  std::size_t row = 0;
+  // The heading at t (s from the start): the rows' yaw interpolated along the short arc.
+  const auto yaw_at = [&](double t) {
+    while (row + 2 < heading_deg.size() && heading_deg[row + 1].x() <= t) ++row;
+    const Eigen::Vector2d& a = heading_deg[row];
+    const Eigen::Vector2d& b = heading_deg[row + 1];
+    const double w = std::clamp((t - a.x()) / (b.x() - a.x()), 0.0, 1.0);
+    const double yaw_a = a.y() * M_PI / 180.0;
+    return normalize_angle(yaw_a + w * normalize_angle(b.y() * M_PI / 180.0 - yaw_a));
+  };
+  std::vector<VehicleState> samples = course.samples();
+  for (VehicleState& s : samples) {
+    // World velocity of the course sample, then in the axes of the new heading.
+    const double c = s.pose.yaw();
+    const Eigen::Vector2d v_world(s.surge_mps * std::cos(c) - s.sway_mps * std::sin(c),
+                                  s.surge_mps * std::sin(c) + s.sway_mps * std::cos(c));
+    const double yaw = yaw_at(s.t_s - start_s);
+    s.pose = Pose2(s.pose.x(), s.pose.y(), yaw);
+    s.surge_mps = v_world.x() * std::cos(yaw) + v_world.y() * std::sin(yaw);
+    s.sway_mps = -v_world.x() * std::sin(yaw) + v_world.y() * std::cos(yaw);
+  }
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const VehicleState& before = samples[k == 0 ? 0 : k - 1];
+    const VehicleState& after = samples[std::min(k + 1, samples.size() - 1)];
+    const double dt = after.t_s - before.t_s;
+    samples[k].yaw_rate_radps =
+        dt > 0.0 ? normalize_angle(after.pose.yaw() - before.pose.yaw()) / dt : 0.0;
+  }
   return VehicleTrajectory(std::move(samples));
 }
 

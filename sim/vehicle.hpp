@@ -33,7 +33,15 @@ class VehicleTrajectory {
 };
 
 /// Follows config.path_m (>= 2 waypoints) from the first waypoint, heading along the first leg,
-/// until the last waypoint is reached.
+/// until the last waypoint is reached; with config.heading_deg, pointing that way instead
+/// (with_heading).
 VehicleTrajectory follow_path(const VehicleConfig& config);
+
+/// The same positions and world velocities, the vehicle pointing at heading_deg (rows of t_s from
+/// the trajectory's start and yaw_deg, >= 2, time-ordered; interpolated along the short arc and
+/// held beyond its ends): surge and sway are the world velocity in the new vehicle axes, the yaw
+/// rate the heading's central difference over the samples.
+VehicleTrajectory with_heading(const VehicleTrajectory& course,
+                               const std::vector<Eigen::Vector2d>& heading_deg);
 
 }  // namespace msislab::sim

@@ -19,6 +19,7 @@
 #include "eval/evaluation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
+#include "io/heading_csv.hpp"
 #include "io/mesh_io.hpp"
 #include "io/stpere_logs.hpp"
 #include "sim/scenario_path.hpp"
@@ -46,6 +47,7 @@ struct Options {
   double exit_s = 2900.0;          ///< real time the exit part (canal end, east opening) begins, s
   double segments_end_s = 3400.0;  ///< end of the last segment, s
   int timing_iterations = 8;       ///< leg speed corrections against the simulated vehicle
+  std::string heading_out;  ///< also write the real heading history here (vehicle.heading_csv)
 };
 
 /// The outline of the scene file (its groups 'walls' and 'bottom').
@@ -110,7 +112,7 @@ std::string stpere_sonar_yaml(double stop_s) {
 
 std::string scenario_yaml(const Options& options, const Path& path,
                           const std::vector<double>& leg_speeds_mps, const std::string& mesh_ref,
-                          double sonar_stop_s) {
+                          double sonar_stop_s, const std::string& heading_ref) {
   std::ostringstream yaml;
   yaml << "# The St. Pere replica: the real GPS track in the local frame (x East, y North, m from "
           "the\n# first fix), smoothed over "
@@ -130,6 +132,7 @@ std::string scenario_yaml(const Options& options, const Path& path,
        << options.depth_m << "\n  speed_mps: 0.2\n  path:\n"
        << std::fixed << std::setprecision(2);
   for (const Eigen::Vector2d& p : path) yaml << "    - [" << p.x() << ", " << p.y() << "]\n";
+  if (!heading_ref.empty()) yaml << "  heading_csv: " << heading_ref << "\n";
   yaml << "  leg_speeds_mps:\n" << std::setprecision(4);
   for (const double v : leg_speeds_mps) yaml << "    - " << v << "\n";
   yaml << std::setprecision(0) << "segments: {loop: [0, " << options.leave_basin_s << "], canal: ["
@@ -176,7 +179,27 @@ void make_scenario(const Options& options) {
     const auto out_dir = std::filesystem::absolute(options.out_path).parent_path();
     mesh_ref = std::filesystem::relative(std::filesystem::absolute(options.scene_path), out_dir);
   }
-  const std::string yaml = scenario_yaml(options, path, leg_speeds_mps, mesh_ref, sonar_stop_s);
+  std::string heading_ref;
+  if (!options.heading_out.empty()) {
+    // The real MTi heading (scene frame, through the calibration) at 1 Hz from the first fix.
+    std::vector<Eigen::Vector2d> heading;
+    for (const msislab::HeadingReading& h :
+         msislab::io::load_navigation(files, calibration).heading) {
+      const double t_s = h.t_s - fixes.front().t_s;
+      if (t_s < 0.0 || t_s > fixes.back().t_s - fixes.front().t_s + 1.0) continue;
+      if (heading.empty() || t_s >= heading.back().x() + 1.0) {
+        heading.emplace_back(t_s, h.yaw_rad * 180.0 / M_PI);
+      }
+    }
+    msislab::io::write_heading_csv(options.heading_out, heading);
+    std::cerr << "wrote " << options.heading_out << " (" << heading.size() << " headings)\n";
+    const auto out_dir =
+        std::filesystem::absolute(options.out_path.empty() ? "." : options.out_path).parent_path();
+    heading_ref =
+        std::filesystem::relative(std::filesystem::absolute(options.heading_out), out_dir).string();
+  }
+  const std::string yaml =
+      scenario_yaml(options, path, leg_speeds_mps, mesh_ref, sonar_stop_s, heading_ref);
   if (options.out_path.empty()) {
     std::cout << yaml;
     return;
@@ -200,6 +223,8 @@ int main(int argc, char** argv) {
   app.add_option("--tolerance", options.tolerance_m, "Simplification tolerance, m")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_option("--heading-out", options.heading_out,
+                 "Also write the real heading history (CSV) and point the scenario at it");
   app.add_option("--clearance", options.clearance_m, "Waypoint clearance from the walls, m")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
+#include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
 #include "io/montecarlo_files.hpp"
@@ -102,6 +103,7 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"error_histogram_csv", "error_histogram.csv",
        [](const std::string& p) { io::read_error_histogram_csv(p); }},
       {"sweep_csv", "sweep.csv", [](const std::string& p) { io::read_sweep_csv(p); }},
+      {"heading_csv", "heading.csv", [](const std::string& p) { io::read_heading_csv(p); }},
       {"sensitivity_csv", "real.csv", [](const std::string& p) { io::read_sensitivity_csv(p); }},
   };
   return targets;

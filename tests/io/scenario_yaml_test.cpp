@@ -521,6 +521,27 @@ TEST(ScenarioYaml, SonarPhysicsAndDetectorKeys) {
                 .sonar.stop_s,
             3020.5);
   expect_bad(std::string(kMinimal) + "sonar:\n  stop_s: 0\n", 9, "sonar.stop_s");
+  // vehicle.heading_csv: a heading history beside the scenario (io/heading_csv).
+  EXPECT_TRUE(s.vehicle.heading_deg.empty());
+  write_text(dir.file("heading.csv"), "t_s,yaw_deg\n0,10\n5.5,-20\n");
+  const sim::Scenario crab = read_scenario(
+      write_text(dir.file("crab.yaml"), std::string(kMinimal) + "  heading_csv: heading.csv\n"));
+  ASSERT_EQ(crab.vehicle.heading_deg.size(), 2u);
+  EXPECT_EQ(crab.vehicle.heading_deg[1], Eigen::Vector2d(5.5, -20.0));
+  expect_bad(std::string(kMinimal) + "  heading_csv: none.csv\n", 8, "vehicle.heading_csv");
+  write_text(dir.file("heading.csv"), "t_s,yaw_deg\n0,10\n0,12\n");
+  try {
+    read_scenario(dir.file("crab.yaml"));
+    ADD_FAILURE() << "time that does not increase was read";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("heading.csv:3: time does not increase"),
+              std::string::npos)
+        << e.what();
+  }
+  write_text(dir.file("heading.csv"), "t_s,yaw_deg\n0,nan\n1,2\n");
+  EXPECT_THROW(read_scenario(dir.file("crab.yaml")), io::InputError);
+  write_text(dir.file("heading.csv"), "t_s,yaw_deg\n0,1\n");
+  EXPECT_THROW(read_scenario(dir.file("crab.yaml")), io::InputError);
   // MATLAB's window may be even (movmean reaches w/2 back and w/2 - 1 ahead); it is at least 1.
   EXPECT_EQ(read_scenario(write_text(dir.file("even.yaml"),
                                      std::string(kMinimal) + "detections: {smoothing_bins: 4}\n"))

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace msislab::sim {
 namespace {
 
@@ -31,6 +33,40 @@ TEST(Vehicle, StraightLineAtTheGivenSpeed) {
   }
   // Interpolation between samples.
   EXPECT_NEAR(truth.at(110.005).pose.x(), 5.0025, 1e-9);
+}
+
+TEST(Vehicle, AHeadingHistoryTurnsTheVehicleNotItsPath) {
+  // Eastward at 0.5 m/s while pointing north-east, then swinging through north to north-west
+  // (across the +-180 deg seam of nothing: 45 -> 135 deg over 50 s): the positions are the
+  // course's, the DVL's surge and sway are the world velocity in the turned axes.
+  VehicleConfig config;
+  config.speed_mps = 0.5;
+  config.start_time_s = 100.0;
+  config.path_m = {{0, 0}, {50, 0}};
+  const VehicleTrajectory course = follow_path(config);
+  config.heading_deg = {{0.0, 45.0}, {20.0, 45.0}, {70.0, 135.0}};
+  const VehicleTrajectory crabbing = follow_path(config);
+  ASSERT_EQ(crabbing.samples().size(), course.samples().size());
+  for (std::size_t k = 0; k < course.samples().size(); k += 97) {
+    const VehicleState& c = course.samples()[k];
+    const VehicleState& h = crabbing.samples()[k];
+    EXPECT_EQ(h.pose.translation(), c.pose.translation());
+    const double t = h.t_s - 100.0;
+    const double yaw_deg = t <= 20.0 ? 45.0 : std::min(135.0, 45.0 + 90.0 * (t - 20.0) / 50.0);
+    EXPECT_NEAR(h.pose.yaw() * 180.0 / M_PI, yaw_deg, 1e-9) << t;
+    const double yaw = h.pose.yaw();
+    EXPECT_NEAR(h.surge_mps * std::cos(yaw) - h.sway_mps * std::sin(yaw), 0.5, 1e-9) << t;
+    EXPECT_NEAR(h.surge_mps * std::sin(yaw) + h.sway_mps * std::cos(yaw), 0.0, 1e-9) << t;
+    if (t > 21.0 && t < 69.0) {
+      EXPECT_NEAR(h.yaw_rate_radps, 90.0 / 50.0 * M_PI / 180.0, 1e-9);
+    }
+    if (t < 19.0) {
+      EXPECT_NEAR(h.yaw_rate_radps, 0.0, 1e-12);
+    }
+  }
+  // Across the seam: from 170 deg to -170 deg is 20 deg the short way, not 340.
+  const VehicleTrajectory seam = with_heading(course, {{0.0, 170.0}, {100.0, -170.0}});
+  EXPECT_NEAR(seam.at(150.0).pose.yaw() * 180.0 / M_PI, 180.0, 1e-6);
 }
 
 TEST(Vehicle, LegSpeedsSetTheTimeOfEachLeg) {

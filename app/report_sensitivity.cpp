@@ -14,6 +14,7 @@ constexpr double kCliffShare = 0.25;
 
 /// "2.84 (+64 %)", bold when the change is a cliff.
 std::string moved_error(double error_m, double default_m, bool& cliff) {
+  if (!(default_m > 0.0)) return fixed(error_m, 2);  // no change to speak of against 0 m
   const double change = error_m / default_m - 1.0;
   const double percent = std::round(100.0 * change);
   std::ostringstream cell;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <stdexcept>
 
 namespace msislab::sim {
 
@@ -128,6 +129,9 @@ VehicleTrajectory follow_path(const VehicleConfig& config) {
 
 VehicleTrajectory with_heading(const VehicleTrajectory& course,
                                const std::vector<Eigen::Vector2d>& heading_deg) {
+  if (heading_deg.size() < 2) {
+    throw std::invalid_argument("with_heading: a heading history needs at least two rows");
+  }
   const double start_s = course.start_s();
   std::size_t row = 0;
   // The heading at t (s from the start): the rows' yaw interpolated along the short arc.

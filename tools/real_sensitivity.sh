@@ -8,7 +8,7 @@
 # Integer parameters move by one step (10 % of them rounds to the same value); a probability p
 # moves its complement 1 - p by 10 %. The pose graph's own parameters are scored on the pose
 # graph (its smoothed trajectory), every other one on --method (default robocentric).
-#   tools/real_sensitivity.sh [--method M] [--csv FILE] [--step F]   (about 2 s per run)
+#   tools/real_sensitivity.sh [--method M] [--csv FILE]   (about 2 s per run)
 #       [--dataset DIR --config FILE]   another dataset (a simulated one: scored against its
 #                                       truth) and its config instead of the real run's
 #   tools/real_sensitivity.sh --gates G...   the innovation gate alone at the given values, all
@@ -21,13 +21,12 @@ method=robocentric
 dataset=""
 config=config/stpere.yaml
 csv=""
-step=0.1
+step=0.1  # 10 %: the table and `msislab report` say so
 gates=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --method) method="$2"; shift 2 ;;
     --csv) csv="$2"; shift 2 ;;
-    --step) step="$2"; shift 2 ;;
     --dataset) dataset="$2"; shift 2 ;;
     --config) config="$2"; shift 2 ;;
     --gates) shift; while [ $# -gt 0 ] && [[ "$1" != --* ]]; do gates+=("$1"); shift; done ;;

@@ -184,6 +184,10 @@ void append_navigation_rows(const std::string& real_dir, const std::string& sim_
   table.push_back({section, "heading_noise_deg", "heading noise (second differences)",
                    real.heading.noise_deg.sigma_sd, sim.heading.noise_deg.sigma_sd, std::nullopt,
                    "deg", 3});
+  table.push_back({section, "turn_per_revolution_deg",
+                   "heading change over one revolution (13.8 s), median",
+                   real.heading.turn_per_revolution_deg, sim.heading.turn_per_revolution_deg,
+                   std::nullopt, "deg", 1});
   if (real.drift && sim.drift) {
     table.push_back({section, "drift_per_100m_mean_m",
                      "dead-reckoning drift per 100 m against the truth, mean", real.drift->mean_m,

@@ -114,7 +114,9 @@ std::string definitions(const FidelityReport& r) {
          "differences of consecutive bottom-lock samples (no dropout between) over sqrt(2), "
          "per vehicle axis, as a standard deviation and robustly (1.4826 MAD); the DVL rate and "
          "the share of its rows without bottom lock; heading noise from the second differences "
-         "of the wrapped MRU heading over sqrt(6); dead-reckoning drift per 100 m: the project's "
+         "of the wrapped MRU heading over sqrt(6); the heading change over one revolution: the "
+         "median |change| of the MRU heading over every 13.8 s along the log (how much the "
+         "vehicle turns between two scans); dead-reckoning drift per 100 m: the project's "
          "dead-reckoning EKF restarted at the truth every 25 m of path, its position error 100 m "
          "of path later, mean and p90 over the windows (truth: GPS for real data, the "
          "simulation's for simulated data)." +

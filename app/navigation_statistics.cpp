@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "app/truth.hpp"
+#include "eval/evaluation.hpp"
 #include "geometry/se2.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
@@ -149,6 +150,16 @@ HeadingNoiseStatistics heading_noise_statistics(const std::vector<HeadingReading
     unwrapped_deg.push_back(unwrapped_deg.back() + step_rad * kRadToDeg);
   }
   stats.noise_deg = difference_noise(unwrapped_deg, 2);
+  constexpr double kRevolution_s = 13.8;
+  std::vector<double> turns_deg;
+  for (double t = heading.front().t_s; t + kRevolution_s <= heading.back().t_s;
+       t += kRevolution_s) {
+    turns_deg.push_back(
+        std::abs(normalize_angle(nearest_heading(heading, t + kRevolution_s).yaw_rad -
+                                 nearest_heading(heading, t).yaw_rad)) *
+        kRadToDeg);
+  }
+  if (!turns_deg.empty()) stats.turn_per_revolution_deg = msislab::quantile(turns_deg, 0.5);
   return stats;
 }
 

@@ -75,6 +75,9 @@ DropoutStatistics dropout_statistics(const std::vector<DvlRow>& rows, double rat
 struct HeadingNoiseStatistics {
   double rate_hz = 0.0;
   DifferenceNoise noise_deg;  ///< second differences of the wrapped heading (turns cancel)
+  /// How much the vehicle turns between two scans: the median |heading change| over one sonar
+  /// revolution (13.8 s), every revolution's length along the log, deg.
+  double turn_per_revolution_deg = 0.0;
 };
 HeadingNoiseStatistics heading_noise_statistics(const std::vector<HeadingReading>& heading);
 

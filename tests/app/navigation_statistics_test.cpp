@@ -117,6 +117,21 @@ TEST(HeadingNoise, RecoversSigmaAcrossTheWrap) {
   EXPECT_NEAR(s.rate_hz, 10.0, 1e-6);
   EXPECT_NEAR(s.noise_deg.sigma_sd, 0.05, 0.001);
   EXPECT_NEAR(s.noise_deg.sigma_mad, 0.05, 0.0015);
+  // 3 deg/s over a 13.8 s revolution: 41.4 deg, across the wraps.
+  EXPECT_NEAR(s.turn_per_revolution_deg, 41.4, 0.3);
+}
+
+TEST(HeadingNoise, TurnPerRevolutionIsTheMedianHeadingChange) {
+  // Straight for 10 minutes, then 5 minutes of 1 deg/s: most revolutions do not turn.
+  std::vector<HeadingReading> heading;
+  double yaw_deg = 0.0;
+  for (int i = 0; i < 9000; ++i) {
+    if (i >= 6000) yaw_deg += 0.1;
+    heading.push_back({i / 10.0, normalize_angle(yaw_deg * kDegToRad)});
+  }
+  EXPECT_NEAR(heading_noise_statistics(heading).turn_per_revolution_deg, 0.0, 1e-9);
+  for (int i = 0; i < 9000; ++i) heading[i].yaw_rad = normalize_angle(0.1 * i * kDegToRad);
+  EXPECT_NEAR(heading_noise_statistics(heading).turn_per_revolution_deg, 13.8, 0.11);
 }
 
 TEST(Compasses, RecoversOffsetAndDeviationCurve) {

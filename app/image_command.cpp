@@ -15,15 +15,23 @@
 
 namespace msislab::app {
 
+namespace {
+/// What drawing any revolution of the dataset needs: its setup and the sonar's mount, no beams.
+SonarRevolution drawing_frame(const std::string& dataset_dir, const io::DatasetFiles& files) {
+  SonarRevolution out;
+  out.dataset_dir = dataset_dir;
+  out.setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
+  out.mount = io::load_calibration(files).sonar;
+  return out;
+}
+}  // namespace
+
 SonarRevolution read_revolution(const std::string& dataset_dir, int revolution) {
   const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
   if (!files.is_log) {
     io::fail_file(dataset_dir, "no *_IS.log (raw sonar beams) to draw an image from");
   }
-  SonarRevolution out;
-  out.dataset_dir = dataset_dir;
-  out.setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
-  out.mount = io::load_calibration(files).sonar;
+  SonarRevolution out = drawing_frame(dataset_dir, files);
   const std::vector<io::SonarBeamRecord> beams = io::read_is_log(*files.is_log);
   const auto steps = static_cast<std::size_t>(std::lround(2.0 * M_PI / out.setup.step_rad));
   const std::size_t revolutions = (beams.size() + steps - 1) / steps;
@@ -43,11 +51,8 @@ SonarRevolution read_detected_revolution(const std::string& dataset_dir, int key
   if (!files.detections) {
     io::fail_file(dataset_dir, "no *_detections.csv[.gz] to draw --keyframe from");
   }
-  SonarRevolution out;
-  out.dataset_dir = dataset_dir;
+  SonarRevolution out = drawing_frame(dataset_dir, files);
   out.index = keyframe;
-  out.setup = files.setup ? io::read_setup_log(*files.setup) : io::SonarSetup{};
-  out.mount = io::load_calibration(files).sonar;
   const auto bins = static_cast<std::size_t>(std::lround(out.setup.range_m / out.setup.bin_m));
   std::int32_t keyframes = 0;
   std::int64_t beam_row = -1;

@@ -100,7 +100,7 @@ std::vector<int> detect_bins(const std::vector<std::uint8_t>& intensity, double 
                              const DetectionModelConfig& config) {
   const int n = static_cast<int>(intensity.size());
   const int first = first_kept_bin(n, bin_m, config.min_range_m);
-  const std::vector<double> kept(intensity.begin() + first, intensity.end());
+  const std::vector<double> kept = kept_bins(intensity, bin_m, config.min_range_m);
   const std::vector<double> smoothed = moving_mean(kept, config.smoothing_bins);
   const int last = n - 1 - first;  // linspace(0, r, 1) is r, as in MATLAB
   std::vector<int> detected;

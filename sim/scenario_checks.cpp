@@ -164,15 +164,14 @@ class LegCheck {
     // floor (nothing under it) or inside a closed solid (an odd count of faces above); under a
     // closed object that floats (a moored hull: an even count) it is where the real vehicle was.
     const RayHit up = mesh_hit(scene_, at(p), Eigen::Vector3d::UnitZ(), -z_m_);
-    const RayHit under = mesh_hit(scene_, at(p), -Eigen::Vector3d::UnitZ(), 1e6);
-    if (up.hit && (!under.hit || faces_above(scene_, at(p)) % 2 == 1)) {
+    const RayHit down = mesh_hit(scene_, at(p), -Eigen::Vector3d::UnitZ(), 1e6);
+    if (up.hit && (!down.hit || faces_above(scene_, at(p)) % 2 == 1)) {
       return ScenarioFinding{ScenarioKey::kDepth, 0, true,
                              format("%g m puts the vehicle under the mesh (group ", v_.depth_m) +
                                  group_of(scene_, up) +
                                  format(" at %.2f m depth) at ", -z_m_ - up.distance_m) +
                                  where(p, j) + ": below the floor or inside a solid"};
     }
-    const RayHit& down = under;
     if (!down.hit) {
       return ScenarioFinding{ScenarioKey::kWaypoint, key_index, true,
                              where(p, j) + " has no floor under it: the path leaves the scene"};

@@ -78,6 +78,25 @@ double min_leg_clearance_m(const SceneOutline& outline, const Path2& path) {
   return lowest_m;
 }
 
+bool path_enters(const Path2& path, const Path2& ccw_convex_polygon) {
+  const auto inside = [&](const Eigen::Vector2d& p) {
+    for (std::size_t i = 0; i < ccw_convex_polygon.size(); ++i) {
+      const Eigen::Vector2d& a = ccw_convex_polygon[i];
+      const Eigen::Vector2d edge = ccw_convex_polygon[(i + 1) % ccw_convex_polygon.size()] - a;
+      const Eigen::Vector2d to_p = p - a;
+      if (edge.x() * to_p.y() - edge.y() * to_p.x() < 0.0) return false;
+    }
+    return true;
+  };
+  for (std::size_t i = 1; i < path.size(); ++i) {
+    const int samples = 1 + static_cast<int>((path[i] - path[i - 1]).norm() / 0.25);
+    for (int k = 0; k <= samples; ++k) {
+      if (inside(path[i - 1] + (path[i] - path[i - 1]) * k / samples)) return true;
+    }
+  }
+  return false;
+}
+
 Path2 smooth_track(const std::vector<double>& t_s, const Path2& p_m, double window_s) {
   Path2 smoothed;
   std::size_t lo = 0, hi = 0;

@@ -38,6 +38,9 @@ double clearance_m(const SceneOutline& outline, const Eigen::Vector2d& p);
 double pull_inside(const SceneOutline& outline, Eigen::Vector2d& p, double wanted_m);
 /// Smallest signed clearance along the legs, sampled every 0.25 m.
 double min_leg_clearance_m(const SceneOutline& outline, const Path2& path);
+/// Whether the path, sampled every 0.25 m along its legs, enters a convex polygon given
+/// counter-clockwise (its boundary counts as inside).
+bool path_enters(const Path2& path, const Path2& ccw_convex_polygon);
 
 /// Centred moving average over window_s of positions at times t_s (increasing); the window
 /// shrinks symmetrically at the ends, so the first and last positions stay where they are.

@@ -12,6 +12,7 @@
 #          *_IS_timestamps.log) instead of simulating the replica.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source tools/without_truth.sh
 
 sim=""
 downstream=1
@@ -111,12 +112,9 @@ if [ "$downstream" = 1 ]; then
     "$msislab" run "$sim" --method "$m" --out "$d/replica42_$m" \
       --config config/stpere_replica.yaml >/dev/null
   done
-  # The replica scored like the real run: the same files without truth/, so its simulated GPS
-  # buoy (with the buoy's own error) is the truth, as the real GPS is for the real run.
+  # The replica scored like the real run, against its simulated GPS buoy.
   gps="$d/replica42_without_truth"
-  mkdir -p "$gps"
-  cp "$sim"/*_DVL.log "$sim"/*_MTi.log "$sim"/*_DGPS.log "$sim"/*_SETUP.log \
-    "$sim"/*_IS_timestamps.log "$sim"/*_detections.csv.gz "$sim"/calibration.yaml "$gps"/
+  copy_without_truth "$sim" "$gps"
   for m in robocentric deadreckoning; do
     "$msislab" run "$gps" --method "$m" --out "$d/replica42gps_$m" \
       --config config/stpere_replica.yaml >/dev/null

@@ -25,6 +25,7 @@
 #include "io/stpere_logs.hpp"
 #include "sim/marina_trace.hpp"
 #include "sim/polygon_triangulation.hpp"
+#include "sim/scenario_path.hpp"
 #include "sim/scene_builder.hpp"
 #include "slam/navigation.hpp"
 
@@ -116,31 +117,9 @@ std::pair<double, double> median_altitudes_m(const std::string& dvl_path, double
   return {median(before), median(after)};
 }
 
-/// Whether the GPS track (sampled every 0.25 m between fixes) enters a convex ccw footprint.
-bool track_crosses(const std::vector<Eigen::Vector2d>& track_m,
-                   const std::vector<Eigen::Vector2d>& ccw_footprint_m) {
-  const auto inside = [&](const Eigen::Vector2d& p) {
-    for (std::size_t i = 0; i < ccw_footprint_m.size(); ++i) {
-      const Eigen::Vector2d& a = ccw_footprint_m[i];
-      const Eigen::Vector2d edge = ccw_footprint_m[(i + 1) % ccw_footprint_m.size()] - a;
-      const Eigen::Vector2d to_p = p - a;
-      if (edge.x() * to_p.y() - edge.y() * to_p.x() < 0.0) return false;
-    }
-    return true;
-  };
-  for (std::size_t k = 0; k + 1 < track_m.size(); ++k) {
-    const Eigen::Vector2d step = track_m[k + 1] - track_m[k];
-    const int samples = 1 + static_cast<int>(step.norm() / 0.25);
-    for (int i = 0; i <= samples; ++i) {
-      if (inside(track_m[k] + step * (static_cast<double>(i) / samples))) return true;
-    }
-  }
-  return false;
-}
-
+/// The mesh; clutter object i floats as a hull when floating[i] (the real track crosses it).
 msislab::sim::TriangleMesh marina_mesh(const msislab::sim::MarinaTrace& trace,
-                                       const std::vector<Eigen::Vector2d>& track_m,
-                                       const Options& options) {
+                                       const std::vector<bool>& floating, const Options& options) {
   msislab::sim::MeshBuilder builder;
   const std::uint32_t walls = builder.group("walls", 0.6f, 0.3f);
   const std::uint32_t bottom = builder.group("bottom", 0.3f, 0.2f);
@@ -151,13 +130,10 @@ msislab::sim::TriangleMesh marina_mesh(const msislab::sim::MarinaTrace& trace,
   msislab::sim::add_basin(builder, trace.outline, profile, walls, bottom);
   if (!trace.clutter.empty()) {
     const std::uint32_t clutter = builder.group("clutter", 0.5f, 0.3f);
-    for (const msislab::sim::ClutterObject& object : trace.clutter) {
-      // An object the real vehicle went through is a moored hull it passed under (or one the
-      // GPS misplaces): it floats, so the replica's vehicle passes under it too.
-      const std::vector<Eigen::Vector2d> footprint = object.ccw_footprint_m();
-      const double z_low_m =
-          track_crosses(track_m, footprint) ? -options.hull_draught_m : profile.z_bottom_m;
-      msislab::sim::add_prism(builder, footprint, z_low_m, options.clutter_top_m, clutter);
+    for (std::size_t i = 0; i < trace.clutter.size(); ++i) {
+      const double z_low_m = floating[i] ? -options.hull_draught_m : profile.z_bottom_m;
+      msislab::sim::add_prism(builder, trace.clutter[i].ccw_footprint_m(), z_low_m,
+                              options.clutter_top_m, clutter);
     }
   }
   return builder.mesh();
@@ -266,18 +242,24 @@ void make_marina(const Options& options) {
   msislab::sim::MarinaTraceConfig trace_config = options.trace;
   trace_config.wall_offset_m += options.detector_lead_m;  // the walls behind the first detections
   const msislab::sim::MarinaTrace trace = msislab::sim::trace_marina(beams, track_m, trace_config);
-  const msislab::sim::TriangleMesh mesh = marina_mesh(trace, track_m, options);
+  // An object the real vehicle went through is a moored hull it passed under (or one the GPS
+  // misplaces): it floats, so the replica's vehicle passes under it too.
+  std::vector<bool> floating;
+  for (const msislab::sim::ClutterObject& o : trace.clutter) {
+    floating.push_back(msislab::sim::path_enters(track_m, o.ccw_footprint_m()));
+  }
+  const msislab::sim::TriangleMesh mesh = marina_mesh(trace, floating, options);
   io::write_obj(options.out_path, mesh);
   if (!options.preview_path.empty()) write_preview(options.preview_path, beams, gps, trace);
   const std::size_t echoes = std::count_if(beams.begin(), beams.end(),
                                            [](const auto& b) { return b.first_range_m > 0.0; });
   print_summary(trace, mesh, beams.size(), echoes);
-  for (const msislab::sim::ClutterObject& o : trace.clutter) {
-    if (track_crosses(track_m, o.ccw_footprint_m())) {
-      std::cout << "  the GPS track crosses (" << o.centre_m.x() << ", " << o.centre_m.y()
-                << "): a hull from " << options.clutter_top_m << " m down to -"
-                << options.hull_draught_m << " m\n";
-    }
+  for (std::size_t i = 0; i < trace.clutter.size(); ++i) {
+    if (!floating[i]) continue;
+    const msislab::sim::ClutterObject& o = trace.clutter[i];
+    std::cout << "  the GPS track crosses (" << o.centre_m.x() << ", " << o.centre_m.y()
+              << "): a hull from " << options.clutter_top_m << " m down to -"
+              << options.hull_draught_m << " m\n";
   }
   constexpr double kShallowEndS = 2600.0;  // the DVL altitude drops from here on
   const auto [before_m, after_m] = median_altitudes_m(*files.dvl, gps.front().t_s, kShallowEndS);

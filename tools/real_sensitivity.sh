@@ -157,8 +157,9 @@ table() {
 }
 if [ -n "$csv" ]; then
   mkdir -p "$(dirname "$csv")"
-  table >"$csv.partial"
-  mv "$csv.partial" "$csv"
+  partial=$(mktemp "$csv.XXXXXX")  # a new file of this script's, renamed into place whole
+  table >"$partial"
+  mv "$partial" "$csv"
 fi
 table | awk -F, 'NR == 1 {
     print "| parameter | default | method | mean error [m] | -10 %: value | mean error [m] (change) | +10 %: value | mean error [m] (change) |"

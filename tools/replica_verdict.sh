@@ -26,6 +26,7 @@ done
 msislab=build/release/tools/msislab
 [ -x "$msislab" ] || { echo "tools/replica_verdict.sh: build first (cmake --preset release && cmake --build --preset release)" >&2; exit 2; }
 source tools/run_fresh.sh
+source tools/without_truth.sh
 
 mc="$out/montecarlo"
 run_fresh "$mc" "$msislab" montecarlo scenarios/stpere_replica.yaml --runs "$runs" \
@@ -43,11 +44,7 @@ touch "$gps/.replica-verdict"
 for dataset in "$mc"/datasets/run_*; do
   r=$(basename "$dataset")
   copy="$gps/$r/dataset"
-  mkdir -p "$copy"
-  # The same files without truth/: the run is scored against its simulated GPS, as the real one.
-  cp "$dataset"/*_DVL.log "$dataset"/*_MTi.log "$dataset"/*_DGPS.log "$dataset"/*_SETUP.log \
-    "$dataset"/*_IS_timestamps.log "$dataset"/*_detections.csv.gz "$dataset"/calibration.yaml \
-    "$copy"/
+  copy_without_truth "$dataset" "$copy"
   for m in robocentric deadreckoning; do
     "$msislab" run "$copy" --method "$m" --out "$gps/$r/$m" --config config/stpere_replica.yaml \
       >/dev/null

@@ -8,9 +8,7 @@
 // the channel bow outward around the sonar.
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <iostream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <string>
@@ -23,8 +21,8 @@ namespace msislab::app {
 namespace {
 
 double match_scale(const testing::TempDir& tmp, const std::string& name, double beamwidth_deg) {
-  std::ifstream in(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/straight_channel.yaml");
-  std::string yaml((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string yaml =
+      testing::read_text(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/straight_channel.yaml");
   const std::string mesh = "mesh: ../scenes/straight_channel.obj";
   const std::string sonar = "sonar: {}";
   const auto at_mesh = yaml.find(mesh);

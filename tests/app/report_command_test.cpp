@@ -112,6 +112,16 @@ std::size_t position(const std::string& text, const std::string& part) {
   return at;
 }
 
+/// write_report(options) throws an InputError whose message holds `part`.
+void expect_error(const ReportOptions& options, const std::string& part) {
+  try {
+    write_report(options);
+    ADD_FAILURE() << "no InputError, expected " << part;
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReportCommand, TablesFiguresAndVerdict) {
   const Inputs in;
   fs::create_directories(in.tmp.path() / "docs");
@@ -224,14 +234,6 @@ TEST(ReportCommand, FiguresReplaceTheEarlierOnesWhole) {
 
 TEST(ReportCommand, AForeignFiguresFolderOrPageIsRefusedAndKept) {
   const Inputs in;
-  const auto expect_error = [](const ReportOptions& options, const std::string& part) {
-    try {
-      write_report(options);
-      ADD_FAILURE() << "no InputError, expected " << part;
-    } catch (const io::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
-  };
   fs::create_directories(in.tmp.path() / "docs" / "results");
   write_text(in.tmp.file("docs/results/figure.png"), "the user's");
   expect_error(in.options(), "docs/results: is a folder that msislab did not write");
@@ -339,14 +341,6 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
 TEST(ReportCommand, SensitivityTableMarksTheCliffs) {
   // tools/real_sensitivity.sh --csv: a parameter whose 10 % change moves the error by more than a
   // quarter is in bold and counted; a bad table names its file and line.
-  const auto expect_error = [](const ReportOptions& options, const std::string& part) {
-    try {
-      write_report(options);
-      ADD_FAILURE() << "no InputError, expected " << part;
-    } catch (const io::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
-  };
   const Inputs in;
   ReportOptions options = in.options();
   options.sensitivity_csv = write_text(
@@ -379,29 +373,27 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   fs::create_directories(in.tmp.path() / "docs");
   const std::string earlier = io::page_signature("report") + "the earlier page\n";
   const std::string page = write_text(in.tmp.file("docs/results.md"), earlier);
-  const auto expect_error = [&](const ReportOptions& options, const std::string& part) {
-    try {
-      write_report(options);
-      ADD_FAILURE() << "no InputError, expected " << part;
-    } catch (const io::InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(part), std::string::npos) << e.what();
-    }
+  // Each bad input is an error, and the earlier page and no figures folder are left.
+  const auto expect_error_and_nothing_written = [&](const ReportOptions& options,
+                                                    const std::string& part) {
+    expect_error(options, part);
     EXPECT_EQ(read_text(page), earlier);
     EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results"));
   };
   ReportOptions options = in.options();
   fs::remove_all(in.real / "figures");
-  expect_error(options, (in.real / "figures").string() + ": no figures (draw them first");
+  expect_error_and_nothing_written(
+      options, (in.real / "figures").string() + ": no figures (draw them first");
   options.real_dir = in.tmp.file("nowhere");
-  expect_error(options, in.tmp.file("nowhere") + ": not a directory");
+  expect_error_and_nothing_written(options, in.tmp.file("nowhere") + ": not a directory");
   options = in.options();
   options.real_dir.clear();
   fs::remove(in.mc / "summary.json");
-  expect_error(options, "summary.json: missing");
+  expect_error_and_nothing_written(options, "summary.json: missing");
   write_text((in.sim / "robocentric" / "metrics.json").string(), "{\"method\": 3}\n");
   options.montecarlo_dirs.clear();
-  expect_error(options, "metrics.json");
-  expect_error(ReportOptions{page, "", "", {}, {}, ""}, "nothing to report");
+  expect_error_and_nothing_written(options, "metrics.json");
+  expect_error_and_nothing_written(ReportOptions{page, "", "", {}, {}, ""}, "nothing to report");
 }
 
 TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {

@@ -43,6 +43,15 @@ TEST(ScenarioPath, OutlineInsideAndClearance) {
   EXPECT_THROW(outline_of(no_walls), std::invalid_argument);
 }
 
+TEST(ScenarioPath, APathEntersAConvexPolygonWhereALegCrossesIt) {
+  const Path2 box = {{10, 1}, {12, 1}, {12, 3}, {10, 3}};    // counter-clockwise
+  EXPECT_TRUE(path_enters({{0, 2}, {20, 2}}, box));          // through it, no fix inside
+  EXPECT_TRUE(path_enters({{11, 2}, {30, 30}}, box));        // starts inside
+  EXPECT_FALSE(path_enters({{0, 0}, {20, 0}}, box));         // below it
+  EXPECT_FALSE(path_enters({{0, 4}, {9, 4}, {9, 0}}, box));  // around a corner
+  EXPECT_TRUE(path_enters({{0, 1}, {20, 1}}, box));          // along its edge
+}
+
 TEST(ScenarioPath, PullInsideGivesTheClearance) {
   const SceneOutline outline = outline_of(square_basin());
   Eigen::Vector2d near_wall(9.8, 5), outside(11, 3), clear(5, 5);

@@ -122,6 +122,10 @@ std::string scenario_yaml(const Options& options, const Path& path,
           "real "
           "one did, so the\n# segments are the real times. Written by msislab_make_stpere_scenario "
           "(docs/scenes.md).\n";
+  if (!heading_ref.empty()) {
+    yaml << "# The vehicle points where the real one did (the MTi heading at 1 Hz, " << heading_ref
+         << ").\n";
+  }
   // Materials: rough quay walls and moored objects with little specular reflection whose
   // backscatter falls as cos(incidence), a mud bottom about 22 dB below them (docs/simulator.md,
   // "Calibration against St. Pere").
@@ -181,7 +185,9 @@ void make_scenario(const Options& options) {
   }
   std::string heading_ref;
   if (!options.heading_out.empty()) {
-    // The real MTi heading (scene frame, through the calibration) at 1 Hz from the first fix.
+    // The real MTi heading (scene frame, through the calibration) at 1 Hz from the first fix,
+    // to the MTi log's own resolution (1 ms, 0.001 deg).
+    const auto thousandths = [](double x) { return std::round(x * 1000.0) / 1000.0; };
     std::vector<Eigen::Vector2d> heading;
     for (const msislab::HeadingReading& h :
          msislab::io::load_navigation(files, calibration).heading) {
@@ -191,6 +197,7 @@ void make_scenario(const Options& options) {
         heading.emplace_back(t_s, h.yaw_rad * 180.0 / M_PI);
       }
     }
+    for (Eigen::Vector2d& row : heading) row = row.unaryExpr(thousandths);
     msislab::io::write_heading_csv(options.heading_out, heading);
     std::cerr << "wrote " << options.heading_out << " (" << heading.size() << " headings)\n";
     const auto out_dir =

@@ -164,6 +164,7 @@ void read_validation(YamlMap map, MatchValidationConfig& c) {
   }
   map.number("min_overlap", c.min_overlap);
   if (!(c.min_overlap >= 0.0 && c.min_overlap <= 1.0)) map.fail("min_overlap", "must be in [0, 1]");
+  map.boolean("initial_guess_term", c.initial_guess_term);
   map.finish();
 }
 

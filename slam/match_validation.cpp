@@ -102,25 +102,11 @@ bool restarts_agree(const RestartEnds& restarts, const std::vector<Eigen::Index>
   return true;
 }
 
-}  // namespace
-
-ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
-                                  const std::vector<ScanPoint>& current, const GaussianPose2& guess,
-                                  const ScanMatchConfig& matching,
-                                  const MatchValidationConfig& validation) {
-  ValidatedMatch out;
-  out.match = match_scans(reference, current, guess, matching);
-  if (!out.match.valid) {
-    out.rejection = MatchRejection::kInvalid;
-    return out;
-  }
-  const double smaller = static_cast<double>(std::min(reference.size(), current.size()));
-  if (validation.min_overlap > 0.0 && out.match.inliers < validation.min_overlap * smaller) {
-    out.rejection = MatchRejection::kLowOverlap;
-    return out;
-  }
-  if (validation.restart_offset_m <= 0.0) return out;
-
+/// The restart test (the header's): false when it rejects the match as ambiguous; drops an
+/// unobserved direction from out.observed.
+bool passes_restarts(const std::vector<ScanPoint>& reference, const std::vector<ScanPoint>& current,
+                     const GaussianPose2& guess, const ScanMatchConfig& matching,
+                     const MatchValidationConfig& validation, ValidatedMatch& out) {
   const GaussianPose2& q = out.match.estimate;
   const ComparisonFrame frame = comparison_frame(reference, q, matching);
   // Each restart's end against the solution, in the frame.
@@ -139,11 +125,66 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
   const Eigen::LDLT<Eigen::MatrixXd> C_kept(C(kept, kept));
   if (!restarts_agree(restarts, kept, C_kept, gate)) {
     out.rejection = MatchRejection::kAmbiguous;
-    return out;
+    return false;
   }
   if (kept.size() < 3) {
     out.observed = frame.rows(kept, Eigen::all);
     out.direction_dropped = true;
+  }
+  return true;
+}
+
+/// The initial-guess term of a match solved from guess: the covariance, about the solution, of
+/// spIC's results from the guess's six sigma points (L L^T = the guess's covariance, one standard
+/// deviation either way along each column of L). A rerun that fails counts as the solution.
+Eigen::Matrix3d initial_guess_covariance(const std::vector<ScanPoint>& reference,
+                                         const std::vector<ScanPoint>& current,
+                                         const GaussianPose2& guess, const Pose2& solution,
+                                         const ScanMatchConfig& matching, int& runs) {
+  const Eigen::LLT<Eigen::Matrix3d> llt(guess.cov);
+  if (llt.info() != Eigen::Success) return Eigen::Matrix3d::Zero();
+  const Eigen::Matrix3d L = llt.matrixL();
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (Eigen::Index c = 0; c < 3; ++c) {
+    for (const double side : {-1.0, 1.0}) {
+      GaussianPose2 start = guess;
+      start.mean = Pose2(Eigen::Vector3d(guess.mean.vector() + side * L.col(c)));
+      const ScanMatchResult rerun = match_scans(reference, current, start, matching);
+      ++runs;
+      const Eigen::Vector3d d =
+          rerun.valid ? pose_difference(rerun.estimate.mean, solution) : Eigen::Vector3d::Zero();
+      spread += d * d.transpose();
+    }
+  }
+  // The unscented transform with n + kappa = 1: weights 1/2, the centre (the solution) adding
+  // nothing about itself.
+  return 0.5 * spread;
+}
+
+}  // namespace
+
+ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
+                                  const std::vector<ScanPoint>& current, const GaussianPose2& guess,
+                                  const ScanMatchConfig& matching,
+                                  const MatchValidationConfig& validation) {
+  ValidatedMatch out;
+  out.match = match_scans(reference, current, guess, matching);
+  if (!out.match.valid) {
+    out.rejection = MatchRejection::kInvalid;
+    return out;
+  }
+  const double smaller = static_cast<double>(std::min(reference.size(), current.size()));
+  if (validation.min_overlap > 0.0 && out.match.inliers < validation.min_overlap * smaller) {
+    out.rejection = MatchRejection::kLowOverlap;
+    return out;
+  }
+  if (validation.restart_offset_m > 0.0 &&
+      !passes_restarts(reference, current, guess, matching, validation, out)) {
+    return out;
+  }
+  if (validation.initial_guess_term) {
+    out.match.estimate.cov += initial_guess_covariance(
+        reference, current, guess, out.match.estimate.mean, matching, out.restarts);
   }
   return out;
 }

@@ -43,6 +43,12 @@ struct MatchValidationConfig {
   double ambiguity_probability = 0.99;
   /// Associations over the smaller scan's point count; below it the match is rejected (0: off).
   double min_overlap = 0.0;
+  /// The covariance adds the initial-guess term (Brossard, Bonnabel and Barrau, "A New Approach
+  /// to 3D ICP Covariance Estimation", RA-L 2020): spIC rerun from the guess moved by one
+  /// standard deviation either way along each column of its covariance's Cholesky factor, the
+  /// spread of the six results about the solution. spIC on sparse sonar points keeps part of its
+  /// starting error, so a match shares some of the prediction's; the term says how much.
+  bool initial_guess_term = false;
 };
 
 /// Why a match did not reach the filter; counted per run (metrics.json diagnostics).
@@ -65,10 +71,10 @@ struct ValidatedMatch {
   /// match does not observe a translation direction.
   Eigen::MatrixXd observed = Eigen::MatrixXd::Identity(3, 3);
   bool direction_dropped = false;  ///< observed has 2 rows
-  int restarts = 0;                ///< spIC restarts run
+  int restarts = 0;                ///< spIC reruns: the restart test's and the initial-guess term's
 };
 
-/// spIC from the guess, then the validation above.
+/// spIC from the guess, then the validation above, then the initial-guess term.
 ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
                                   const std::vector<ScanPoint>& current, const GaussianPose2& guess,
                                   const ScanMatchConfig& matching,

@@ -263,6 +263,18 @@ TEST(SlamConfigYaml, JointUpdateKeys) {
                          "trajectory_slam.joint_update");
 }
 
+TEST(SlamConfigYaml, InitialGuessTermKey) {
+  const TempDir dir;
+  const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
+  EXPECT_FALSE(defaults.trajectory_slam.validation.initial_guess_term);
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "trajectory_slam:\n"
+                                                   "  validation: {initial_guess_term: true}\n"));
+  EXPECT_TRUE(c.trajectory_slam.validation.initial_guess_term);
+  expect_bad_slam_config("trajectory_slam:\n  validation: {initial_guess_term: 2}\n", 2,
+                         "trajectory_slam.validation.initial_guess_term");
+}
+
 TEST(SlamConfigYaml, PoseGraphKeys) {
   const TempDir dir;
   const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));

@@ -1,12 +1,16 @@
 // Match validation: chi-square quantiles; a corridor match keeps only the directions the walls
 // fix, and a corridor match started metres off along the axis does not move the filter there; a
-// match in rich geometry keeps all three; bad matches are rejected with their reason.
+// match in rich geometry keeps all three; bad matches are rejected with their reason; the
+// initial-guess term adds nothing where the walls fix the match and the guess's uncertainty along
+// a corridor's axis.
 #include "slam/match_validation.hpp"
 
 #include <gtest/gtest.h>
 
 #include <Eigen/LU>
 #include <cmath>
+#include <iostream>
+#include <limits>
 #include <random>
 
 #include "scan_fixtures.hpp"
@@ -137,6 +141,58 @@ TEST(MatchValidation, RejectionsCarryTheirReason) {
             MatchRejection::kLowOverlap);
   EXPECT_EQ(rejection_name(MatchRejection::kLowOverlap), "low_overlap");
   EXPECT_EQ(rejection_name(MatchRejection::kAmbiguous), "ambiguous");
+}
+
+/// The initial-guess term: where the walls fix the match, spIC comes back to the same solution
+/// from every sigma point of the guess and the term adds nothing; along a corridor's axis it
+/// ends where it starts, so the term gives the match the guess's own uncertainty there (it says
+/// nothing along the axis) and leaves it sharp across.
+TEST(MatchValidation, TheInitialGuessTermIsTheSpreadOfSpicFromTheGuess) {
+  std::mt19937 rng(11);
+  MatchValidationConfig without_term;
+  without_term.restart_offset_m = 0.0;            // the term alone
+  ASSERT_FALSE(without_term.initial_guess_term);  // off by default
+  MatchValidationConfig with_term = without_term;
+  with_term.initial_guess_term = true;
+
+  const Pose2 q_rich(1.2, -0.6, 0.15);
+  const auto world = corner_walls();
+  std::vector<Eigen::Vector2d> seen_from_current;
+  for (const auto& p : world) seen_from_current.push_back(q_rich.inverse().transform(p));
+  const auto reference = noisy(world, 0.05, rng);
+  const auto current = noisy(seen_from_current, 0.05, rng);
+  const GaussianPose2 near = guess_at(Pose2(1.4, -0.5, 0.14), 0.3, 0.03);
+  const ValidatedMatch rich_plain = match_and_validate(reference, current, near, {}, without_term);
+  const ValidatedMatch rich = match_and_validate(reference, current, near, {}, with_term);
+  ASSERT_EQ(rich.rejection, MatchRejection::kNone);
+  EXPECT_EQ(rich.restarts, 6);  // one rerun either way along each of the guess's three axes
+  EXPECT_TRUE(rich.match.estimate.mean.vector().isApprox(rich_plain.match.estimate.mean.vector()));
+  const Eigen::Matrix3d added = rich.match.estimate.cov - rich_plain.match.estimate.cov;
+  EXPECT_LT(added.norm(), 0.01 * rich_plain.match.estimate.cov.norm());
+
+  const Pose2 reference_world(0.0, 0.5, 0.0), current_world(3.0, -0.5, 0.03);
+  const Pose2 q_true = reference_world.inverse().compose(current_world);
+  const auto corridor_reference = noisy(corridor_seen_from(reference_world), 0.05, rng);
+  const auto corridor_current = noisy(corridor_seen_from(current_world), 0.05, rng);
+  // Started 0.5 m short along the axis, with a prediction of 0.6 m / 0.3 m / 0.02 rad.
+  GaussianPose2 guess;
+  guess.mean = Pose2(q_true.x() - 0.5, q_true.y(), q_true.yaw());
+  guess.cov = Eigen::Vector3d(0.36, 0.09, 4e-4).asDiagonal();
+  const ValidatedMatch plain =
+      match_and_validate(corridor_reference, corridor_current, guess, {}, without_term);
+  const ValidatedMatch m =
+      match_and_validate(corridor_reference, corridor_current, guess, {}, with_term);
+  ASSERT_EQ(plain.rejection, MatchRejection::kNone);
+  ASSERT_EQ(m.rejection, MatchRejection::kNone);
+  const double error_x_m = m.match.estimate.mean.x() - q_true.x();
+  EXPECT_GT(std::abs(error_x_m), 0.3);  // spIC stays near its start along the axis
+  // Without the term the match claims to know the axis and excludes the truth there; with it,
+  // the axis has about the guess's uncertainty and the truth is inside.
+  EXPECT_GT(error_x_m * error_x_m / plain.match.estimate.cov(0, 0), 6.63);
+  EXPECT_GT(m.match.estimate.cov(0, 0), 0.5 * guess.cov(0, 0));
+  EXPECT_LT(error_x_m * error_x_m / m.match.estimate.cov(0, 0), 6.63);
+  // Across the axis the walls bring every rerun back: the match stays sharp there.
+  EXPECT_LT(std::sqrt(m.match.estimate.cov(1, 1)), 0.1);
 }
 
 /// Two scans in the corridor, the dead-reckoning motion between them 3 m short: the filter's

@@ -191,13 +191,17 @@ CellInputs cell_inputs(const Sweep& sweep, std::size_t index) {
   const SweepCell& cell = sweep.cells.at(index);
   const std::string name =
       sweep.path + ", cell " + std::to_string(index) + " (" + describe_cell(cell) + ")";
-  // The scenario: its mesh absolute, then the overrides.
+  // The scenario: the files it names (its mesh, its heading history) absolute, then the
+  // overrides.
   YAML::Node scenario = load_yaml_file(sweep.scenario_path);
   if (!scenario.IsMap()) fail_file(sweep.scenario_path, "expected a mapping of keys");
   const fs::path scenario_dir = fs::path(sweep.scenario_path).parent_path();
-  if (scenario["scene"] && scenario["scene"]["mesh"] && scenario["scene"]["mesh"].IsScalar()) {
-    scenario["scene"]["mesh"] =
-        fs::absolute(scenario_dir / scenario["scene"]["mesh"].Scalar()).lexically_normal().string();
+  for (const auto& [section, key] :
+       {std::pair{"scene", "mesh"}, std::pair{"vehicle", "heading_csv"}}) {
+    if (scenario[section] && scenario[section][key] && scenario[section][key].IsScalar()) {
+      scenario[section][key] =
+          fs::absolute(scenario_dir / scenario[section][key].Scalar()).lexically_normal().string();
+    }
   }
   YAML::Node config = sweep.config_path.empty() ? YAML::Node(YAML::NodeType::Map)
                                                 : load_yaml_file(sweep.config_path);

@@ -38,9 +38,10 @@ struct Sweep {
 /// Throws InputError "FILE:LINE: key 'a.b': what".
 Sweep read_sweep(const std::string& path);
 
-/// A cell's inputs as text: the base scenario (its mesh made absolute, so the text works from any
-/// folder) and the base SLAM config (or an empty one) with the cell's overrides set, each checked
-/// by the strict reader; an error names the sweep file and the cell.
+/// A cell's inputs as text: the base scenario (the files it names, its mesh and heading history,
+/// made absolute, so the text works from any folder) and the base SLAM config (or an empty one)
+/// with the cell's overrides set, each checked by the strict reader; an error names the sweep file
+/// and the cell.
 struct CellInputs {
   std::string scenario_text;
   std::string config_text;

@@ -12,6 +12,7 @@
 
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
+#include "io/scenario_yaml.hpp"
 #include "io/sweep_files.hpp"
 #include "io/sweep_yaml.hpp"
 #include "test_support.hpp"
@@ -220,6 +221,22 @@ TEST(SweepYaml, CellsListAndGridOrder) {
   EXPECT_EQ(list.keys, (std::vector<std::string>{"slam.a", "scenario.b"}));
   EXPECT_EQ(list.cells.size(), 2u);
   EXPECT_EQ(list.config_path, (tmp.path() / "c.yaml").lexically_normal().string());
+}
+
+// A cell's scenario is written into the sweep's own folder and read from there: every file the
+// base scenario names (the replica's mesh and its heading history) must still be found.
+TEST(SweepYaml, CellScenarioNamesItsFilesFromAnyFolder) {
+  const TempDir tmp;
+  const io::Sweep sweep = io::read_sweep(write_text(
+      tmp.file("s.yaml"), "scenario: " + std::string(MSISLAB_SOURCE_DIR) +
+                              "/scenarios/stpere_replica.yaml\nruns: 1\n"
+                              "cells:\n  - {slam.trajectory_slam.iekf_iterations: 2}\n"));
+  const io::CellInputs inputs = io::cell_inputs(sweep, 0);
+  fs::create_directories(tmp.path() / "elsewhere");
+  const sim::Scenario scenario =
+      io::read_scenario(write_text(tmp.file("elsewhere/scenario.yaml"), inputs.scenario_text));
+  EXPECT_FALSE(scenario.vehicle.heading_deg.empty());
+  EXPECT_TRUE(fs::path(scenario.scene.mesh_path).is_absolute());
 }
 
 }  // namespace

@@ -6,15 +6,28 @@ namespace msislab {
 
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
+
+/// d(psi) in radians.
+double deviation_rad(double yaw_rad, const MruMount& mount) {
+  return (mount.deviation_cos_deg * std::cos(yaw_rad) +
+          mount.deviation_sin_deg * std::sin(yaw_rad)) *
+         kDegToRad;
 }
 
+}  // namespace
+
 double vehicle_yaw_from_mru(double yaw_mru_deg, const MruMount& mount) {
-  return normalize_angle(M_PI / 2.0 - (yaw_mru_deg - mount.yaw_offset_deg) * kDegToRad);
+  const double read_rad = M_PI / 2.0 - (yaw_mru_deg - mount.yaw_offset_deg) * kDegToRad;
+  // psi = read - d(psi): a contraction for deviations under 57 deg (|d'| < 1); a few degrees of
+  // deviation converge to 1e-12 rad in well under 12 steps.
+  double yaw_rad = read_rad;
+  for (int i = 0; i < 12; ++i) yaw_rad = read_rad - deviation_rad(yaw_rad, mount);
+  return normalize_angle(yaw_rad);
 }
 
 double mru_yaw_from_vehicle(double yaw_vehicle_rad, const MruMount& mount) {
-  return normalize_angle(M_PI / 2.0 - yaw_vehicle_rad + mount.yaw_offset_deg * kDegToRad) /
-         kDegToRad;
+  const double read_rad = yaw_vehicle_rad + deviation_rad(yaw_vehicle_rad, mount);
+  return normalize_angle(M_PI / 2.0 - read_rad + mount.yaw_offset_deg * kDegToRad) / kDegToRad;
 }
 
 Eigen::Matrix2d R_vehicle_dvl(const DvlMount& mount) {

@@ -7,9 +7,13 @@
 
 namespace msislab {
 
-/// Heading unit (MRU/MTi): vehicle yaw psi = pi/2 - (yaw_mru - yaw_offset), in radians.
+/// Heading unit (MRU/MTi): vehicle yaw psi = pi/2 - (yaw_mru - yaw_offset), in radians, less
+/// the compass's one-cycle deviation d(psi) = a cos(psi) + b sin(psi) degrees (hard iron: the
+/// reading points d(psi) counter-clockwise of the true vehicle yaw psi).
 struct MruMount {
-  double yaw_offset_deg = 86.0;  ///< MTi yaw reading when the vehicle points north, deg
+  double yaw_offset_deg = 86.0;    ///< MTi yaw reading when the vehicle points north, deg
+  double deviation_cos_deg = 0.0;  ///< a, deg
+  double deviation_sin_deg = 0.0;  ///< b, deg
 };
 
 /// DVL: bottom velocity in the vehicle frame = Rz(yaw) [vx, vy]_dvl, measured at [x, y].
@@ -46,11 +50,12 @@ struct Calibration {
   LocalFrame frame;
 };
 
-/// Vehicle yaw (rad, counter-clockwise from East) from an MRU yaw reading (deg, clockwise).
+/// Vehicle yaw (rad, counter-clockwise from East) from an MRU yaw reading (deg, clockwise), the
+/// deviation removed (psi_read = psi + d(psi) solved for psi by fixed-point iteration).
 double vehicle_yaw_from_mru(double yaw_mru_deg, const MruMount& mount);
 
-/// MRU yaw reading (deg, in (-180, 180]) that the mount reports for a vehicle yaw: the inverse of
-/// vehicle_yaw_from_mru, used by the simulator.
+/// MRU yaw reading (deg, in (-180, 180]) that the mount reports for a vehicle yaw, its deviation
+/// included: the inverse of vehicle_yaw_from_mru.
 double mru_yaw_from_vehicle(double yaw_vehicle_rad, const MruMount& mount);
 
 /// Rotation from the DVL frame to the vehicle frame.

@@ -234,6 +234,12 @@ Calibration calibration_from_yaml(const YAML::Node& node, const std::string& nam
   Calibration c;
   YamlMap mru = root.map("mru");
   read_mru_mount(mru, c.mru);
+  // The compass deviation is calibration, not mount: a scenario sets its MRU's own.
+  mru.number("deviation_cos_deg", c.mru.deviation_cos_deg);
+  mru.number("deviation_sin_deg", c.mru.deviation_sin_deg);
+  if (std::hypot(c.mru.deviation_cos_deg, c.mru.deviation_sin_deg) >= 45.0) {
+    mru.fail("deviation_cos_deg", "the deviation's amplitude must be under 45 deg");
+  }
   mru.finish();
   YamlMap dvl = root.map("dvl");
   read_dvl_mount(dvl, c.dvl);
@@ -252,7 +258,9 @@ std::string calibration_yaml(const Calibration& c) {
   std::ostringstream out;
   out << std::setprecision(17);
   out << "# Sensor mounts and local frame (docs/formats.md).\n"
-      << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg << "\n"
+      << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg
+      << "\n  deviation_cos_deg: " << c.mru.deviation_cos_deg
+      << "\n  deviation_sin_deg: " << c.mru.deviation_sin_deg << "\n"
       << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
       << "\n  y_m: " << c.dvl.y_m << "\n"
       << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m

@@ -12,6 +12,10 @@ namespace msislab::sim {
 Calibration calibration_of(const Scenario& scenario) {
   Calibration calibration;
   calibration.mru = scenario.mru.mount;
+  // The compass deviation the simulated MRU has is the dataset's calibration, as the sonar's clock
+  // offset is: the pipeline removes it as it would a calibrated real one.
+  calibration.mru.deviation_cos_deg = scenario.mru.deviation_cos_deg;
+  calibration.mru.deviation_sin_deg = scenario.mru.deviation_sin_deg;
   calibration.dvl = scenario.dvl.mount;
   calibration.sonar = scenario.sonar.mount;
   calibration.frame = scenario.gps.frame;

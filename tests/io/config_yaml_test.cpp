@@ -101,6 +101,8 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   const TempDir dir;
   Calibration c;
   c.mru.yaw_offset_deg = -86.123456789012345;
+  c.mru.deviation_cos_deg = 0.62;
+  c.mru.deviation_sin_deg = -2.3900000000000001;
   c.dvl.yaw_deg = 293.49999999999994;
   c.dvl.x_m = 0.1 + 0.2;
   c.dvl.y_m = -1e-17;
@@ -115,6 +117,8 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   write_calibration(path, c);
   const Calibration back = read_calibration(path);
   EXPECT_EQ(back.mru.yaw_offset_deg, c.mru.yaw_offset_deg);
+  EXPECT_EQ(back.mru.deviation_cos_deg, c.mru.deviation_cos_deg);
+  EXPECT_EQ(back.mru.deviation_sin_deg, c.mru.deviation_sin_deg);
   EXPECT_EQ(back.dvl.yaw_deg, c.dvl.yaw_deg);
   EXPECT_EQ(back.dvl.x_m, c.dvl.x_m);
   EXPECT_EQ(back.dvl.y_m, c.dvl.y_m);
@@ -167,6 +171,9 @@ TEST(CalibrationYaml, BadValues) {
   expect_bad_calibration("sonar:\n  bearing_sign: 2\n", 2, "sonar.bearing_sign");
   expect_bad_calibration("sonar:\n  bearing_sign: 0\n", 2, "sonar.bearing_sign");
   expect_bad_calibration("sonar:\n  time_offset_s: 61\n", 2, "sonar.time_offset_s");
+  expect_bad_calibration("mru:\n  deviation_cos_deg: 40\n  deviation_sin_deg: 30\n", 2,
+                         "mru.deviation_cos_deg");
+  expect_bad_calibration("mru:\n  deviation_sin_deg: .nan\n", 2, "mru.deviation_sin_deg");
   expect_bad_calibration("frame:\n  origin_latitude_deg: 95\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2, "frame.origin_longitude_deg");

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/calibration.hpp"
+#include "sim/scenario.hpp"
 
 namespace msislab::sim {
 namespace {
@@ -167,6 +168,36 @@ TEST(MruModel, CompassDeviationFollowsTheHeading) {
     ASSERT_NEAR(normalize_angle(yaw - true_yaw) / kDegToRad,
                 -4.7 * std::cos(true_yaw) + 2.4 * std::sin(true_yaw), 1e-6)
         << "t = " << s.t_s;
+  }
+  // The dataset's calibration carries the deviation (as it does the sonar's clock offset), and
+  // the pipeline's reading of the MRU through it gives the true yaw back.
+  Scenario scenario;
+  scenario.mru = mru;
+  const Calibration calibration = calibration_of(scenario);
+  EXPECT_EQ(calibration.mru.deviation_cos_deg, -4.7);
+  EXPECT_EQ(calibration.mru.deviation_sin_deg, 2.4);
+  for (const MruSample& s : simulate_mru(truth, mru, 3)) {
+    ASSERT_NEAR(normalize_angle(vehicle_yaw_from_mru(s.yaw_mru_deg, calibration.mru) -
+                                truth.at(s.t_s).pose.yaw()),
+                0.0, 1e-10)
+        << "t = " << s.t_s;
+  }
+}
+
+// Reading and writing an MRU yaw through a mount with a deviation are inverses at every heading,
+// and the reading points d(psi) counter-clockwise of the true yaw.
+TEST(MruModel, MountWithDeviationRoundTrips) {
+  MruMount mount;
+  mount.deviation_cos_deg = 0.62;
+  mount.deviation_sin_deg = -2.39;
+  for (int i = -180; i < 180; ++i) {
+    const double yaw_rad = i * kDegToRad;
+    const double read_deg = mru_yaw_from_vehicle(yaw_rad, mount);
+    ASSERT_NEAR(normalize_angle(vehicle_yaw_from_mru(read_deg, mount) - yaw_rad), 0.0, 1e-12) << i;
+    const double plain_rad = vehicle_yaw_from_mru(read_deg, MruMount{});
+    ASSERT_NEAR(normalize_angle(plain_rad - yaw_rad) / kDegToRad,
+                0.62 * std::cos(yaw_rad) - 2.39 * std::sin(yaw_rad), 1e-9)
+        << i;
   }
 }
 

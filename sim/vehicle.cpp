@@ -146,13 +146,11 @@ VehicleTrajectory with_heading(const VehicleTrajectory& course,
   std::vector<VehicleState> samples = course.samples();
   for (VehicleState& s : samples) {
     // World velocity of the course sample, then in the axes of the new heading.
-    const double c = s.pose.yaw();
-    const Eigen::Vector2d v_world(s.surge_mps * std::cos(c) - s.sway_mps * std::sin(c),
-                                  s.surge_mps * std::sin(c) + s.sway_mps * std::cos(c));
-    const double yaw = yaw_at(s.t_s - start_s);
-    s.pose = Pose2(s.pose.x(), s.pose.y(), yaw);
-    s.surge_mps = v_world.x() * std::cos(yaw) + v_world.y() * std::sin(yaw);
-    s.sway_mps = -v_world.x() * std::sin(yaw) + v_world.y() * std::cos(yaw);
+    const Eigen::Vector2d v_world = s.pose.rotation() * Eigen::Vector2d(s.surge_mps, s.sway_mps);
+    s.pose = Pose2(s.pose.x(), s.pose.y(), yaw_at(s.t_s - start_s));
+    const Eigen::Vector2d v_vehicle = s.pose.rotation().transpose() * v_world;
+    s.surge_mps = v_vehicle.x();
+    s.sway_mps = v_vehicle.y();
   }
   for (std::size_t k = 0; k < samples.size(); ++k) {
     const VehicleState& before = samples[k == 0 ? 0 : k - 1];

@@ -16,10 +16,15 @@ part of it. Standard library only. Usage:
 import argparse
 import bisect
 import csv
-import glob
 import math
 import os
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ left beside the tools
+
+from stpere_logs import fail, find_log, rows, vehicle_yaw_rad
+
+TOOL = "compass_deviation_fit"
 
 
 def main():
@@ -28,17 +33,10 @@ def main():
     ap.add_argument("--dataset", default=os.environ.get("MSISLAB_STPERE_DIR", "../shared/datasets/stpere"))
     ap.add_argument("--mru-yaw-offset", type=float, default=86.0)
     o = ap.parse_args()
-    logs = glob.glob(os.path.join(o.dataset, "*_MTi.log"))
-    if len(logs) != 1:
-        sys.exit(f"compass_deviation_fit: {o.dataset}: expected one *_MTi.log, found {len(logs)}")
     times, yaws = [], []
-    with open(logs[0], encoding="latin-1") as f:
-        for line in f:
-            if line.startswith("%") or not line.strip():
-                continue
-            r = line.split()
-            times.append(float(r[0]))
-            yaws.append(math.pi / 2 - math.radians(float(r[3]) - o.mru_yaw_offset))
+    for r in rows(find_log(o.dataset, "_MTi.log", TOOL)):
+        times.append(float(r[0]))
+        yaws.append(vehicle_yaw_rad(float(r[3]), o.mru_yaw_offset))
 
     def yaw_at(t):
         i = min(max(bisect.bisect_left(times, t), 1), len(times) - 1)
@@ -47,7 +45,7 @@ def main():
 
     path = os.path.join(o.run, "matches.csv")
     if not os.path.isfile(path):
-        sys.exit(f"compass_deviation_fit: no {path}")
+        fail(TOOL, f"no {path}")
     m = [[0.0] * 2 for _ in range(2)]
     v = [0.0, 0.0]
     used = 0
@@ -70,7 +68,7 @@ def main():
             used += 1
     det = m[0][0] * m[1][1] - m[0][1] * m[1][0]
     if used < 10 or abs(det) < 1e-12:
-        sys.exit(f"compass_deviation_fit: {used} usable matches: too few, or no turning")
+        fail(TOOL, f"{path}: {used} usable matches: too few, or no turning")
     a = (m[1][1] * v[0] - m[0][1] * v[1]) / det
     b = (m[0][0] * v[1] - m[1][0] * v[0]) / det
     # Standard errors scaled by the residuals' own scatter (spIC's yaw variances are the weights'

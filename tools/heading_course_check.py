@@ -15,25 +15,15 @@ Standard library only. Usage:
 """
 import argparse
 import bisect
-import glob
 import math
 import os
 import sys
 
+sys.dont_write_bytecode = True  # no __pycache__ left beside the tools
 
-def rows(path):
-    with open(path, encoding="latin-1") as f:
-        for line in f:
-            if line.startswith("%") or not line.strip():
-                continue
-            yield line.split()
+from stpere_logs import fail, find_log, rows, vehicle_yaw_rad
 
-
-def one(dataset, suffix):
-    found = glob.glob(os.path.join(dataset, "*" + suffix))
-    if len(found) != 1:
-        sys.exit(f"heading_course_check: {dataset}: expected one *{suffix}, found {len(found)}")
-    return found[0]
+TOOL = "heading_course_check"
 
 
 def nmea_deg(value):
@@ -74,22 +64,22 @@ def main():
     o = ap.parse_args()
 
     fixes = []
-    for r in rows(one(o.dataset, "_DGPS.log")):
+    for r in rows(find_log(o.dataset, "_DGPS.log", TOOL)):
         fixes.append((float(r[0]), nmea_deg(float(r[1])), nmea_deg(float(r[2]))))
     lat0, lon0 = fixes[0][1], fixes[0][2]
     earth_m = 6378137.0
     gps = [(t, math.radians(lon - lon0) * math.cos(math.radians(lat0)) * earth_m,
             math.radians(lat - lat0) * earth_m) for t, lat, lon in fixes]
     heading = []
-    for r in rows(one(o.dataset, "_MTi.log")):
-        read = math.pi / 2 - math.radians(float(r[3]) - o.mru_yaw_offset)
+    for r in rows(find_log(o.dataset, "_MTi.log", TOOL)):
+        read = vehicle_yaw_rad(float(r[3]), o.mru_yaw_offset)
         yaw = read
         for _ in range(12):  # read = yaw + d(yaw), solved for yaw
             yaw = read - math.radians(o.deviation_cos * math.cos(yaw) + o.deviation_sin * math.sin(yaw))
         heading.append((float(r[0]), yaw))
     c, s = math.cos(math.radians(o.dvl_yaw)), math.sin(math.radians(o.dvl_yaw))
     dvl = []
-    for r in rows(one(o.dataset, "_DVL.log")):
+    for r in rows(find_log(o.dataset, "_DVL.log", TOOL)):
         if int(float(r[14])) != 1:  # bottomVelStatus: no bottom lock
             continue
         bx, by = float(r[11]) / 100, float(r[12]) / 100
@@ -131,7 +121,7 @@ def main():
                     pairs.append(([1.0, math.sin(mean), math.cos(mean)], d))
         t += o.window
     if len(pairs) < 10:
-        sys.exit(f"heading_course_check: only {len(pairs)} windows; try a longer --window")
+        fail(TOOL, f"only {len(pairs)} windows; try a longer --window")
     x, se, sd = solve3(pairs)
     print(f"{len(pairs)} windows of {o.window:g} s: GPS course - heading-and-DVL course = "
           f"{x[0]:.2f} (se {se[0]:.2f}) + {x[1]:.2f} (se {se[1]:.2f}) sin(yaw) + "

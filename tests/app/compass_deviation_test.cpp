@@ -10,28 +10,22 @@
 // ANEES 1.8-4.1 calibrated, 4-6 rejections and ANEES 22-30 uncalibrated.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <iostream>
-#include <limits>
 #include <string>
 
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "io/config_yaml.hpp"
+#include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
 namespace {
 
 namespace fs = std::filesystem;
-
-double diagnostic(const RunMetrics& m, const std::string& name) {
-  for (const auto& [key, value] : m.diagnostics) {
-    if (key == name) return value;
-  }
-  ADD_FAILURE() << m.method << ": no diagnostic " << name;
-  return std::numeric_limits<double>::quiet_NaN();
-}
+using testing_lookup::diagnostic;
 
 std::string replace_once(std::string text, const std::string& from, const std::string& to) {
   const std::size_t at = text.find(from);

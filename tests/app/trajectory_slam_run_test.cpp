@@ -9,19 +9,20 @@
 
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
+#include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
 namespace {
 
 namespace fs = std::filesystem;
+using testing_lookup::diagnostic;
 
 double segment(const RunMetrics& m, const std::string& name) {
   for (const auto& [n, value] : m.segments) {
@@ -66,14 +67,6 @@ void print(const std::string& data, const RunMetrics& m) {
             << segment(m, "loop") << ", canal " << segment(m, "canal") << "), " << m.scans
             << " scans, " << m.matches_accepted << " matches accepted, ANEES "
             << m.anees.value_or(-1.0) << ", " << m.runtime_s << " s\n";
-}
-
-double diagnostic(const RunMetrics& m, const std::string& name) {
-  for (const auto& [key, value] : m.diagnostics) {
-    if (key == name) return value;
-  }
-  ADD_FAILURE() << m.method << ": no diagnostic " << name;
-  return std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {

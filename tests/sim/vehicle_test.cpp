@@ -18,11 +18,17 @@ double distance_to_polyline(const Eigen::Vector2d& p, const std::vector<Eigen::V
   return best;
 }
 
-TEST(Vehicle, StraightLineAtTheGivenSpeed) {
+/// 50 m due east at 0.5 m/s, from t = 100 s.
+VehicleConfig eastward_leg() {
   VehicleConfig config;
   config.speed_mps = 0.5;
   config.start_time_s = 100.0;
   config.path_m = {{0, 0}, {50, 0}};
+  return config;
+}
+
+TEST(Vehicle, StraightLineAtTheGivenSpeed) {
+  const VehicleConfig config = eastward_leg();
   const VehicleTrajectory truth = follow_path(config);
   EXPECT_EQ(truth.start_s(), 100.0);
   EXPECT_NEAR(truth.end_s() - truth.start_s(), 50.0 / 0.5, 2.0);
@@ -39,10 +45,7 @@ TEST(Vehicle, AHeadingHistoryTurnsTheVehicleNotItsPath) {
   // Eastward at 0.5 m/s while pointing north-east, then swinging through north to north-west
   // (across the +-180 deg seam of nothing: 45 -> 135 deg over 50 s): the positions are the
   // course's, the DVL's surge and sway are the world velocity in the turned axes.
-  VehicleConfig config;
-  config.speed_mps = 0.5;
-  config.start_time_s = 100.0;
-  config.path_m = {{0, 0}, {50, 0}};
+  VehicleConfig config = eastward_leg();
   const VehicleTrajectory course = follow_path(config);
   config.heading_deg = {{0.0, 45.0}, {20.0, 45.0}, {70.0, 135.0}};
   const VehicleTrajectory crabbing = follow_path(config);

@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -20,7 +21,9 @@
 #include "io/atomic_file.hpp"
 #include "io/dataset.hpp"
 #include "io/heading_csv.hpp"
+#include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
+#include "io/output_guard.hpp"
 #include "io/stpere_logs.hpp"
 #include "sim/scenario_path.hpp"
 
@@ -146,7 +149,56 @@ std::string scenario_yaml(const Options& options, const Path& path,
   return yaml.str();
 }
 
+constexpr const char* kTool = "msislab_make_stpere_scenario";
+
+/// True for a scenario this tool wrote: its opening comment says so.
+bool written_by_this_tool(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  for (int i = 0; i < 8 && std::getline(in, line); ++i) {
+    if (line.find(std::string("Written by ") + kTool) != std::string::npos) return true;
+  }
+  return false;
+}
+
+/// True when `heading` is the heading history that this tool's earlier scenario at `scenario`
+/// names (so the tool wrote it too and may replace it).
+bool named_by_earlier_scenario(const std::string& scenario, const std::string& heading) {
+  namespace fs = std::filesystem;
+  if (scenario.empty() || !written_by_this_tool(scenario)) return false;
+  std::ifstream in(scenario);
+  const std::string key = "  heading_csv: ";
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind(key, 0) != 0) continue;
+    std::error_code ec;
+    return fs::equivalent(fs::path(scenario).parent_path() / line.substr(key.size()), heading, ec);
+  }
+  return false;
+}
+
+/// Refuses, before anything is computed, an output path that holds what the tool did not write
+/// (io/output_guard: exit status 2 naming the path).
+void check_outputs(const Options& options) {
+  const std::vector<std::string> inputs = {options.dataset_dir, options.scene_path};
+  if (!options.out_path.empty()) {
+    msislab::io::check_output_file({options.out_path, "scenario", kTool, inputs, false},
+                                   written_by_this_tool);
+  }
+  if (options.heading_out.empty()) return;
+  namespace fs = std::filesystem;
+  if (!options.out_path.empty() && fs::absolute(options.heading_out).lexically_normal() ==
+                                       fs::absolute(options.out_path).lexically_normal()) {
+    msislab::io::fail_file(options.heading_out,
+                           "is also --out; give the heading history its own name");
+  }
+  const bool ours = named_by_earlier_scenario(options.out_path, options.heading_out);
+  msislab::io::check_output_file(
+      {options.heading_out, "heading history", kTool, inputs, false},
+      ours ? +[](const std::string&) { return true; } : +[](const std::string&) { return false; });
+}
+
 void make_scenario(const Options& options) {
+  check_outputs(options);
   const msislab::io::DatasetFiles files = msislab::io::find_dataset_files(options.dataset_dir);
   const msislab::Calibration calibration = msislab::io::load_calibration(files);
   const std::vector<msislab::PositionFix> fixes = msislab::io::load_gps_fixes(files, calibration);

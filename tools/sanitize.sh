@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the asan preset (AddressSanitizer + UndefinedBehaviorSanitizer, no recovery: the first
-# finding ends the process with a report) and runs the test suite under it. LeakSanitizer's
-# suppressions (tests/sanitizers/lsan.supp) cover leaks inside third-party display libraries only,
-# each entry named and justified there. Extra arguments go to ctest (e.g. -L io, -R Json).
+# finding ends the process with a report) and runs the unit and library tests under it (the
+# preset leaves out the end-to-end command tests, tests/app, which tools/test.sh runs).
+# LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) cover leaks inside third-party display
+# libraries only, each entry named and justified there. Extra arguments go to ctest (e.g. -L io, -R Json).
 # Usage: tools/sanitize.sh [CTEST_ARGS...]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -13,7 +13,7 @@
 #include "io/detections.hpp"
 #include "slam/scan_sequence.hpp"
 
-#include "eval/evaluation.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 

@@ -9,6 +9,7 @@
 #include "eval/evaluation.hpp"
 #include "geometry/se2.hpp"
 #include "sim/navigation_sensors.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 
@@ -57,13 +58,6 @@ std::vector<double> path_length(const std::vector<PositionFix>& truth, double st
 std::size_t index_at_path(const std::vector<double>& s, std::size_t from, double s_m) {
   return static_cast<std::size_t>(
       std::lower_bound(s.begin() + static_cast<long>(from), s.end(), s_m) - s.begin());
-}
-
-/// The nearest-rank p-quantile of values.
-double quantile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size())));
-  return values[std::max<std::size_t>(rank, 1) - 1];
 }
 
 /// Rms per axis of GPS(t) - track(t - shift_s) after removing each window's mean offset.
@@ -170,7 +164,7 @@ HeadingOffsetStatistics heading_offset_statistics(const NavigationLog& navigatio
   stats.sd_deg = std::sqrt(var);
   stats.standard_error_deg = stats.sd_deg / std::sqrt(n);
   stats.consecutive_sd_deg = std::sqrt(consecutive / 2.0);
-  stats.median_deg = quantile(w, 0.5);
+  stats.median_deg = median(w);
   return stats;
 }
 
@@ -194,8 +188,7 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
     y.push_back(gps[i].p_world_m.y());
     if (i > 0) dt.push_back(gps[i].t_s - gps[i - 1].t_s);
   }
-  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
-  stats.rate_hz = 1.0 / dt[dt.size() / 2];
+  stats.rate_hz = 1.0 / median(dt);
   stats.white_x_m = difference_noise(x, 2);
   stats.white_y_m = difference_noise(y, 2);
   // The vehicle track: the EKF dead reckoning from the first fix with an MRU heading.

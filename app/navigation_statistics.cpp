@@ -10,20 +10,13 @@
 #include "geometry/se2.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 
 namespace {
 
 constexpr double kRadToDeg = 180.0 / M_PI;
-
-double median_of(std::vector<double> values) {
-  assert(!values.empty());
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + mid, values.end());
-  if (values.size() % 2) return values[mid];
-  return 0.5 * (values[mid] + *std::max_element(values.begin(), values.begin() + mid));
-}
 
 /// Noise sigma from differences whose variance is `factor` sigma^2.
 DifferenceNoise noise_of_differences(const std::vector<double>& d, double factor) {
@@ -40,11 +33,11 @@ DifferenceNoise noise_of_differences(const std::vector<double>& d, double factor
   }
   noise.sigma_sd = std::sqrt(m2 / static_cast<double>(d.size() - 1) / factor);
   noise.kurtosis = m4 * static_cast<double>(d.size()) / (m2 * m2);
-  const double median = median_of(d);
+  const double centre = median(d);
   std::vector<double> deviation;
   deviation.reserve(d.size());
-  for (const double v : d) deviation.push_back(std::abs(v - median));
-  noise.sigma_mad = 1.4826 * median_of(deviation) / std::sqrt(factor);
+  for (const double v : d) deviation.push_back(std::abs(v - centre));
+  noise.sigma_mad = 1.4826 * median(deviation) / std::sqrt(factor);
   return noise;
 }
 
@@ -54,7 +47,7 @@ double rate_of(const std::vector<T>& samples) {
   std::vector<double> dt;
   for (std::size_t i = 1; i < samples.size(); ++i)
     dt.push_back(samples[i].t_s - samples[i - 1].t_s);
-  return 1.0 / median_of(dt);
+  return 1.0 / median(dt);
 }
 
 }  // namespace
@@ -159,7 +152,7 @@ HeadingNoiseStatistics heading_noise_statistics(const std::vector<HeadingReading
                                  nearest_heading(heading, t).yaw_rad)) *
         kRadToDeg);
   }
-  if (!turns_deg.empty()) stats.turn_per_revolution_deg = msislab::quantile(turns_deg, 0.5);
+  if (!turns_deg.empty()) stats.turn_per_revolution_deg = median(turns_deg);
   return stats;
 }
 

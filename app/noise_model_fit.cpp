@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include "stats/sample_statistics.hpp"
+
 namespace msislab::app {
 
 namespace {
@@ -29,9 +31,7 @@ ContaminatedNormal fit_contaminated_normal(const std::vector<Eigen::Vector2d>& d
   q.reserve(differences.size());
   for (const Eigen::Vector2d& d : differences) q.push_back(d.squaredNorm());
   // Start: the core from the median of |d|^2 (2 a chi^2_2, median 2 ln 2), outliers 3x wider.
-  std::vector<double> sorted = q;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  double a = std::max(sorted[sorted.size() / 2] / (4.0 * std::log(2.0)), 1e-30);
+  double a = std::max(median(q) / (4.0 * std::log(2.0)), 1e-30);
   double b = 9.0 * a, eps = 0.05;
   double previous_ll = -std::numeric_limits<double>::infinity();
   ContaminatedNormal fit;

@@ -5,7 +5,7 @@
 #include "app/methods.hpp"
 #include "app/report_markdown.hpp"
 #include "io/text_lines.hpp"
-#include "slam/scan_matching.hpp"
+#include "stats/chi_square.hpp"
 
 namespace msislab::app {
 

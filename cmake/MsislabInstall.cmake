@@ -1,8 +1,8 @@
 # `cmake --install`: the msislab executable in bin/; the scenes, scenarios and SLAM configs in
 # share/msislab/ (a scenario names its mesh relative to itself, so the layout is the tree's); the
-# core libraries (geometry, sim, slam, eval), their headers under include/msislab/ and a CMake
-# package, so that another project's `find_package(msislab)` gives msislab::geometry,
-# msislab::sim, msislab::slam and msislab::eval (examples/ is such a project). The file formats
+# core libraries (stats, geometry, sim, slam, eval), their headers under include/msislab/ and a
+# CMake package, so that another project's `find_package(msislab)` gives msislab::stats,
+# msislab::geometry, msislab::sim, msislab::slam and msislab::eval (examples/ is such a project). The file formats
 # and commands (io/, app/, plot/) are not a library API: use the executable.
 include(CMakePackageConfigHelpers)
 
@@ -11,10 +11,10 @@ install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes ${PROJECT_SOURCE_DIR}/scenarios
                   ${PROJECT_SOURCE_DIR}/config
         DESTINATION ${CMAKE_INSTALL_DATADIR}/msislab COMPONENT runtime)
 
-set(msislab_libraries msislab_geometry msislab_sim msislab_slam msislab_eval)
+set(msislab_libraries msislab_stats msislab_geometry msislab_sim msislab_slam msislab_eval)
 install(TARGETS ${msislab_libraries} EXPORT msislabTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
-foreach(dir geometry sim slam eval)
+foreach(dir stats geometry sim slam eval)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/msislab
           COMPONENT development FILES_MATCHING PATTERN "*.hpp")
 endforeach()

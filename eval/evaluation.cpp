@@ -9,6 +9,7 @@
 #include <Eigen/Cholesky>
 
 #include "eval/alignment.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab {
 
@@ -102,9 +103,7 @@ std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors) {
   stats.rmse_m = std::sqrt(sum_sq / n);
   stats.max_m = *std::max_element(values.begin(), values.end());
   stats.final_m = errors.back().error_m;
-  std::sort(values.begin(), values.end());
-  const std::size_t mid = values.size() / 2;
-  stats.median_m = values.size() % 2 ? values[mid] : 0.5 * (values[mid - 1] + values[mid]);
+  stats.median_m = median(std::move(values));
   return stats;
 }
 
@@ -141,15 +140,6 @@ std::optional<double> mean_of(const std::vector<double>& values) {
   double sum = 0.0;
   for (const double v : values) sum += v;
   return sum / static_cast<double>(values.size());
-}
-
-double quantile(std::vector<double> values, double p) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::sort(values.begin(), values.end());
-  const double h = static_cast<double>(values.size() - 1) * std::clamp(p, 0.0, 1.0);
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, values.size() - 1);
-  return values[lo] + (h - static_cast<double>(lo)) * (values[hi] - values[lo]);
 }
 
 }  // namespace msislab

@@ -49,10 +49,6 @@ struct ErrorStats {
 /// Statistics of a set of errors; nullopt when it is empty.
 std::optional<ErrorStats> error_stats(const std::vector<ErrorSample>& errors);
 
-/// The p-quantile (0 <= p <= 1) by linear interpolation between order statistics: position
-/// h = (n - 1) p in the sorted sample. NaN for an empty sample.
-double quantile(std::vector<double> values, double p);
-
 /// Mean error inside a segment (t0_s is the first truth stamp); nullopt when no sample falls in it.
 std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors, double t0_s,
                                          const TimeSegment& segment);

@@ -6,7 +6,8 @@
 #include <cmath>
 #include <map>
 
-#include "slam/scan_matching.hpp"
+#include "stats/chi_square.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab {
 

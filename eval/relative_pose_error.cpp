@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "eval/evaluation.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab {
 

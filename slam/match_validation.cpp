@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "slam/line_normals.hpp"
+#include "stats/chi_square.hpp"
 
 namespace msislab {
 
@@ -121,7 +122,7 @@ bool passes_restarts(const std::vector<ScanPoint>& reference, const std::vector<
   kept.push_back(2);
   // In those directions every restart must end where the solution is.
   const double gate =
-      chi2_quantile(validation.ambiguity_probability, static_cast<int>(kept.size()));
+      chi2_quantile(validation.ambiguity_probability, static_cast<double>(kept.size()));
   const Eigen::LDLT<Eigen::MatrixXd> C_kept(C(kept, kept));
   if (!restarts_agree(restarts, kept, C_kept, gate)) {
     out.rejection = MatchRejection::kAmbiguous;
@@ -189,31 +190,9 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
   return out;
 }
 
-double chi2_survival(double x, int dof) {
-  // Q(x; 1) = erfc(sqrt(x / 2)), Q(x; 2) = exp(-x / 2), and
-  // Q(x; k + 2) = Q(x; k) + (x / 2)^(k / 2) exp(-x / 2) / Gamma(k / 2 + 1).
-  const int first = dof % 2 == 1 ? 1 : 2;
-  double q = first == 1 ? std::erfc(std::sqrt(x / 2.0)) : std::exp(-x / 2.0);
-  for (int k = first; k + 2 <= dof; k += 2) {
-    q += std::exp(0.5 * k * std::log(x / 2.0) - x / 2.0 - std::lgamma(0.5 * k + 1.0));
-  }
-  return q;
-}
-
 double gate_for_dimensions(double gate_3dof, Eigen::Index d) {
   if (d == 3) return gate_3dof;
-  return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<int>(d));
-}
-
-double chi2_quantile(double p, int dof) {
-  // The survival function decreases in x: bisection for Q(x) = 1 - p.
-  double lo = 0.0, hi = 2.0 * dof + 50.0;
-  while (chi2_survival(hi, dof) > 1.0 - p) hi *= 2.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (chi2_survival(mid, dof) > 1.0 - p ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return chi2_quantile(1.0 - chi2_survival(gate_3dof, 3), static_cast<double>(d));
 }
 
 }  // namespace msislab

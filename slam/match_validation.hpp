@@ -80,13 +80,6 @@ ValidatedMatch match_and_validate(const std::vector<ScanPoint>& reference,
                                   const ScanMatchConfig& matching,
                                   const MatchValidationConfig& validation);
 
-/// P(X > x) for X chi-square with dof >= 1 degrees of freedom (closed forms: erfc or exp, then
-/// the recurrence in dof).
-double chi2_survival(double x, int dof);
-
-/// The p-quantile of the chi-square distribution with dof >= 1 degrees of freedom.
-double chi2_quantile(double p, int dof);
-
 /// The innovation gate for d observed directions at the tail probability of the configured
 /// 3-DOF gate (chi-square, 99 % by default): 3 DOF keeps the configured value.
 double gate_for_dimensions(double gate_3dof, Eigen::Index d);

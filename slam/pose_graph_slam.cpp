@@ -176,10 +176,7 @@ GaussianPose2 PoseGraphSlam::match(std::size_t k,
       const Eigen::VectorXd r = A * pose_difference(m.match.estimate.mean, predicted.mean);
       const Eigen::MatrixXd S = A * (predicted.cov + m.match.estimate.cov) * A.transpose();
       nis = r.dot(S.ldlt().solve(r));
-      const double gate =
-          A.rows() == 3 ? front_end_.innovation_gate_chi2
-                        : chi2_quantile(1.0 - chi2_survival(front_end_.innovation_gate_chi2, 3),
-                                        static_cast<int>(A.rows()));
+      const double gate = gate_for_dimensions(front_end_.innovation_gate_chi2, A.rows());
       if (nis > gate) {
         m.rejection = MatchRejection::kInnovation;
       } else {

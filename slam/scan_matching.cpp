@@ -280,24 +280,4 @@ Eigen::Matrix3d shared_current_covariance(const ScanMatchResult& a, const ScanMa
   return cov;
 }
 
-std::pair<double, double> average_chi2_bounds(int n, int dof, double alpha) {
-  // Wilson-Hilferty: chi2_p(k) ~ k (1 - 2/(9k) + z_p sqrt(2/(9k)))^3, k = n dof.
-  const double k = static_cast<double>(n) * dof;
-  // Normal quantile of 1 - alpha/2 by inverting erfc with Newton steps from 2.
-  auto z_of = [](double tail) {
-    double z = 2.0;
-    for (int i = 0; i < 50; ++i) {
-      const double f = 0.5 * std::erfc(z / std::sqrt(2.0)) - tail;
-      const double df = -std::exp(-0.5 * z * z) / std::sqrt(2.0 * M_PI);
-      z -= f / df;
-    }
-    return z;
-  };
-  const double z = z_of(alpha / 2.0);
-  const double c = 2.0 / (9.0 * k);
-  const double lower = k * std::pow(1.0 - c - z * std::sqrt(c), 3.0);
-  const double upper = k * std::pow(1.0 - c + z * std::sqrt(c), 3.0);
-  return {lower / n, upper / n};
-}
-
 }  // namespace msislab

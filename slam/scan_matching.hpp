@@ -85,8 +85,4 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
 Eigen::Matrix3d shared_current_covariance(const ScanMatchResult& a, const ScanMatchResult& b,
                                           const std::vector<ScanPoint>& current);
 
-/// Two-sided (1 - alpha) bounds of the average of n chi-square variables with dof degrees of
-/// freedom each (Wilson-Hilferty), as used for NEES tests: [lower, upper].
-std::pair<double, double> average_chi2_bounds(int n, int dof, double alpha = 0.05);
-
 }  // namespace msislab

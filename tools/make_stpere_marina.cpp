@@ -28,6 +28,7 @@
 #include "sim/scenario_path.hpp"
 #include "sim/scene_builder.hpp"
 #include "slam/navigation.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace {
 
@@ -109,12 +110,10 @@ std::pair<double, double> median_altitudes_m(const std::string& dvl_path, double
         (r.range_bottom_m[0] + r.range_bottom_m[1] + r.range_bottom_m[2]) / 3.0;
     (r.t_log_s - t0_s < t_split_s ? before : after).push_back(altitude_m);
   }
-  const auto median = [](std::vector<double> v) {
-    if (v.empty()) return 0.0;
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
+  const auto median_or_0 = [](std::vector<double> v) {
+    return v.empty() ? 0.0 : msislab::median(std::move(v));
   };
-  return {median(before), median(after)};
+  return {median_or_0(before), median_or_0(after)};
 }
 
 /// The mesh; clutter object i floats as a hull when floating[i] (the real track crosses it).

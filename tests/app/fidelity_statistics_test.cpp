@@ -1,5 +1,5 @@
 // The fidelity statistics on samples and beams built by hand, with answers worked out on paper:
-// quantiles, the KS distance (identical samples 0, disjoint 1, a known shift), band shares, runs,
+// the KS distance (identical samples 0, disjoint 1, a known shift), band shares, runs,
 // the checks of the detections file, and the per-beam, rotation and per-scan samples.
 #include "app/fidelity_statistics.hpp"
 
@@ -13,17 +13,6 @@
 
 namespace msislab::app {
 namespace {
-
-TEST(Quantile, InterpolatesBetweenOrderStatistics) {
-  const std::vector<double> v = {5.0, 1.0, 4.0, 2.0, 3.0};  // unsorted on purpose
-  EXPECT_DOUBLE_EQ(quantile(v, 0.5), 3.0);
-  EXPECT_DOUBLE_EQ(quantile(v, 0.1), 1.4);  // h = 0.4
-  EXPECT_DOUBLE_EQ(quantile(v, 0.9), 4.6);  // h = 3.6
-  EXPECT_DOUBLE_EQ(quantile(v, 0.0), 1.0);
-  EXPECT_DOUBLE_EQ(quantile(v, 1.0), 5.0);
-  EXPECT_DOUBLE_EQ(quantile({7.0}, 0.9), 7.0);
-  EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
-}
 
 TEST(KsDistance, IdenticalSamplesAreZeroApart) {
   const std::vector<double> a = {3.0, 1.0, 2.0, 2.0, 8.5};

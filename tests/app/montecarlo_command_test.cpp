@@ -31,6 +31,7 @@
 #include "io/results.hpp"
 #include "io/text_lines.hpp"
 #include "slam/scan_matching.hpp"
+#include "stats/chi_square.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {

@@ -18,6 +18,7 @@
 #include "io/tum.hpp"
 #include "slam/scan_matching.hpp"
 #include "slam/trajectory_slam.hpp"
+#include "stats/chi_square.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {

@@ -12,6 +12,7 @@
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
 #include "io/stpere_logs.hpp"
+#include "stats/sample_statistics.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -94,8 +95,7 @@ TEST(ScansCommand, RealStPereDetectionsDrawTheMarina) {
   std::vector<double> distances;
   for (double x, y, z; ply >> x >> y >> z;) distances.push_back(distance_to_walls({x, y}, walls));
   ASSERT_EQ(distances.size(), s.points);
-  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-  const double median_m = distances[distances.size() / 2];
+  const double median_m = median(distances);
   std::cout << s.scans << " scans, " << s.points << " points; median distance to the marina walls "
             << median_m << " m\n";
   EXPECT_LT(median_m, 3.0);

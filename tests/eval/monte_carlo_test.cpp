@@ -9,7 +9,8 @@
 #include <limits>
 #include <random>
 
-#include "slam/scan_matching.hpp"
+#include "stats/chi_square.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab {
 namespace {

@@ -48,19 +48,6 @@ GaussianPose2 guess_at(const Pose2& mean, double sigma_m, double sigma_rad) {
   return g;
 }
 
-TEST(MatchValidation, ChiSquareQuantilesMatchTheTables) {
-  EXPECT_NEAR(chi2_quantile(0.99, 1), 6.635, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.99, 2), 9.210, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.99, 3), 11.345, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.95, 3), 7.815, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.95, 1), 3.841, 1e-3);
-  // Higher dof through the recurrence (tables: 6 DOF 99 % 16.812, 9 DOF 99 % 21.666, 30 DOF
-  // 95 % 43.773).
-  EXPECT_NEAR(chi2_quantile(0.99, 6), 16.812, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.99, 9), 21.666, 1e-3);
-  EXPECT_NEAR(chi2_quantile(0.95, 30), 43.773, 1e-3);
-}
-
 TEST(MatchValidation, ACorridorMatchKeepsOnlyTheDirectionsTheWallsFix) {
   std::mt19937 rng(5);
   const Pose2 reference_world(0.0, 0.5, 0.0), current_world(3.0, -0.5, 0.03);

@@ -16,6 +16,7 @@
 
 #include "geometry/gaussian_pose.hpp"
 #include "slam/scan_matching.hpp"
+#include "stats/chi_square.hpp"
 
 namespace msislab {
 namespace {

@@ -1,7 +1,7 @@
 // spIC scan matching: recovery of a known relative pose from perturbed guesses, rejection of
-// scans that do not overlap, the chi-square bounds used by the NEES tests, point-to-line
-// covariances, the short-motion bias of one-way association in a canal, and the cross-covariance
-// of two matches that share their current scan against Monte Carlo.
+// scans that do not overlap, point-to-line covariances, the short-motion bias of one-way
+// association in a canal, and the cross-covariance of two matches that share their current scan
+// against Monte Carlo.
 #include "slam/scan_matching.hpp"
 
 #include <gtest/gtest.h>
@@ -18,18 +18,6 @@ namespace {
 
 using testing_scans::corner_walls;
 using testing_scans::noisy;
-
-TEST(ScanMatching, AverageChiSquareBoundsMatchTheTables) {
-  // ../shared/docs/field-notes.md: N=25 [2.12, 4.03], N=50 [2.36, 3.72], N=100 [2.54, 3.50].
-  const auto b25 = average_chi2_bounds(25, 3), b50 = average_chi2_bounds(50, 3),
-             b100 = average_chi2_bounds(100, 3);
-  EXPECT_NEAR(b25.first, 2.12, 0.01);
-  EXPECT_NEAR(b25.second, 4.03, 0.01);
-  EXPECT_NEAR(b50.first, 2.36, 0.01);
-  EXPECT_NEAR(b50.second, 3.72, 0.01);
-  EXPECT_NEAR(b100.first, 2.54, 0.01);
-  EXPECT_NEAR(b100.second, 3.50, 0.01);
-}
 
 TEST(ScanMatching, RecoversAKnownPoseFromPerturbedGuesses) {
   const Pose2 q_true(1.2, -0.6, 0.15);  // current frame in the reference frame

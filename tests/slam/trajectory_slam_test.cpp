@@ -12,6 +12,7 @@
 #include "slam/pose_graph_slam.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
+#include "stats/chi_square.hpp"
 
 namespace msislab {
 namespace {

@@ -1,0 +1,18 @@
+// Order statistics of a sample, each with one stated rule, for every library that reports them.
+#pragma once
+
+#include <vector>
+
+namespace msislab {
+
+/// The p-quantile of a sample (p clamped to [0, 1]) by linear interpolation between order
+/// statistics (Hyndman and Fan's type 7, R's and NumPy's default): with the sample sorted as
+/// x_0 <= ... <= x_{n-1}, h = (n - 1) p and x_floor(h) + (h - floor(h)) (x_floor(h)+1 -
+/// x_floor(h)). NaN for an empty sample.
+double quantile(std::vector<double> values, double p);
+
+/// The middle value of a sample, or the mean of the two middle ones when the size is even (the
+/// 0.5-quantile above, computed as (a + b) / 2). NaN for an empty sample.
+double median(std::vector<double> values);
+
+}  // namespace msislab

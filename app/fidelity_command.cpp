@@ -11,7 +11,7 @@
 
 #include "app/cli.hpp"
 #include "app/fidelity_figures.hpp"
-#include "app/navigation_statistics.hpp"
+#include "app/navigation_data.hpp"
 #include "app/sonar_readings.hpp"
 #include "io/atomic_file.hpp"
 #include "io/detections.hpp"

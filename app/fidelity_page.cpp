@@ -110,7 +110,7 @@ std::string definitions(const FidelityReport& r) {
          "consecutive keyframes k and k + 1, the beam rows between its two beams and their time "
          "difference in `*_IS_timestamps.log` (the revolution period); the medians.\n"
          "- **Navigation** (when both datasets have `*_DVL.log` and `*_MTi.log`; "
-         "`app/navigation_statistics`, docs/simulator.md): DVL velocity noise from the first "
+         "`eval/navigation_statistics`, docs/simulator.md): DVL velocity noise from the first "
          "differences of consecutive bottom-lock samples (no dropout between) over sqrt(2), "
          "per vehicle axis, as a standard deviation and robustly (1.4826 MAD); the DVL rate and "
          "the share of its rows without bottom lock; heading noise from the second differences "

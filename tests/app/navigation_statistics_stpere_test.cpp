@@ -6,7 +6,7 @@
 #include <cmath>
 #include <iostream>
 
-#include "app/navigation_statistics.hpp"
+#include "app/navigation_data.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scenario_yaml.hpp"
 #include "sim/navigation_sensors.hpp"

@@ -1,13 +1,13 @@
 // The noise-model fits recover known parameters from long synthetic sequences drawn from the
 // models themselves, within the stated tolerances (a few standard errors at these lengths).
-#include "app/noise_model_fit.hpp"
+#include "eval/noise_model_fit.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-namespace msislab::app {
+namespace msislab {
 namespace {
 
 std::vector<Eigen::Vector2d> contaminated_differences(double core, double fraction, double outlier,
@@ -93,4 +93,4 @@ TEST(GilbertElliott, RecoversStrongBursts) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <functional>
 
-#include "app/navigation_statistics.hpp"
 #include "eval/evaluation.hpp"
+#include "eval/navigation_statistics.hpp"
 #include "geometry/se2.hpp"
 #include "sim/navigation_sensors.hpp"
 #include "stats/sample_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab {
 
 namespace {
 
@@ -233,4 +233,4 @@ GpsStatistics gps_statistics(const NavigationLog& navigation, const std::vector<
   return stats;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab

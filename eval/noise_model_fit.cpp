@@ -1,4 +1,4 @@
-#include "app/noise_model_fit.hpp"
+#include "eval/noise_model_fit.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,7 +9,7 @@
 
 #include "stats/sample_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab {
 
 namespace {
 
@@ -134,4 +134,4 @@ GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost) {
   return fit;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab

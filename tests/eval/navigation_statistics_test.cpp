@@ -1,7 +1,7 @@
 // Navigation statistics on synthetic data with known answers: white noise of known sigma from
 // sample differences, dropout clustering, heading noise across the +-pi wrap, the compass
 // comparison, a known GPS lag and tether, and dead-reckoning drift from a known heading offset.
-#include "app/navigation_statistics.hpp"
+#include "eval/navigation_statistics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 
 #include "geometry/se2.hpp"
 
-namespace msislab::app {
+namespace msislab {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
@@ -253,4 +253,4 @@ TEST(HeadingOffset, RecoversAConstantOffset) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab

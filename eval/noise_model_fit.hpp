@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace msislab::app {
+namespace msislab {
 
 /// Isotropic 2-D white noise e = sigma n, n ~ N(0, I), where sigma is core_sigma or, with
 /// probability outlier_fraction (independently per sample, both axes at once), outlier_sigma.
@@ -39,4 +39,4 @@ struct GilbertElliott {
 /// Needs at least one loss and one non-loss.
 GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost);
 
-}  // namespace msislab::app
+}  // namespace msislab

@@ -1,18 +1,15 @@
-#include "app/navigation_statistics.hpp"
+#include "eval/navigation_statistics.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
 #include "geometry/se2.hpp"
-#include "io/dataset.hpp"
-#include "io/stpere_logs.hpp"
 #include "stats/sample_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab {
 
 namespace {
 
@@ -60,27 +57,6 @@ DifferenceNoise difference_noise(const std::vector<double>& values, int order) {
                            : values[i] - 2.0 * values[i - 1] + values[i - 2]);
   }
   return noise_of_differences(d, order == 1 ? 2.0 : 6.0);
-}
-
-NavigationData load_navigation_data(const std::string& dataset_dir) {
-  NavigationData data;
-  const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
-  const Calibration calibration = io::load_calibration(files);
-  data.navigation = io::load_navigation(files, calibration);
-  data.p_vehicle_dvl_m = {calibration.dvl.x_m, calibration.dvl.y_m};
-  const std::vector<io::DvlRecord> records = io::read_dvl_log(*files.dvl);
-  const bool has_compass = std::any_of(records.begin(), records.end(),
-                                       [](const io::DvlRecord& r) { return r.heading_deg != 0.0; });
-  for (const io::DvlRecord& r : records) {
-    DvlRow row{r.t_log_s, r.bottom_vel_status == 1.0, std::nullopt};
-    if (has_compass) row.compass_yaw_rad = normalize_angle(M_PI / 2 - r.heading_deg / kRadToDeg);
-    data.dvl_rows.push_back(row);
-  }
-  if (files.gps) data.gps = io::load_gps_fixes(files, calibration);
-  const Truth truth = load_truth(files, calibration);
-  data.truth = truth.positions;
-  data.truth_kind = truth.kind;
-  return data;
 }
 
 DvlNoiseStatistics dvl_noise_statistics(const std::vector<DvlVelocity>& dvl) {
@@ -228,4 +204,4 @@ NavigationStatistics navigation_statistics(const NavigationData& data) {
   return stats;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab

@@ -1,7 +1,7 @@
-// Navigation noise statistics of a dataset, real or simulated, from its own logs (issue 11, docs/
-// simulator.md "Navigation noise from the real logs"): DVL noise, dropouts, MRU heading noise and
-// offset, the GPS buoy's lag and error, and dead-reckoning drift per distance travelled. Pure
-// functions of already-loaded data returning plain structs; load_navigation_data does the I/O.
+// Navigation noise statistics of a dataset, real or simulated, from its own logs (docs/simulator.md
+// "Navigation noise from the real logs"): DVL noise, dropouts, MRU heading noise and offset, the
+// GPS buoy's lag and error, and dead-reckoning drift per distance travelled. Pure functions of
+// already-loaded data returning plain structs; app/navigation_data reads the logs.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "app/noise_model_fit.hpp"
 #include "eval/evaluation.hpp"
+#include "eval/noise_model_fit.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/navigation.hpp"
 
-namespace msislab::app {
+namespace msislab {
 
 /// White-noise level of a sampled signal from its n-th differences. For white noise of standard
 /// deviation sigma on a signal that is smooth at the sample rate, the first differences have
@@ -45,9 +45,6 @@ struct NavigationData {
   std::string truth_kind;          ///< "simulation", "gps" or empty
   Eigen::Vector2d p_vehicle_dvl_m = Eigen::Vector2d::Zero();  ///< DVL lever arm
 };
-
-/// Reads a dataset directory (real or simulated) through io/. Throws io::InputError.
-NavigationData load_navigation_data(const std::string& dataset_dir);
 
 struct DvlNoiseStatistics {
   double rate_hz = 0.0;  ///< 1 / median interval between consecutive DVL rows
@@ -185,4 +182,4 @@ struct NavigationStatistics {
 };
 NavigationStatistics navigation_statistics(const NavigationData& data);
 
-}  // namespace msislab::app
+}  // namespace msislab

@@ -4,9 +4,7 @@
 #include <iterator>
 
 #include "io/input_error.hpp"
-#include "slam/pose_graph_slam.hpp"
-#include "slam/robocentric_slam.hpp"
-#include "slam/worldcentric_slam.hpp"
+#include "slam/scan_slam_pipeline.hpp"
 
 namespace msislab::app {
 
@@ -15,24 +13,21 @@ const std::vector<MethodInfo>& methods() {
       {"robocentric", "Robocentric SLAM", 0x2ca02c, plot::SeriesStyle::kLine,
        MethodKind::kTrajectorySlam,
        [](const SlamConfig& config, const GaussianPose2& start) {
-         return std::unique_ptr<ScanSlam>(
-             std::make_unique<RoboCentricSlam>(config.trajectory_slam, start));
+         return make_scan_slam(ScanSlamBackend::kRobocentric, config, start);
        }},
       // Dashed, so that where it coincides with the robocentric line (the same estimate,
       // docs/trajectory_slam.md) both show.
       {"worldcentric", "World-centric SLAM", 0x1f77b4, plot::SeriesStyle::kDashedLine,
        MethodKind::kTrajectorySlam,
        [](const SlamConfig& config, const GaussianPose2& start) {
-         return std::unique_ptr<ScanSlam>(
-             std::make_unique<WorldCentricSlam>(config.trajectory_slam, start));
+         return make_scan_slam(ScanSlamBackend::kWorldcentric, config, start);
        }},
-      // The modern baseline: the same front end on a Ceres pose graph (issue 15). Its
+      // The modern baseline: the same front end on a Ceres pose graph. Its
       // trajectory.tum is the online estimate, trajectory_smoothed.tum the smoothed one.
       {"posegraph", "Pose graph (Ceres)", 0x9467bd, plot::SeriesStyle::kDottedLine,
        MethodKind::kTrajectorySlam,
        [](const SlamConfig& config, const GaussianPose2& start) {
-         return std::unique_ptr<ScanSlam>(
-             std::make_unique<PoseGraphSlam>(config.trajectory_slam, config.pose_graph, start));
+         return make_scan_slam(ScanSlamBackend::kPoseGraph, config, start);
        }},
       {"deadreckoning",
        "Dead reckoning",

@@ -9,79 +9,40 @@
 #include "app/methods.hpp"
 #include "io/input_error.hpp"
 #include "slam/dead_reckoning.hpp"
-#include "slam/trajectory_correction.hpp"
+#include "slam/scan_slam_pipeline.hpp"
 
 namespace msislab::app {
 
 namespace {
 
-struct SlamRun {
-  std::vector<PlacedScan> scans;  ///< with their corrected world poses (online, where it differs)
-  std::vector<StampedPose> trajectory;
-  /// A back end with an online estimate (the pose graph): its smoothed trajectory and scans.
-  std::optional<std::vector<StampedPose>> smoothed_trajectory;
-  std::optional<std::vector<StampedPose>> smoothed_scan_poses;
-  std::optional<int> matches_downweighted;
-  SlamTotals totals;
-  std::vector<MatchRecord> matches;                  ///< every candidate match of every step
-  std::vector<StampedPose> dead_reckoning_at_scans;  ///< the scans' poses before the SLAM
-};
-
-/// The dataset's revolutions as motion-compensated scans placed by dead reckoning.
-std::vector<PlacedScan> dead_reckoning_scans(const SonarInput& sonar, const RunInputs& in) {
-  ScanConfig builder;
-  builder.beams_per_scan = sonar.beams_per_revolution;
-  builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
-  return build_scans(sonar.beams, in.navigation, in.config.dead_reckoning,
-                     {in.calibration.dvl.x_m, in.calibration.dvl.y_m}, in.start, builder);
+/// The scans placed at the given world poses (one per scan), for the files and the scores that
+/// show the corrected map.
+std::vector<PlacedScan> placed_at(const std::vector<PlacedScan>& scans,
+                                  const std::vector<GaussianPose2>& poses_world) {
+  std::vector<PlacedScan> placed = scans;
+  for (std::size_t i = 0; i < placed.size(); ++i) placed[i].centre_world.pose = poses_world[i];
+  return placed;
 }
 
-/// A SLAM back end over the dataset's scans, and the corrected trajectory: from the final
-/// estimate of every scan (the filters), or from each scan's pose when it was added with the
-/// smoothed one beside it (the pose graph).
-SlamRun run_trajectory_slam(const MethodInfo& method, const SonarInput& sonar, const RunInputs& in,
-                            const std::vector<StampedPose>& dead_reckoning) {
-  SlamRun run;
-  run.scans = dead_reckoning_scans(sonar, in);
-  const std::unique_ptr<ScanSlam> slam = method.make_slam(in.config, in.start.pose);
-  for (const PlacedScan& placed : run.scans) {
-    SlamStepStats step = slam->add_scan(placed.scan);
-    run.matches.insert(run.matches.end(), std::make_move_iterator(step.matches.begin()),
-                       std::make_move_iterator(step.matches.end()));
-  }
-  std::vector<StampedPose> dr_at_scans;
-  std::vector<GaussianPose2> final_poses;
-  for (std::size_t i = 0; i < run.scans.size(); ++i) {
-    dr_at_scans.push_back(run.scans[i].centre_world);
-    final_poses.push_back(slam->scan_pose_world(i));
-  }
-  run.totals = slam->totals();
-  run.matches_downweighted = slam->matches_downweighted();
-  const std::optional<std::vector<GaussianPose2>> online = slam->online_poses();
-  const std::vector<GaussianPose2>& corrected = online ? *online : final_poses;
-  for (std::size_t i = 0; i < run.scans.size(); ++i) run.scans[i].centre_world.pose = corrected[i];
-  run.trajectory = correct_trajectory(dead_reckoning, dr_at_scans, corrected);
-  if (online) {
-    run.smoothed_trajectory = correct_trajectory(dead_reckoning, dr_at_scans, final_poses);
-    run.smoothed_scan_poses.emplace();
-    for (std::size_t i = 0; i < run.scans.size(); ++i) {
-      run.smoothed_scan_poses->push_back({run.scans[i].scan.t_s, final_poses[i]});
-    }
-  }
-  run.dead_reckoning_at_scans = std::move(dr_at_scans);
-  return run;
-}
-
-/// The scans' corrected world poses.
+/// The scans' world poses as placed, stamped with their times.
 std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
   std::vector<StampedPose> poses;
   for (const PlacedScan& s : scans) poses.push_back({s.scan.t_s, s.centre_world.pose});
   return poses;
 }
 
+/// The scans' world poses, stamped with their times.
+std::vector<StampedPose> stamped(const std::vector<PlacedScan>& scans,
+                                 const std::vector<GaussianPose2>& poses_world) {
+  std::vector<StampedPose> poses;
+  for (std::size_t i = 0; i < scans.size(); ++i)
+    poses.push_back({scans[i].scan.t_s, poses_world[i]});
+  return poses;
+}
+
 /// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
 /// pose and the match's NEES in its observed directions.
-std::vector<io::MatchRow> match_rows(const SlamRun& slam, const Truth& truth) {
+std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const Truth& truth) {
   std::vector<io::MatchRow> rows;
   rows.reserve(slam.matches.size());
   for (const MatchRecord& m : slam.matches) {
@@ -106,18 +67,18 @@ std::vector<io::MatchRow> match_rows(const SlamRun& slam, const Truth& truth) {
 /// spIC translation, and the dead reckoning's (the first thing a consecutive match is measured
 /// against).
 std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecutive_translations(
-    const SlamRun& slam) {
+    const ScanSlamEstimate& slam) {
   std::vector<MatchTranslation> matched, dead_reckoning;
   for (const MatchRecord& m : slam.matches) {
     if (m.rejection != MatchRejection::kNone || m.scan != m.reference + 1) continue;
     MatchTranslation t;
     t.t_reference_s = slam.scans[m.reference].scan.t_s;
     t.t_s = slam.scans[m.scan].scan.t_s;
-    t.yaw_reference_rad = slam.scans[m.reference].centre_world.pose.mean.yaw();
+    t.yaw_reference_rad = slam.online_poses[m.reference].mean.yaw();
     t.translation_reference_m = m.z.mean.translation();
     matched.push_back(t);
-    const Pose2 motion = slam.dead_reckoning_at_scans[m.reference].pose.mean.between(
-        slam.dead_reckoning_at_scans[m.scan].pose.mean);
+    const Pose2 motion = slam.scans[m.reference].centre_world.pose.mean.between(
+        slam.scans[m.scan].centre_world.pose.mean);
     t.translation_reference_m = motion.translation();
     dead_reckoning.push_back(t);
   }
@@ -125,7 +86,7 @@ std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecut
 }
 
 /// The SLAM's counters for metrics.json (docs/formats.md); sets matches_accepted.
-std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam,
+std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstimate& slam,
                                                              const Truth& truth,
                                                              int& matches_accepted) {
   matches_accepted = slam.totals.accepted;
@@ -164,18 +125,21 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const SlamRun& slam
   return diagnostics;
 }
 
-/// What a method estimated, on its clock: dead reckoning (or the integration), the SLAM run
-/// when it is a SLAM method, and the scans dead reckoning places after its clock.
+/// What a method estimated, on its clock: dead reckoning (or the integration), or the whole SLAM
+/// run when it is a SLAM method; and the scans dead reckoning places after its clock.
 struct Estimate {
-  DeadReckoningResult dead_reckoning;
-  std::optional<SlamRun> slam;
+  DeadReckoningResult dead_reckoning;  ///< the methods without sonar
+  std::optional<ScanSlamEstimate> slam;
   double runtime_s = 0.0;
   std::vector<PlacedScan> dead_reckoning_scans;
 
   const std::vector<StampedPose>& trajectory() const {
     return slam ? slam->trajectory : dead_reckoning.trajectory;
   }
-  const std::vector<PlacedScan>& scans() const { return slam ? slam->scans : dead_reckoning_scans; }
+  /// The scans at the poses the method gives them (a SLAM method: its online estimate).
+  std::vector<PlacedScan> scans() const {
+    return slam ? placed_at(slam->scans, slam->online_poses) : dead_reckoning_scans;
+  }
   bool has_scans() const { return slam || !dead_reckoning_scans.empty(); }
 };
 
@@ -192,20 +156,16 @@ Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* s
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(in.calibration.dvl.x_m, in.calibration.dvl.y_m);
   Estimate e;
-  DeadReckoningResult& dr = e.dead_reckoning;
-  if (method.kind == MethodKind::kIntegration) {
-    dr.trajectory = integrate_velocities(in.navigation, in.start);
-  } else {
-    dr = run_dead_reckoning(in.navigation, in.config.dead_reckoning, p_vehicle_dvl_m, in.start);
-  }
   if (sonar) {
-    e.slam = run_trajectory_slam(method, *sonar, in, dr.trajectory);
-    if (shared && !shared->dead_reckoning_scans) {
-      shared->dead_reckoning_scans = e.slam->scans;
-      for (std::size_t i = 0; i < e.slam->scans.size(); ++i) {
-        (*shared->dead_reckoning_scans)[i].centre_world = e.slam->dead_reckoning_at_scans[i];
-      }
-    }
+    const std::unique_ptr<ScanSlam> backend = method.make_slam(in.config, in.start.pose);
+    e.slam = run_scan_slam(*backend, in.navigation, sonar->beams, in.config,
+                           scan_slam_setup(in, *sonar));
+    if (shared && !shared->dead_reckoning_scans) shared->dead_reckoning_scans = e.slam->scans;
+  } else if (method.kind == MethodKind::kIntegration) {
+    e.dead_reckoning.trajectory = integrate_velocities(in.navigation, in.start);
+  } else {
+    e.dead_reckoning =
+        run_dead_reckoning(in.navigation, in.config.dead_reckoning, p_vehicle_dvl_m, in.start);
   }
   e.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
@@ -214,7 +174,8 @@ Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* s
     if (shared && shared->dead_reckoning_scans) {
       e.dead_reckoning_scans = *shared->dead_reckoning_scans;
     } else {
-      e.dead_reckoning_scans = dead_reckoning_scans(readings(), in);
+      e.dead_reckoning_scans = build_placed_scans(in.navigation, readings().beams, in.config,
+                                                  scan_slam_setup(in, readings()));
     }
   }
   if (e.trajectory().size() < 2) {
@@ -224,7 +185,8 @@ Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* s
 }
 
 /// The smoothed trajectory scored beside the online one (docs/formats.md).
-void add_smoothed_diagnostics(const SlamRun& slam, const Truth& truth, RunMetrics& metrics) {
+void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const Truth& truth,
+                              RunMetrics& metrics) {
   const std::optional<ErrorStats> smoothed =
       error_stats(position_errors(*slam.smoothed_trajectory, truth.positions));
   if (smoothed) {
@@ -232,7 +194,7 @@ void add_smoothed_diagnostics(const SlamRun& slam, const Truth& truth, RunMetric
     metrics.diagnostics.emplace_back("smoothed_final_error_m", smoothed->final_m);
   }
   if (const std::optional<double> anees =
-          average_nees(scan_nees(*slam.smoothed_scan_poses, truth))) {
+          average_nees(scan_nees(stamped(slam.scans, slam.final_poses), truth))) {
     metrics.diagnostics.emplace_back("smoothed_anees", *anees);
   }
 }
@@ -247,8 +209,9 @@ void score(const MethodInfo& method, const RunInputs& in, const Estimate& e, Met
   metrics.method = method.name;
   metrics.runtime_s = e.runtime_s;
   if (e.has_scans()) {
-    metrics.scans = static_cast<int>(e.scans().size());
-    result.nees = scan_nees(scan_poses(e.scans()), truth);
+    const std::vector<PlacedScan> scans = e.scans();
+    metrics.scans = static_cast<int>(scans.size());
+    result.nees = scan_nees(scan_poses(scans), truth);
     metrics.anees = average_nees(result.nees);
   }
   if (e.slam) metrics.diagnostics = slam_diagnostics(*e.slam, truth, metrics.matches_accepted);
@@ -265,6 +228,16 @@ void score(const MethodInfo& method, const RunInputs& in, const Estimate& e, Met
 }
 
 }  // namespace
+
+/// The library's pipeline settings from a dataset read already.
+ScanSlamSetup scan_slam_setup(const RunInputs& in, const SonarInput& sonar) {
+  ScanSlamSetup setup;
+  setup.start = in.start;
+  setup.p_vehicle_dvl_m = {in.calibration.dvl.x_m, in.calibration.dvl.y_m};
+  setup.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
+  setup.beams_per_revolution = sonar.beams_per_revolution;
+  return setup;
+}
 
 MethodResult run_method(const std::string& name, const RunInputs& in, SharedInputs* shared) {
   const MethodInfo& method = method_info(name);

@@ -13,6 +13,7 @@
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
 #include "slam/scan_sequence.hpp"
+#include "slam/scan_slam_pipeline.hpp"
 
 namespace msislab::app {
 
@@ -40,6 +41,10 @@ struct SharedInputs {
   std::optional<SonarInput> sonar;
   std::optional<std::vector<PlacedScan>> dead_reckoning_scans;
 };
+
+/// The library pipeline's settings (slam/scan_slam_pipeline) from a dataset read already: its
+/// start, the DVL and sonar mounts, the sonar's beams per revolution.
+ScanSlamSetup scan_slam_setup(const RunInputs& in, const SonarInput& sonar);
 
 /// Runs a method on a dataset read already (from a directory or held in memory), sharing with
 /// the other methods on it through `shared` when given (the results are the same). Throws

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "app/cli.hpp"
+#include "app/run_method.hpp"
 #include "app/sonar_readings.hpp"
 #include "app/truth.hpp"
 #include "io/atomic_file.hpp"
@@ -87,12 +88,8 @@ ScansSummary build_scans_command(const ScansOptions& options) {
   const Truth& truth = in.truth;
   const SonarInput sonar = load_sonar_readings(in.files, calibration, config.segmentation);
 
-  ScanConfig builder;
-  builder.beams_per_scan = sonar.beams_per_revolution;
-  builder.p_vehicle_sonar_m = {calibration.sonar.x_m, calibration.sonar.y_m};
   const std::vector<PlacedScan> scans =
-      build_scans(sonar.beams, in.navigation, config.dead_reckoning,
-                  {calibration.dvl.x_m, calibration.dvl.y_m}, in.start, builder);
+      build_placed_scans(in.navigation, sonar.beams, config, scan_slam_setup(in, sonar));
   if (scans.empty()) {
     io::fail_file(options.dataset_dir, "no complete sonar revolution after the navigation start");
   }

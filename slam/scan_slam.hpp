@@ -11,11 +11,9 @@
 
 #include "geometry/gaussian_pose.hpp"
 #include "slam/scan_builder.hpp"
+#include "slam/scan_slam_records.hpp"
 
 namespace msislab {
-
-struct SlamStepStats;
-struct SlamTotals;
 
 /// A motion whose covariance says "unknown" (100 m and pi rad standard deviation): what a back
 /// end chains for a scan whose motion is not finite, losing track instead of failing.

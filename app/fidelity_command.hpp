@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/fidelity_statistics.hpp"
+#include "app/detected_beams.hpp"
 #include "app/fidelity_table.hpp"
 #include "geometry/calibration.hpp"
 #include "io/dataset.hpp"

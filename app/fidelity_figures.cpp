@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "io/text_lines.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "app/fidelity_statistics.hpp"
+#include "app/detected_beams.hpp"
 #include "geometry/calibration.hpp"
 #include "plot/chart.hpp"
 

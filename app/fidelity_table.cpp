@@ -2,21 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 
 #include "io/results.hpp"
 #include "io/text_lines.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 
 namespace {
 
 constexpr double kBand_m = 10.0;
-
-double mean(const std::vector<double>& values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  return std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
-}
 
 double percent_of(std::size_t part, std::size_t whole) {
   return whole == 0 ? std::numeric_limits<double>::quiet_NaN()

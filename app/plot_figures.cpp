@@ -36,10 +36,10 @@ std::string truth_label(const Truth& truth) {
   return truth.kind == "gps" ? "GPS" : truth.kind + " truth";
 }
 
-double mean_error_m(const std::vector<ErrorSample>& errors) {
-  double sum = 0.0;
-  for (const ErrorSample& e : errors) sum += e.error_m;
-  return errors.empty() ? 0.0 : sum / static_cast<double>(errors.size());
+/// The figure title's mean error: error_stats' mean, 0 without samples.
+double title_error_m(const std::vector<ErrorSample>& errors) {
+  const std::optional<ErrorStats> stats = error_stats(errors);
+  return stats ? stats->mean_m : 0.0;
 }
 
 plot::Series ellipses(const ResultData& result, int every) {
@@ -141,7 +141,7 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
   chart.title = method_title(result.method);
   if (result.truth) chart.title += " vs " + truth_label(*result.truth);
   if (!result.errors.empty()) {
-    chart.title += ": mean error " + io::format_fixed(mean_error_m(result.errors), 2) + " m";
+    chart.title += ": mean error " + io::format_fixed(title_error_m(result.errors), 2) + " m";
   }
   if (!result.map_points_m.empty()) {
     plot::Series points{"map points (" + std::to_string(result.map_points_m.size()) + ")",
@@ -184,7 +184,7 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
     if (r->errors.empty()) continue;
     const double t0_s = r->truth->positions.front().t_s;
     plot::Series line{
-        method_title(r->method) + " (mean " + io::format_fixed(mean_error_m(r->errors), 2) + " m)",
+        method_title(r->method) + " (mean " + io::format_fixed(title_error_m(r->errors), 2) + " m)",
         {},
         {},
         method_style(r->method),

@@ -1,6 +1,5 @@
 #include "app/run_method.hpp"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <iterator>
@@ -54,9 +53,7 @@ std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const Truth& 
       row.has_truth = true;
       row.truth = interpolate_pose(truth.poses, row.t_reference_s)
                       .between(interpolate_pose(truth.poses, row.t_s));
-      const Eigen::VectorXd e = m.observed * pose_difference(m.z.mean, row.truth);
-      const Eigen::MatrixXd R = m.observed * m.z.cov * m.observed.transpose();
-      row.nees = e.dot(R.ldlt().solve(e));
+      row.nees = observed_nees(m.z, m.observed, row.truth);
     }
     rows.push_back(std::move(row));
   }

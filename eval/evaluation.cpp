@@ -135,11 +135,15 @@ std::vector<double> pose_nees(const std::vector<StampedPose>& estimate,
   return nees;
 }
 
+double observed_nees(const GaussianPose2& z, const Eigen::MatrixXd& observed, const Pose2& truth) {
+  const Eigen::VectorXd e = observed * pose_difference(z.mean, truth);
+  const Eigen::MatrixXd R = observed * z.cov * observed.transpose();
+  return e.dot(R.ldlt().solve(e));
+}
+
 std::optional<double> mean_of(const std::vector<double>& values) {
   if (values.empty()) return std::nullopt;
-  double sum = 0.0;
-  for (const double v : values) sum += v;
-  return sum / static_cast<double>(values.size());
+  return mean(values);
 }
 
 }  // namespace msislab

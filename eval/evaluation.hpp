@@ -60,6 +60,11 @@ std::optional<double> segment_mean_error(const std::vector<ErrorSample>& errors,
 std::vector<double> pose_nees(const std::vector<StampedPose>& estimate,
                               const std::vector<StampedPose>& truth);
 
+/// NEES of a relative-pose measurement z against the true relative pose in the directions whose
+/// orthonormal rows A holds (3 x 3: all): e = A pose_difference(z, truth), e^T (A P_z A^T)^-1 e.
+/// A scan match's consistency against the truth (matches.csv's nees).
+double observed_nees(const GaussianPose2& z, const Eigen::MatrixXd& observed, const Pose2& truth);
+
 /// The mean of the values; nullopt when there are none.
 std::optional<double> mean_of(const std::vector<double>& values);
 

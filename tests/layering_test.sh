@@ -3,7 +3,7 @@
 # headers only from the libraries below it (stats, geometry < sim, slam < eval < io < plot <
 # app), so the dependency graph has no cycle and sim/ and slam/ do not know each other. Prints every
 # include that breaks it as file:line and fails; CMake's target links say the same, this says it
-# before anything is linked.
+# before anything is linked. And app/ defines no statistics or numerical estimation (below).
 # Usage: tests/layering_test.sh SOURCE_DIR
 set -euo pipefail
 cd "${1:?usage: tests/layering_test.sh SOURCE_DIR}"
@@ -31,5 +31,19 @@ for dir in $dirs; do
     esac
   done < <(grep -rn '#include "' "$dir" --include='*.hpp' --include='*.cpp')
 done
-[ "$status" -eq 0 ] && echo "layering holds: $dirs"
+# app/ reads inputs, calls the libraries and writes results: no statistics or numerical estimation
+# of its own (those live in stats/ and eval/, where users and tests can call them). Caught: the
+# numerical parts of Eigen and Boost.Math, decompositions and solves, selection for order
+# statistics, special functions, and a definition of a statistic by name.
+numerics='#include <(Eigen/(Dense|Cholesky|LU|QR|SVD|Eigenvalues)|boost/math/)'
+numerics+='|std::nth_element|[.](ldlt|llt|solve|inverse|jacobiSvd|bdcSvd)[(]|std::(lgamma|erfc?|tgamma)[(]'
+numerics+='|^[A-Za-z_][A-Za-z0-9_:<>,]*( [A-Za-z0-9_:<>,]+)*[ *&]+'
+numerics+='([a-z0-9]+_)*(quantile|median|mean|variance|stddev|covariance|ks_distance|chi2|fit)(_[a-z0-9_]+)?[(]'
+if [ -d app ]; then
+  while IFS=: read -r file line text; do
+    echo "$file:$line: app/ computes statistics or estimates; move it to stats/ or eval/: $text"
+    status=1
+  done < <(grep -rnE "$numerics" app --include='*.hpp' --include='*.cpp')
+fi
+[ "$status" -eq 0 ] && echo "layering holds: $dirs; app/ computes no statistics"
 exit "$status"

@@ -1,7 +1,7 @@
-// The fidelity statistics on samples and beams built by hand, with answers worked out on paper:
-// the KS distance (identical samples 0, disjoint 1, a known shift), band shares, runs,
-// the checks of the detections file, and the per-beam, rotation and per-scan samples.
-#include "app/fidelity_statistics.hpp"
+// The fidelity statistics (eval/sonar_statistics) on samples and beams built by hand, with answers
+// worked out on paper: band shares, runs, the checks of the detections file (app/detected_beams),
+// and the per-beam, rotation and per-scan samples.
+#include "app/detected_beams.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,31 +13,6 @@
 
 namespace msislab::app {
 namespace {
-
-TEST(KsDistance, IdenticalSamplesAreZeroApart) {
-  const std::vector<double> a = {3.0, 1.0, 2.0, 2.0, 8.5};
-  EXPECT_DOUBLE_EQ(ks_distance(a, a), 0.0);
-  // The same distribution at another sample size: every step of F is the same.
-  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0}, {1.0, 1.0, 2.0, 2.0}), 0.0);
-}
-
-TEST(KsDistance, DisjointSamplesAreOneApart) {
-  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0, 3.0}, {3.5, 10.0}), 1.0);
-  EXPECT_DOUBLE_EQ(ks_distance({3.5, 10.0}, {1.0, 2.0, 3.0}), 1.0);
-}
-
-TEST(KsDistance, KnownShift) {
-  // 0..99 against 10..109: F_a - F_b = 10/100 on [10, 100).
-  std::vector<double> a, b;
-  for (int i = 0; i < 100; ++i) {
-    a.push_back(i);
-    b.push_back(i + 10);
-  }
-  EXPECT_NEAR(ks_distance(a, b), 0.1, 1e-12);
-  // Ties count at once: F_a(1) = 2/3, F_b(1) = 1/3.
-  EXPECT_NEAR(ks_distance({1.0, 1.0, 2.0}, {1.0, 2.0, 2.0}), 1.0 / 3.0, 1e-12);
-  EXPECT_TRUE(std::isnan(ks_distance({}, {1.0})));
-}
 
 TEST(BandShares, SplitsAtBandEdgesAndKeepsTheTopInTheLastBand) {
   const std::vector<double> shares = band_shares({0.0, 5.0, 10.0, 19.9, 50.0}, 10.0, 5);

@@ -1,4 +1,4 @@
-// Quantiles and medians against answers worked out on paper.
+// Quantiles, medians and the two-sample KS distance against answers worked out on paper.
 #include "stats/sample_statistics.hpp"
 
 #include <gtest/gtest.h>
@@ -21,6 +21,11 @@ TEST(Quantile, InterpolatesBetweenOrderStatistics) {
   EXPECT_TRUE(std::isnan(quantile({}, 0.5)));
 }
 
+TEST(Mean, IsTheSumOverTheCount) {
+  EXPECT_DOUBLE_EQ(mean({1.0, 2.0, 6.0}), 3.0);
+  EXPECT_TRUE(std::isnan(mean({})));
+}
+
 TEST(Median, IsTheMiddleValueOrTheMeanOfTheTwoMiddleOnes) {
   EXPECT_DOUBLE_EQ(median({5.0, 1.0, 3.0}), 3.0);
   EXPECT_DOUBLE_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
@@ -29,6 +34,31 @@ TEST(Median, IsTheMiddleValueOrTheMeanOfTheTwoMiddleOnes) {
   // The same as the interpolated 0.5-quantile.
   const std::vector<double> v = {0.3, 9.1, -2.0, 4.4, 4.4, 7.0};
   EXPECT_DOUBLE_EQ(median(v), quantile(v, 0.5));
+}
+
+TEST(KsDistance, IdenticalSamplesAreZeroApart) {
+  const std::vector<double> a = {3.0, 1.0, 2.0, 2.0, 8.5};
+  EXPECT_DOUBLE_EQ(ks_distance(a, a), 0.0);
+  // The same distribution at another sample size: every step of F is the same.
+  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0}, {1.0, 1.0, 2.0, 2.0}), 0.0);
+}
+
+TEST(KsDistance, DisjointSamplesAreOneApart) {
+  EXPECT_DOUBLE_EQ(ks_distance({1.0, 2.0, 3.0}, {3.5, 10.0}), 1.0);
+  EXPECT_DOUBLE_EQ(ks_distance({3.5, 10.0}, {1.0, 2.0, 3.0}), 1.0);
+}
+
+TEST(KsDistance, KnownShift) {
+  // 0..99 against 10..109: F_a - F_b = 10/100 on [10, 100).
+  std::vector<double> a, b;
+  for (int i = 0; i < 100; ++i) {
+    a.push_back(i);
+    b.push_back(i + 10);
+  }
+  EXPECT_NEAR(ks_distance(a, b), 0.1, 1e-12);
+  // Ties count at once: F_a(1) = 2/3, F_b(1) = 1/3.
+  EXPECT_NEAR(ks_distance({1.0, 1.0, 2.0}, {1.0, 2.0, 2.0}), 1.0 / 3.0, 1e-12);
+  EXPECT_TRUE(std::isnan(ks_distance({}, {1.0})));
 }
 
 }  // namespace

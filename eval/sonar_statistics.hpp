@@ -1,27 +1,16 @@
 // The sonar statistics that compare a simulated dataset with the real one (docs/fidelity.md),
-// computed from the detections file and the beam times alone, so the same code runs on both sides:
+// computed from the detections and the beam times alone, so the same code runs on both sides:
 // detected bins, runs and first ranges per beam, range distributions, readings per revolution and
-// the rotation of the head. Plus the sample tools they need: quantiles and the two-sample
-// Kolmogorov-Smirnov distance.
+// the rotation of the head. The detections are grouped and checked by app/detected_beams.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
-#include <string>
 #include <vector>
 
-#include "io/detections.hpp"
 #include "slam/scan_sequence.hpp"
 
-#include "stats/sample_statistics.hpp"
-
-namespace msislab::app {
-
-using msislab::quantile;
-
-/// Two-sample Kolmogorov-Smirnov distance sup_x |F_a(x) - F_b(x)| between the empirical
-/// distribution functions: 0 for identical samples, 1 for disjoint ones. NaN when either is empty.
-double ks_distance(std::vector<double> a, std::vector<double> b);
+namespace msislab {
 
 /// Share (0..1) of the values in each band [k band_m, (k + 1) band_m), k = 0 .. bands - 1; the
 /// top edge bands x band_m belongs to the last band. Values outside [0, bands x band_m] are in no
@@ -55,15 +44,6 @@ struct DetectedBeam {
   double angle_rad = 0.0;        ///< transducer angle
   std::vector<double> ranges_m;  ///< its detected bins, in file order
 };
-
-/// The beams of the detections file `path` that have rows, in beam_row order. Checks what the
-/// statistics rely on, with io::InputError naming the file and the row: every beam_row is a row of
-/// the beam times (beam_count of them), a beam's rows share keyframe and angle, the keyframe never
-/// decreases, a keyframe spans at most beams_per_revolution beam rows, the keyframes from the first
-/// to the last hold no more beams than the beam times, and every range lies in [0, max_range_m].
-std::vector<DetectedBeam> group_detections(const std::vector<io::DetectionRecord>& rows,
-                                           const std::string& path, std::size_t beam_count,
-                                           int beams_per_revolution, double max_range_m);
 
 /// The samples behind the per-beam statistics. Counted beams: every beam of the keyframes from the
 /// first to the last one in the file, beams_per_revolution per keyframe (a beam without detected
@@ -99,4 +79,4 @@ SonarStatistics sonar_statistics(const std::vector<DetectedBeam>& beams,
 std::vector<double> readings_per_keyframe(const std::vector<DetectedBeam>& beams,
                                           const std::vector<BeamReadings>& readings);
 
-}  // namespace msislab::app
+}  // namespace msislab

@@ -1,4 +1,4 @@
-// Renderer throughput against bare Embree (issue 3: ratio >= 0.5). On the shipped St. Pere marina
+// Renderer throughput against bare Embree (target: ratio >= 0.5). On the shipped St. Pere marina
 // and the stpere_replica trajectory, 4000 beams: (a) a bare rtcIntersect1 loop over exactly the
 // renderer's primary rays, on an Embree scene of the same triangles and water surface; (b) the
 // full MSIS renderer (rays, bounces, physics, speckle, noise, quantisation), counting every ray it

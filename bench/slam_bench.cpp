@@ -1,9 +1,9 @@
-// Trajectory SLAM step time against state size (issue 5): a synthetic basin loop driven until the
+// Trajectory SLAM step time against state size: a synthetic basin loop driven until the
 // state holds N scans, timing the scans added after that (each matched against up to 3 earlier
 // scans and updated), for both filters; with the update restricted to the loop's window (the
 // default) or over the whole state, and with or without the per-scan compass update (which
 // involves every element). items_per_second is scans per second at that state size. The pose
-// graph's step time on the same scans, up to 2,000 scans (issue 15), closes the file.
+// graph's step time on the same scans, up to 2,000 scans, closes the file.
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -98,7 +98,7 @@ void step_args(benchmark::internal::Benchmark* b) {
 BENCHMARK_TEMPLATE(BM_Step, RoboCentricSlam)->Apply(step_args);
 BENCHMARK_TEMPLATE(BM_Step, WorldCentricSlam)->Apply(step_args);
 
-/// The pose graph (issue 15) on the same scans: step time (match, solve, the newest scan's
+/// The pose graph on the same scans: step time (match, solve, the newest scan's
 /// covariance) against graph size, up to a long mission of 2,000 scans. Args: scans in the graph,
 /// solve_every.
 void BM_PoseGraphStep(benchmark::State& state) {

@@ -1,4 +1,4 @@
-// Direct measurement of the linearisation error an EKF commits (issue 14, docs/robocentric.md):
+// Direct measurement of the linearisation error an EKF commits (docs/robocentric.md):
 // for a function f linearised at x^ with Jacobian J, and x ~ N(x^, P) the filter's belief, the
 // part of f the linearisation leaves out,
 //     e(x) = f(x) - f(x^) - J (x - x^)          (differences on angles wrapped),

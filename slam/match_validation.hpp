@@ -1,5 +1,5 @@
-// Match validation: a spIC result is checked before the filter sees it (issue 12;
-// docs/trajectory_slam.md, "Match validation"). spIC reports the minimum it reached and a
+// Match validation: a spIC result is checked before the filter sees it (docs/trajectory_slam.md,
+// "Match validation"). spIC reports the minimum it reached and a
 // covariance from the curvature of its cost with the associations held fixed. Both can be wrong:
 //   - along a straight corridor the scans hold no information along the axis. The fixed-association
 //     curvature still reports some (sparse points paired point-to-point with points that have no

@@ -242,7 +242,7 @@ using Poses = std::vector<Eigen::Vector3d>;
 ///
 /// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its
 /// sparse QR (SuiteSparse over BLAS) gave other last bits with another memory layout, against
-/// "same seed, same bytes" (issue 17, docs/pose_graph.md). This depends only on the values.
+/// "same seed, same bytes" (docs/pose_graph.md). This depends only on the values.
 class Information {
  public:
   Information(ceres::Problem& problem, Poses& poses) : problem_(problem), poses_(poses) {

@@ -1,4 +1,4 @@
-// A pose graph over planar poses in the world frame, solved by Ceres (issue 15): the back end of
+// A pose graph over planar poses in the world frame, solved by Ceres: the back end of
 // the pose-graph SLAM, beside the paper's filters. Nodes are poses [x, y, yaw]; every edge is a
 // whitened residual on the project's SE(2) type with analytic Jacobians (J1+, J2+, J- of
 // geometry/se2, docs/pose_algebra.md):

@@ -1,4 +1,4 @@
-// Pose-graph SLAM (issue 15): the paper's front end (the same scans, candidate selection by
+// Pose-graph SLAM: the paper's front end (the same scans, candidate selection by
 // distance, spIC matches and their validation as trajectory SLAM) on a Ceres pose graph
 // (slam/pose_graph) instead of a filter. Node 0 is the start pose (a prior with its covariance: the
 // compass informs it too, where the filters hold the start's mean fixed and add its covariance to

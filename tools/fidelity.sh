@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates docs/fidelity.md and its figures (docs/fidelity/): the simulator against the real
-# sonar (issue 11). Builds msislab, simulates scenarios/stpere_replica.yaml into
+# sonar. Builds msislab, simulates scenarios/stpere_replica.yaml into
 # out/fidelity/stpere_replica, compares its detections with the real St. Pere ones
 # (msislab fidelity ../shared/datasets/stpere out/fidelity/stpere_replica --out
 # out/fidelity/report), then copies the page and its figures into docs/. Without --sim it also

@@ -5,7 +5,7 @@
 #  2. the Monte Carlo consistency test: N seeded runs (default 50) of scenarios/stpere_replica.yaml
 #     with robocentric and world-centric SLAM, the pose graph and dead reckoning (resumable: an
 #     interrupted sweep keeps its finished runs when this is run again), and its NEES figure;
-#  3. the failure scenarios of issue 12 with the default config: 20 runs of
+#  3. the failure scenarios (straight channel, open area) with the default config: 20 runs of
 #     scenarios/straight_channel.yaml and 10 of scenarios/open_area.yaml, the same methods;
 #  4. with the real dataset, tools/real_sensitivity.sh: the real run with each parameter moved
 #     10 % (out/sensitivity/real.csv);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the robocentric study (docs/robocentric.md, issue 14) in one command: builds, then
+# Regenerates the robocentric study (docs/robocentric.md) in one command: builds, then
 # runs every sweep of studies/robocentric/ (20 seeded runs per cell of the marina loop, both
 # filters on the same simulated data) into out/study/<sweep>, draws each sweep's figures and
 # copies those against its main key, with each sweep.csv, into docs/robocentric/. Resumable: an

@@ -1,4 +1,4 @@
-// The failure scenarios' consistency tests (issue 12): `msislab montecarlo`, 4 seeded runs (seeds
+// The failure scenarios' consistency tests: `msislab montecarlo`, 4 seeded runs (seeds
 // 1-4) of robocentric SLAM and dead reckoning, on the scenes where scan matching is weakest.
 // Each asserts that the SLAM stays consistent there and beats dead reckoning on average. Measured
 // figures beside each tolerance (these 4 runs).

@@ -1,4 +1,4 @@
-// The CI end-to-end SLAM test (issue 6): `msislab montecarlo` on scenarios/marina_loop.yaml (a
+// The CI end-to-end SLAM test: `msislab montecarlo` on scenarios/marina_loop.yaml (a
 // 546 s, 39-scan loop in the marina basin, no real data needed), 5 seeded runs (seeds 1-5) of
 // robocentric, world-centric, the pose graph and dead reckoning. It asserts the SLAM error, its
 // gain over dead reckoning, and that the robocentric scan-pose NEES averaged over the runs stays
@@ -79,7 +79,7 @@ TEST(MarinaLoop, SlamBeatsDeadReckoningAndRobocentricNeesStaysInBounds) {
   expect_errors(outcome);
   expect_consistent(find(outcome, "robocentric"));
 
-  // The pose graph on the same scans (issue 15): online 0.602 m, smoothed 0.634 m, ANEES 1.92
+  // The pose graph on the same scans: online 0.602 m, smoothed 0.634 m, ANEES 1.92
   // (its online covariances a little wide), 79.5 % of the scans in bounds.
   const MethodSummary& graph = find(outcome, "posegraph");
   const double graph_m = graph.mean_error_m.value_or(NAN);

@@ -1,6 +1,6 @@
 // The scenarios and scenes shipped in scenarios/ and scenes/: each passes the scenario checks;
 // stpere_replica simulates end to end, reads back through the I/O module, and its sonar agrees
-// with the truth (issue 3's acceptance figures).
+// with the truth (the simulator's acceptance figures).
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -486,7 +486,7 @@ TEST(ScenarioYaml, WrongTypesAndNonFiniteNumbers) {
   expect_bad(std::string(kMinimal) + "sonar: 3\n", 8, "sonar");
 }
 
-// The sonar model's terms and the detector (issue 11): read when given, checked when wrong.
+// The sonar model's terms and the detector: read when given, checked when wrong.
 TEST(ScenarioYaml, SonarPhysicsAndDetectorKeys) {
   const TempDir dir;
   const std::string path = write_text(

@@ -86,13 +86,13 @@ class PoseGraph {
   PoseGraphSolve solve();
 
   Pose2 pose(std::size_t i) const;
-  /// The marginal covariances of the given nodes at the current poses (ceres::Covariance over
-  /// the whole graph's information, robust edges at their weight there). Throws
+  /// The marginal covariances of the given nodes at the current poses (the whole graph's
+  /// information J^T J, robust edges at their weight there, factored by sparse Cholesky). Throws
   /// std::runtime_error when the graph's information is singular (a node without a path to a
   /// prior or fixed node).
   std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);
   /// The joint marginal covariance of the given (distinct) nodes, 3n x 3n in their order (one
-  /// ceres::Covariance). With between() of geometry/gaussian_pose, what the graph knows of the pose
+  /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph knows of the pose
   /// of one node seen from another, which the odometry chain alone overstates once loops close.
   /// Throws as covariances() does.
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes);
@@ -108,10 +108,8 @@ class PoseGraph {
   PoseGraphConfig config_;
   /// The nodes' poses in one buffer reserved up front for kMaxNodes (address space only: its
   /// pages are touched as nodes come), so that their addresses never move (Ceres holds them) and
-  /// increase with the node index. ceres::Covariance orders its columns by parameter-block
-  /// address: with one allocation per node, the covariances, and through them the matches and
-  /// the estimate, changed in their last bits with the memory layout (the environment's size,
-  /// the output path's length), against "same seed, same bytes".
+  /// increase with the node index: nothing the solver does then depends on the memory layout
+  /// (the environment's size, the output path's length), for "same seed, same bytes".
   std::vector<Eigen::Vector3d> poses_;
   std::unique_ptr<Problem> problem_;
 };

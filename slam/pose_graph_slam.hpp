@@ -9,8 +9,8 @@
 //     compass gate;
 //   - each validated match passing the innovation gate as a robust edge.
 // Each match starts, as in the filters, from what the back end knows of the relative pose: the
-// joint marginal of the two nodes in the graph (one ceres::Covariance per scan over the newest node
-// and its candidates), updated by the compass and by each accepted match of the scan with the
+// joint marginal of the two nodes in the graph (one factorisation of the graph's information per
+// scan, over the newest node and its candidates), updated by the compass and by each accepted match of the scan with the
 // filters' iterated EKF on that small joint. Every edge the scan adds involves only these nodes, so
 // the small update gives their marginal in the grown graph to first order without solving the graph
 // for each match; the newest node's covariance from it is the online covariance.

@@ -30,15 +30,6 @@ std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
   return poses;
 }
 
-/// The scans' world poses, stamped with their times.
-std::vector<StampedPose> stamped(const std::vector<PlacedScan>& scans,
-                                 const std::vector<GaussianPose2>& poses_world) {
-  std::vector<StampedPose> poses;
-  for (std::size_t i = 0; i < scans.size(); ++i)
-    poses.push_back({scans[i].scan.t_s, poses_world[i]});
-  return poses;
-}
-
 /// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
 /// pose and the match's NEES in its observed directions.
 std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const Truth& truth) {
@@ -191,7 +182,7 @@ void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const Truth& truth,
     metrics.diagnostics.emplace_back("smoothed_final_error_m", smoothed->final_m);
   }
   if (const std::optional<double> anees =
-          average_nees(scan_nees(stamped(slam.scans, slam.final_poses), truth))) {
+          average_nees(scan_nees(scan_poses(placed_at(slam.scans, slam.final_poses)), truth))) {
     metrics.diagnostics.emplace_back("smoothed_anees", *anees);
   }
 }

@@ -134,7 +134,8 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   std::vector<bool> accepted(n, false);
   if (!chosen.empty()) {
     stacked.select(chosen, z, R);
-    if (update_relative_poses(k, z, R, stats.window_elements)) {
+    if (const std::optional<std::size_t> window = update_relative_poses(k, z, R)) {
+      stats.note_window(*window);
       for (const std::size_t i : chosen) accepted[i] = true;
       stats.accepted += static_cast<int>(chosen.size());
     }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <limits>
@@ -56,6 +57,11 @@ struct SlamStepStats {
   int window_elements = 0;  ///< state elements touched by the largest update of the step
   bool compass_accepted = false;
   std::vector<MatchRecord> matches;  ///< every candidate, in the order they were matched
+
+  /// Counts an update whose window held `elements` state elements.
+  void note_window(std::size_t elements) {
+    window_elements = std::max(window_elements, static_cast<int>(elements));
+  }
 };
 
 /// The totals over a run.

@@ -101,8 +101,10 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "prediction");
   if (config_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
       scan.compass_sigma_rad > 0.0) {
-    stats.compass_accepted = update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad,
-                                            stats.window_elements);
+    const std::optional<std::size_t> window =
+        update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+    stats.compass_accepted = window.has_value();
+    if (window) stats.note_window(*window);
     totals_.compass_accepted += stats.compass_accepted;
     if (stats.compass_accepted)
       require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "compass update");
@@ -179,9 +181,10 @@ void TrajectorySlam::measure_inversion_linearisation() {
 }
 
 template <class Residual>
-bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Residual& residual,
-                            const Eigen::MatrixXd& R, double gate_chi2, bool measure_linearisation,
-                            int& window_elements) {
+std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, std::size_t b,
+                                                  const Residual& residual,
+                                                  const Eigen::MatrixXd& R, double gate_chi2,
+                                                  bool measure_linearisation) {
   // The window: from the start of the group holding the first involved element to b (the newest
   // element), which takes in every element correlated with the ones h depends on.
   const std::size_t first = config_.update_whole_state ? 0 : group_start_[first_involved];
@@ -228,14 +231,13 @@ bool TrajectorySlam::update(std::size_t first_involved, std::size_t b, const Res
   };
   if (!iterated_ekf_update(elements_.begin() + static_cast<long>(first), count, P_window,
                            residual_window, R, config_.iekf_iterations, at_first, K, PHt)) {
-    return false;
+    return std::nullopt;
   }
   // P = (I - K H) P on the window, as the symmetric rank-d downdate P - K (P H^T)^T; the rest of
   // P is uncorrelated with the window and unchanged.
   P_.block(f, f, m, m).noalias() -= K * PHt.transpose();
   std::fill(group_start_.begin() + static_cast<long>(first), group_start_.end(), first);
-  window_elements = std::max(window_elements, static_cast<int>(count));
-  return true;
+  return count;
 }
 
 ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2& predicted) const {
@@ -257,7 +259,8 @@ void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::s
       const Eigen::MatrixXd R = m.observed * m.match.estimate.cov * m.observed.transpose();
       const std::vector<RelativePoseObservation> z = {{j, m.match.estimate.mean, m.observed}};
       nis = innovation_nis(k, z, R);
-      if (update_relative_poses(k, z, R, stats.window_elements)) {
+      if (const std::optional<std::size_t> window = update_relative_poses(k, z, R)) {
+        stats.note_window(*window);
         ++stats.accepted;
       } else {
         m.rejection = MatchRejection::kInnovation;
@@ -306,20 +309,19 @@ double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativeP
   return r.dot(S.ldlt().solve(r));
 }
 
-bool TrajectorySlam::update_relative_poses(std::size_t b,
-                                           const std::vector<RelativePoseObservation>& z,
-                                           const Eigen::MatrixXd& R, int& window_elements) {
-  if (z.empty() || b >= elements_.size()) return false;
+std::optional<std::size_t> TrajectorySlam::update_relative_poses(
+    std::size_t b, const std::vector<RelativePoseObservation>& z, const Eigen::MatrixXd& R) {
+  if (z.empty() || b >= elements_.size()) return std::nullopt;
   for (const RelativePoseObservation& o : z) {
-    if (o.reference >= b) return false;  // h is the pose of b in an earlier scan's frame
+    if (o.reference >= b) return std::nullopt;  // h is the pose of b in an earlier scan's frame
   }
   const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
   return update(first_involved(b, z), b, residual, R,
-                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), true, window_elements);
+                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), true);
 }
 
-bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double sigma_rad,
-                                    int& window_elements) {
+std::optional<std::size_t> TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad,
+                                                          double sigma_rad) {
   // z = the MRU heading observes the yaw of scan b in the world: start yaw + the chain's yaw.
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     Eigen::MatrixXd H_pose;
@@ -330,7 +332,7 @@ bool TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad, double 
   };
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
   // The chain's yaw is the sum of its elements' yaws: linear, nothing to measure.
-  return update(0, b, residual, R, config_.compass_gate_chi2, false, window_elements);
+  return update(0, b, residual, R, config_.compass_gate_chi2, false);
 }
 
 }  // namespace msislab

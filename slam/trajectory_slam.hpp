@@ -20,6 +20,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <limits>
+#include <optional>
 #include <random>
 #include <utility>
 #include <vector>
@@ -109,10 +110,12 @@ class TrajectorySlam : public ScanSlam {
   /// the observations z_i of scan b's pose in scan reference_i's frame (reference_i < b), stacked
   /// as A_i z_i ~ A_i h_i(X) with the stacked covariance R (blocks A_i cov(z_i, z_j) A_j^T), in one
   /// iterated EKF update (paper Eq. 8-10), gated on the stacked NIS at the configured gate's
-  /// probability. Returns whether the state was updated (false also when b is not a scan or a
-  /// reference is not before it).
-  bool update_relative_poses(std::size_t b, const std::vector<RelativePoseObservation>& z,
-                             const Eigen::MatrixXd& R, int& window_elements);
+  /// probability. Returns the number of state elements the update's window held when the state
+  /// was updated; nullopt when it was not (also when b is not a scan or a reference is not before
+  /// it).
+  std::optional<std::size_t> update_relative_poses(std::size_t b,
+                                                   const std::vector<RelativePoseObservation>& z,
+                                                   const Eigen::MatrixXd& R);
 
   /// The state elements as stored (see the derived classes) and their covariance.
   const std::vector<Pose2>& elements() const { return elements_; }
@@ -142,9 +145,11 @@ class TrajectorySlam : public ScanSlam {
   /// elements first..b.
   /// With measure_linearisation (and linearisation_samples > 0), tallies epsilon of the residual
   /// at the prior when the update is accepted.
+  /// Returns the window's element count when the update was applied, nullopt when gated out.
   template <class Residual>
-  bool update(std::size_t first, std::size_t b, const Residual& residual, const Eigen::MatrixXd& R,
-              double gate_chi2, bool measure_linearisation, int& window_elements);
+  std::optional<std::size_t> update(std::size_t first, std::size_t b, const Residual& residual,
+                                    const Eigen::MatrixXd& R, double gate_chi2,
+                                    bool measure_linearisation);
   /// With linearisation_samples > 0: tallies epsilon of the newest scan's pose in the start frame.
   void measure_pose_linearisation();
   /// Every state element and the covariance are finite (checked after each stage of a step).
@@ -165,7 +170,8 @@ class TrajectorySlam : public ScanSlam {
   /// The NIS of observations of scan b against the state: r^T (H P H^T + R)^-1 r.
   double innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
                         const Eigen::MatrixXd& R) const;
-  bool update_compass(std::size_t b, double yaw_world_rad, double sigma_rad, int& window_elements);
+  /// The MRU heading as an observation of scan b's yaw; as update().
+  std::optional<std::size_t> update_compass(std::size_t b, double yaw_world_rad, double sigma_rad);
 
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
   std::vector<std::vector<ScanPoint>> points_;

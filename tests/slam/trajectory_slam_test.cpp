@@ -241,21 +241,20 @@ TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   z[1].observed = Eigen::MatrixXd::Identity(3, 3).topRows(2);
   const Eigen::MatrixXd R1 = z[1].observed * R[1] * z[1].observed.transpose();
   const double prior_trace = sequential->covariance().trace();
-  int window = 0;
-  ASSERT_TRUE(sequential->update_relative_poses(b, {z[0]}, R[0], window));
-  ASSERT_TRUE(sequential->update_relative_poses(b, {z[1]}, R1, window));
+  ASSERT_TRUE(sequential->update_relative_poses(b, {z[0]}, R[0]));
+  ASSERT_TRUE(sequential->update_relative_poses(b, {z[1]}, R1));
   Eigen::MatrixXd R_stacked = Eigen::MatrixXd::Zero(5, 5);
   R_stacked.topLeftCorner<3, 3>() = R[0];
   R_stacked.bottomRightCorner<2, 2>() = R1;
-  ASSERT_TRUE(joint->update_relative_poses(b, z, R_stacked, window));
+  ASSERT_TRUE(joint->update_relative_poses(b, z, R_stacked));
   EXPECT_LT((sequential->covariance() - joint->covariance()).cwiseAbs().maxCoeff(), 1e-9);
   for (std::size_t i = 0; i <= b; ++i) {
     EXPECT_LT(pose_difference(sequential->elements()[i], joint->elements()[i]).norm(), 1e-9);
   }
   // An observation must be of b in an earlier scan's frame.
-  EXPECT_FALSE(joint->update_relative_poses(b, {{b, Pose2(), Eigen::MatrixXd::Identity(3, 3)}},
-                                            R[0], window));
-  EXPECT_FALSE(joint->update_relative_poses(b + 1, {z[0]}, R[0], window));
+  EXPECT_FALSE(
+      joint->update_relative_poses(b, {{b, Pose2(), Eigen::MatrixXd::Identity(3, 3)}}, R[0]));
+  EXPECT_FALSE(joint->update_relative_poses(b + 1, {z[0]}, R[0]));
   // The updates did change the state: the check is not of two untouched filters.
   EXPECT_LT(joint->covariance().trace(), 0.8 * prior_trace);
 }
@@ -285,11 +284,10 @@ TEST_P(BothMethods, CorrelatedMatchesMoveTheStateLessThanIndependentOnes) {
     R.topLeftCorner<3, 3>() = C;
     R.bottomRightCorner<3, 3>() = C;
     if (variant == 1) R.topRightCorner<3, 3>() = R.bottomLeftCorner<3, 3>() = 0.5 * C;
-    int window = 0;
     if (variant == 2) {
-      ASSERT_TRUE(slam->update_relative_poses(3, {z[0]}, C, window));
+      ASSERT_TRUE(slam->update_relative_poses(3, {z[0]}, C));
     } else {
-      ASSERT_TRUE(slam->update_relative_poses(3, z, R, window));
+      ASSERT_TRUE(slam->update_relative_poses(3, z, R));
     }
     trace[variant] = slam->covariance().trace();
   }

@@ -92,9 +92,9 @@ class PoseGraph {
   /// prior or fixed node).
   std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);
   /// The joint marginal covariance of the given (distinct) nodes, 3n x 3n in their order (one
-  /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph knows of the pose
-  /// of one node seen from another, which the odometry chain alone overstates once loops close.
-  /// Throws as covariances() does.
+  /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph
+  /// knows of the pose of one node seen from another, which the odometry chain alone overstates
+  /// once loops close. Throws as covariances() does.
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes);
   /// Moves a node (a warm start for the next solve).
   void set_pose(std::size_t i, const Pose2& world);

@@ -10,10 +10,11 @@
 //   - each validated match passing the innovation gate as a robust edge.
 // Each match starts, as in the filters, from what the back end knows of the relative pose: the
 // joint marginal of the two nodes in the graph (one factorisation of the graph's information per
-// scan, over the newest node and its candidates), updated by the compass and by each accepted match of the scan with the
-// filters' iterated EKF on that small joint. Every edge the scan adds involves only these nodes, so
-// the small update gives their marginal in the grown graph to first order without solving the graph
-// for each match; the newest node's covariance from it is the online covariance.
+// scan, over the newest node and its candidates), updated by the compass and by each accepted
+// match of the scan with the filters' iterated EKF on that small joint. Every edge the scan adds
+// involves only these nodes, so the small update gives their marginal in the grown graph to first
+// order without solving the graph for each match; the newest node's covariance from it is the
+// online covariance.
 // The graph is solved every `solve_every` scans, warm-started from the last solution (the updated
 // means of the scan's nodes); each scan's pose then is the online estimate (online_poses). The last
 // scan triggers nothing special: scan_pose_world solves once more and gives the smoothed

@@ -1,4 +1,5 @@
-// Order statistics of a sample, each with one stated rule, for every library that reports them.
+// Sample statistics (mean, quantile, median, two-sample KS distance), each with one stated rule:
+// the one definition every library reports them with.
 #pragma once
 
 #include <vector>

@@ -12,7 +12,7 @@ tools/install_deps.sh
 cmake --preset asan
 # The test programs and what they link, not the commands (app/, tools/): nothing here runs them.
 mapfile -t tests < <(cmake --build --preset asan --target help |
-                       sed -n 's/^\.\.\. \([a-z_]*_test\)$/\1/p')
+                       sed -n 's/^\.\.\. \([a-z0-9_]*_test\)$/\1/p')
 cmake --build --preset asan --target "${tests[@]}"
 # halt_on_error with UBSan's no-recovery build: a finding fails the test that hit it.
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_init_order=1:check_initialization_order=1"

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "sim/msis.hpp"
 #include "sim/navigation_sensors.hpp"
@@ -62,14 +63,14 @@ std::vector<BeamReadings> beams_of(const sim::VehicleTrajectory& truth, const si
   return beams;
 }
 
-/// Mean distance between a trajectory and the truth at the trajectory's times.
+/// Mean position error against the truth (eval/: the truth at 1 Hz, the trajectory interpolated).
 double mean_error_m(const std::vector<StampedPose>& trajectory,
                     const sim::VehicleTrajectory& truth) {
-  double sum = 0.0;
-  for (const StampedPose& p : trajectory) {
-    sum += (p.pose.mean.translation() - truth.at(p.t_s).pose.translation()).norm();
+  std::vector<PositionFix> fixes;
+  for (double t_s = truth.start_s(); t_s <= truth.end_s(); t_s += 1.0) {
+    fixes.push_back({t_s, truth.at(t_s).pose.translation()});
   }
-  return sum / static_cast<double>(trajectory.size());
+  return error_stats(position_errors(trajectory, fixes))->mean_m;
 }
 
 }  // namespace

@@ -52,6 +52,6 @@ set(CPACK_DEBIAN_RUNTIME_PACKAGE_RECOMMENDS "xvfb")  # figures drawn without a d
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_NAME msislab-dev)
 string(CONCAT CPACK_DEBIAN_DEVELOPMENT_PACKAGE_DEPENDS
        "msislab (= ${PROJECT_VERSION}), libeigen3-dev (>= 3.4), libceres-dev (>= 2.1), "
-       "libembree-dev (>= 3), libtbb-dev, libboost-dev (>= 1.74)")
+       "libembree-dev (>= 3), libsleef-dev, libtbb-dev, libboost-dev (>= 1.74)")
 set(CPACK_DEBIAN_DEVELOPMENT_PACKAGE_SHLIBDEPS OFF)
 include(CPack)

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "sim/msis_beam.hpp"
+#include "sim/msis_receiver.hpp"
 #include "sim/random.hpp"
 #include "sim/scenario.hpp"
 #include "sim/scene.hpp"
@@ -66,17 +68,23 @@ class MsisModel {
     Eigen::Vector3f cell_elevation_beam = Eigen::Vector3f::Zero();
     double cell_sr = 0.0;  ///< solid angle of the cell, sr
   };
-  struct Echoes;
-  struct Head;
-  struct Ping;
+  /// The rays across the aperture with their one-way pattern, not yet normalised.
+  static std::vector<RayTemplate> aperture_rays(const SonarConfig& sonar);
+  /// A ray's route through the scene while it is followed, bounce by bounce.
+  struct Route;
+  /// Working memory of one beam, kept per thread across beams.
+  struct Workspace;
 
-  Head head_at(double t_s, const VehicleTrajectory& trajectory, double bearing_vehicle_rad) const;
+  SonarHead head_at(double t_s, const VehicleTrajectory& trajectory,
+                    double bearing_vehicle_rad) const;
   Ping ping_of(const BeamSlot& slot, const VehicleTrajectory& trajectory) const;
-  std::vector<Ray> primary_rays(const Ping& ping) const;
-  /// Follows one primary ray from its first hit through its bounces; returns the rays cast after
-  /// the primary one.
-  std::uint32_t trace_from(const RayTemplate& ray, Ray r, RayHit hit, const Ping& ping,
-                           Echoes& echoes) const;
+  void primary_rays(const Ping& ping, std::vector<Ray>& rays) const;
+  /// Follows every primary ray that hit, all routes a bounce at a time (each bounce's rays
+  /// traced together), each surface's echo into the profile; returns the rays cast after the
+  /// primary ones.
+  std::uint32_t trace_routes(const Ping& ping, Workspace& work) const;
+  /// The echo of the surface a route has reached.
+  Echo echo_at(const Route& route, const RayHit& hit, int bounce) const;
   /// Range extent (m) of the footprint of a ray's cell on the surface it hits; 0 when the
   /// footprint spread is off.
   double footprint_extent(double path_m, const Eigen::Vector3f& direction,
@@ -86,26 +94,16 @@ class MsisModel {
   /// Area (m^2) of the footprint of a ray's cell on a surface; 1 when footprints are off (a ray
   /// is then a point scatterer).
   double footprint_area(double path_m, double cell_sr, double cos_incidence) const;
-  /// Backscatter factor of the surface at a point (roughness), mean 1.
-  double roughness_gain(const Eigen::Vector3f& point_m) const;
-  /// Adds an echo spread uniformly over range_m -+ extent_m / 2 to the profile.
-  void add_echo(const Ping& ping, const Eigen::Vector3f& first_hit_m, double path_m,
-                double extent_m, double power, bool multipath, std::uint32_t material_id,
-                Echoes& echoes) const;
-  BeamTruth truth_of(const Ping& ping, const Echoes& echoes, const Pose2& vehicle) const;
-  std::uint8_t quantise(double shown_power) const;
-  std::vector<std::uint8_t> to_intensity(const Echoes& echoes, Rng& rng) const;
+  /// ln of the surface's backscatter factor at a point (roughness; the factor has mean 1).
+  double roughness_log_gain(const Eigen::Vector3f& point_m) const;
+  BeamTruth truth_of(const Ping& ping, const EchoProfile& profile, const Pose2& vehicle) const;
 
   const Scene& scene_;
   SonarConfig sonar_;
   double depth_m_;
   std::vector<RayTemplate> rays_;
-  double pattern_norm_ = 1.0;         ///< divides every one-way pattern value
-  std::vector<double> tvg_linear_;    ///< gain + TVG per bin as a power ratio
-  std::vector<double> pulse_kernel_;  ///< echo spread over later bins by pulse and receiver
-  /// Quantisation: intensity k is shown for levels from step k - 1/2 to k + 1/2 of the display
-  /// range; entry k (1..255) is the lower boundary of k as a power ratio, entry 0 is 0.
-  std::vector<double> level_thresholds_;
+  double pattern_norm_ = 1.0;  ///< divides every one-way pattern value
+  MsisReceiver receiver_;
 };
 
 /// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption

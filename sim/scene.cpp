@@ -27,7 +27,7 @@ using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceRelease>;
 using SceneHandle = std::unique_ptr<RTCSceneTy, SceneRelease>;
 using GeometryHandle = std::unique_ptr<RTCGeometryTy, GeometryRelease>;
 
-constexpr int kPacketSize = 8;
+constexpr int kPacketSize = 16;
 
 // The one device error callback: keeps the first error so that the build steps can be checked
 // once instead of after every Embree call.
@@ -136,7 +136,7 @@ RayHit make_hit(float tfar_m, const Eigen::Vector3f& normal_unscaled,
 
 // Lanes at and beyond `count` are switched off in `valid`; they repeat the last ray so that Embree
 // never reads uninitialised data.
-void load_packet(const Ray* rays, int count, int* valid, RTCRayHit8& packet) {
+void load_packet(const Ray* rays, int count, int* valid, RTCRayHit16& packet) {
   for (int lane = 0; lane < kPacketSize; ++lane) {
     valid[lane] = lane < count ? -1 : 0;
     const RTCRay ray = to_embree(rays[std::min(lane, count - 1)]);
@@ -220,13 +220,14 @@ void Scene::intersect(const std::vector<Ray>& rays, std::vector<RayHit>& hits) c
   hits.resize(rays.size());
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   const auto surface_material_id = static_cast<std::uint32_t>(materials_.size() - 1);
   for (std::size_t first = 0; first < rays.size(); first += kPacketSize) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, rays.size() - first));
-    alignas(32) int valid[kPacketSize];
-    RTCRayHit8 packet;
+    alignas(64) int valid[kPacketSize];
+    RTCRayHit16 packet;
     load_packet(rays.data() + first, count, valid, packet);
-    rtcIntersect8(valid, embree_->scene.get(), &context, &packet);
+    rtcIntersect16(valid, embree_->scene.get(), &context, &packet);
     for (int lane = 0; lane < count; ++lane) {
       const Ray& ray = rays[first + static_cast<std::size_t>(lane)];
       RayHit& hit = hits[first + static_cast<std::size_t>(lane)];

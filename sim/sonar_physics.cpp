@@ -83,49 +83,60 @@ double corner_value(std::int64_t i, std::int64_t j, std::int64_t k) {
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * u2);  // Box-Muller
 }
 
-/// The corner values recently used on this thread: neighbouring rays hit neighbouring points, so
-/// most corners repeat, and a log, a sqrt and a cos are saved each time (the values are the same).
-class CornerCache {
+/// The corner values of the lattice cells recently used on this thread: neighbouring rays hit
+/// neighbouring points, so most cells repeat, and eight hashes, logs, square roots and cosines
+/// are saved each time (the values are the same).
+class CellCache {
  public:
-  double value(std::int64_t i, std::int64_t j, std::int64_t k) {
+  const std::array<double, 8>& corners(std::int64_t i, std::int64_t j, std::int64_t k) {
+    if (last_ != nullptr && last_->i == i && last_->j == j && last_->k == k) return last_->values;
     const std::uint64_t slot =
         (static_cast<std::uint64_t>(i) * 73856093u ^ static_cast<std::uint64_t>(j) * 19349663u ^
          static_cast<std::uint64_t>(k) * 83492791u) &
         (kSlots - 1);
     Entry& e = entries_[slot];
+    last_ = &e;
     if (!e.filled || e.i != i || e.j != j || e.k != k) {
-      e = {i, j, k, corner_value(i, j, k), true};
+      e.i = i;
+      e.j = j;
+      e.k = k;
+      e.filled = true;
+      for (int c = 0; c < 8; ++c) {
+        e.values[static_cast<std::size_t>(c)] =
+            corner_value(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+      }
     }
-    return e.value;
+    return e.values;
   }
 
  private:
-  static constexpr std::uint64_t kSlots = 4096;
+  static constexpr std::uint64_t kSlots = 256;
   struct Entry {
     std::int64_t i = 0, j = 0, k = 0;
-    double value = 0.0;
+    std::array<double, 8> values{};
     bool filled = false;
   };
   std::array<Entry, kSlots> entries_{};
+  const Entry* last_ = nullptr;  ///< the cell of the last call
 };
 
 }  // namespace
 
 double roughness_field(const Eigen::Vector3f& p_m, double length_m) {
-  thread_local CornerCache corners;
+  thread_local CellCache cells;
   const Eigen::Vector3d q = p_m.cast<double>() / length_m;
   const Eigen::Vector3d f = q.array().floor();
   const Eigen::Vector3d t = q - f;
-  double value = 0.0, weights_squared = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const int dx = c & 1, dy = (c >> 1) & 1, dz = (c >> 2) & 1;
-    const double w =
-        (dx ? t.x() : 1.0 - t.x()) * (dy ? t.y() : 1.0 - t.y()) * (dz ? t.z() : 1.0 - t.z());
-    weights_squared += w * w;
-    value += w * corners.value(static_cast<std::int64_t>(f.x()) + dx,
-                               static_cast<std::int64_t>(f.y()) + dy,
-                               static_cast<std::int64_t>(f.z()) + dz);
-  }
-  return value / std::sqrt(weights_squared);
+  const std::array<double, 8>& v =
+      cells.corners(static_cast<std::int64_t>(f.x()), static_cast<std::int64_t>(f.y()),
+                    static_cast<std::int64_t>(f.z()));
+  // Trilinear interpolation (corner c at offsets c & 1, c & 2, c & 4), and sum_c w_c^2, which
+  // separates into a product over the axes of (1 - t)^2 + t^2.
+  const auto lerp = [](double a, double b, double w) { return a + w * (b - a); };
+  const double x00 = lerp(v[0], v[1], t.x()), x10 = lerp(v[2], v[3], t.x());
+  const double x01 = lerp(v[4], v[5], t.x()), x11 = lerp(v[6], v[7], t.x());
+  const double value = lerp(lerp(x00, x10, t.y()), lerp(x01, x11, t.y()), t.z());
+  const auto squares = [](double w) { return (1.0 - w) * (1.0 - w) + w * w; };
+  return value / std::sqrt(squares(t.x()) * squares(t.y()) * squares(t.z()));
 }
 }  // namespace msislab::sim

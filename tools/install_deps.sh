@@ -4,7 +4,8 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config clang-format
-  libeigen3-dev libembree-dev libtbb-dev libopencv-dev libvtk9-dev libyaml-cpp-dev libcli11-dev libproj-dev
+  libeigen3-dev libembree-dev libsleef-dev libtbb-dev libopencv-dev libvtk9-dev libyaml-cpp-dev
+  libcli11-dev libproj-dev
   libboost-dev libceres-dev nlohmann-json3-dev proj-data zlib1g-dev libgtest-dev libgmock-dev
   libbenchmark-dev xvfb xauth fonts-dejavu-core
   clang libclang-rt-14-dev llvm  # tools/fuzz.sh (libFuzzer) and symbolized sanitizer reports

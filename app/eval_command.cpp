@@ -25,12 +25,12 @@ namespace msislab::app {
 
 namespace fs = std::filesystem;
 
-RunMetrics score_trajectory(const Truth& truth, const std::vector<StampedPose>& trajectory,
+RunMetrics score_trajectory(const io::Truth& truth, const std::vector<StampedPose>& trajectory,
                             const std::vector<TimeSegment>& segments, const std::string& source) {
   return score_errors(truth, position_errors(trajectory, truth.positions), segments, source);
 }
 
-RunMetrics score_errors(const Truth& truth, const std::vector<ErrorSample>& errors,
+RunMetrics score_errors(const io::Truth& truth, const std::vector<ErrorSample>& errors,
                         const std::vector<TimeSegment>& segments, const std::string& source) {
   const std::optional<ErrorStats> stats = error_stats(errors);
   if (!stats) io::fail_file(source, "no " + truth.kind + " truth inside the estimated span");
@@ -46,7 +46,7 @@ RunMetrics score_errors(const Truth& truth, const std::vector<ErrorSample>& erro
 }
 
 std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
-                                      const Truth& truth) {
+                                      const io::Truth& truth) {
   std::vector<io::NeesSample> samples;
   if (truth.poses.empty()) return samples;
   const std::vector<double> nees = pose_nees(scan_poses, truth.poses);
@@ -116,7 +116,7 @@ io::StoredMetrics read_run_record(const EvalOptions& options, const fs::path& di
 
 /// The truth, and the file it came from for messages.
 struct TruthSource {
-  Truth truth;
+  io::Truth truth;
   std::string file;
 };
 
@@ -126,7 +126,7 @@ TruthSource dataset_truth(const io::StoredMetrics& stored, const std::string& me
                                     "' is not there any more; give --truth FILE");
   }
   const io::DatasetFiles files = io::find_dataset_files(stored.dataset_dir);
-  Truth truth = load_truth(files, io::load_calibration(files));
+  io::Truth truth = io::load_truth(files, io::load_calibration(files));
   if (truth.kind.empty()) {
     io::fail_file(stored.dataset_dir,
                   "the dataset has no truth (truth/trajectory.tum or "
@@ -242,7 +242,7 @@ EvalOutcome evaluate(const EvalOptions& options) {
   const TruthSource truth =
       options.truth_path.empty()
           ? dataset_truth(stored, (dir / "metrics.json").string())
-          : TruthSource{read_tum_truth(options.truth_path, "tum"), options.truth_path};
+          : TruthSource{io::read_tum_truth(options.truth_path, "tum"), options.truth_path};
   require_overlap(trajectory, truth, estimate_file, tum.front().t_s, tum.back().t_s,
                   options.t_offset_s);
   EvalScores scores;

@@ -7,24 +7,24 @@
 #include <string>
 #include <vector>
 
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
+#include "io/truth.hpp"
 
 namespace msislab::app {
 
 /// Position errors of a trajectory against the truth, their statistics and the segment means
 /// (windows in seconds from the first truth stamp). InputError naming `source` when no truth stamp
 /// falls inside the trajectory's span.
-RunMetrics score_trajectory(const Truth& truth, const std::vector<StampedPose>& trajectory,
+RunMetrics score_trajectory(const io::Truth& truth, const std::vector<StampedPose>& trajectory,
                             const std::vector<TimeSegment>& segments, const std::string& source);
 /// The same from the position errors (position_errors) computed already.
-RunMetrics score_errors(const Truth& truth, const std::vector<ErrorSample>& errors,
+RunMetrics score_errors(const io::Truth& truth, const std::vector<ErrorSample>& errors,
                         const std::vector<TimeSegment>& segments, const std::string& source);
 
 /// The NEES of each scan pose against the pose truth; empty when the truth has no poses (GPS).
 std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
-                                      const Truth& truth);
+                                      const io::Truth& truth);
 
 /// The average NEES (ANEES) of the samples; nullopt when there are none.
 std::optional<double> average_nees(const std::vector<io::NeesSample>& nees);

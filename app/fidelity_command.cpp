@@ -11,12 +11,12 @@
 
 #include "app/cli.hpp"
 #include "app/fidelity_figures.hpp"
-#include "app/navigation_data.hpp"
-#include "app/sonar_readings.hpp"
 #include "io/atomic_file.hpp"
 #include "io/detections.hpp"
 #include "io/input_error.hpp"
+#include "io/navigation_data.hpp"
 #include "io/output_guard.hpp"
+#include "io/sonar_readings.hpp"
 #include "io/text_lines.hpp"
 #include "plot/chart.hpp"
 #include "plot/display.hpp"
@@ -71,11 +71,11 @@ void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
   const std::vector<io::DetectionRecord> rows = io::read_detections(*files.detections);
   side.beam_times = times.size();
   const int per_revolution = io::steps_per_revolution(side.setup);
-  side.beams =
-      group_detections(rows, *files.detections, times.size(), per_revolution, side.setup.range_m);
+  side.beams = io::group_detections(rows, *files.detections, times.size(), per_revolution,
+                                    side.setup.range_m);
   side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m,
                                 side.setup.step_rad);
-  const SonarInput readings = readings_from_detections(
+  const io::SonarInput readings = io::readings_from_detections(
       files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
   side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);
   side.revolution = pick_revolution(side, revolution, revolution_option);
@@ -165,8 +165,8 @@ bool has_navigation_logs(const std::string& dir) {
 /// 100 m against the truth (docs/simulator.md, "Navigation noise from the real logs").
 void append_navigation_rows(const std::string& real_dir, const std::string& sim_dir,
                             FidelityTable& table) {
-  const NavigationStatistics real = navigation_statistics(load_navigation_data(real_dir));
-  const NavigationStatistics sim = navigation_statistics(load_navigation_data(sim_dir));
+  const NavigationStatistics real = navigation_statistics(io::load_navigation_data(real_dir));
+  const NavigationStatistics sim = navigation_statistics(io::load_navigation_data(sim_dir));
   const std::string section = "Navigation";
   table.push_back({section, "dvl_noise_surge_mps", "DVL velocity noise, surge (sample differences)",
                    real.dvl.surge_mps.sigma_sd, sim.dvl.surge_mps.sigma_sd, std::nullopt, "m/s",

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "app/detected_beams.hpp"
 #include "app/fidelity_table.hpp"
 #include "geometry/calibration.hpp"
 #include "io/dataset.hpp"
+#include "io/detected_beams.hpp"
 #include "io/stpere_logs.hpp"
 
 namespace msislab::app {

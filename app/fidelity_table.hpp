@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "app/detected_beams.hpp"
+#include "io/detected_beams.hpp"
 #include "io/json.hpp"
 
 namespace msislab::app {

@@ -118,12 +118,12 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     }
     return 0;
   }
-  std::optional<RunInputs> in;
+  std::optional<io::RunInputs> in;
   SharedInputs shared;
   for (const std::string& method : pending) {
     try {
       note_stage(ctx.dir, run, "run");
-      if (!in) in = run_inputs_of(records, ctx.config);
+      if (!in) in = io::run_inputs_of(records, ctx.config);
       injected_fault(run, method);
       const MethodResult result = run_method(method, *in, &shared);
       if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");

@@ -32,7 +32,7 @@ std::string ordinal(std::size_t k) {
   return std::to_string(k) + suffix;
 }
 
-std::string truth_label(const Truth& truth) {
+std::string truth_label(const io::Truth& truth) {
   return truth.kind == "gps" ? "GPS" : truth.kind + " truth";
 }
 

@@ -28,13 +28,13 @@ std::vector<StampedPose> read_trajectory(const std::string& path) {
 /// Each dataset's truth is loaded once, however many results were run on it.
 class Datasets {
  public:
-  std::shared_ptr<const Truth> truth(const std::string& dir) {
+  std::shared_ptr<const io::Truth> truth(const std::string& dir) {
     remember(dir);
     auto [it, inserted] = truths_.try_emplace(dir);
     if (inserted) {
       const io::DatasetFiles files = io::find_dataset_files(dir);
-      Truth truth = load_truth(files, io::load_calibration(files));
-      if (!truth.kind.empty()) it->second = std::make_shared<const Truth>(std::move(truth));
+      io::Truth truth = io::load_truth(files, io::load_calibration(files));
+      if (!truth.kind.empty()) it->second = std::make_shared<const io::Truth>(std::move(truth));
     }
     return it->second;
   }
@@ -44,7 +44,7 @@ class Datasets {
   const std::vector<std::string>& in_order() const { return order_; }
 
  private:
-  std::map<std::string, std::shared_ptr<const Truth>> truths_;
+  std::map<std::string, std::shared_ptr<const io::Truth>> truths_;
   std::vector<std::string> order_;
 };
 

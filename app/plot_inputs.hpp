@@ -11,11 +11,11 @@
 #include <vector>
 
 #include "app/image_command.hpp"
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
 #include "io/result_readers.hpp"
 #include "io/results.hpp"
 #include "io/sweep_files.hpp"
+#include "io/truth.hpp"
 
 namespace msislab::app {
 
@@ -36,7 +36,7 @@ struct ResultData {
   std::vector<StampedPose> trajectory;
   std::vector<StampedPose> scans;             ///< scans.csv; empty when absent
   std::vector<Eigen::Vector2d> map_points_m;  ///< map.ply; empty when absent
-  std::shared_ptr<const Truth> truth;         ///< null when the dataset is unknown or has none
+  std::shared_ptr<const io::Truth> truth;     ///< null when the dataset is unknown or has none
   std::vector<ErrorSample> errors;            ///< position errors against the truth
 };
 

@@ -40,7 +40,7 @@ RunOutcome run(const RunOptions& options) {
   const io::OutputRequest out{
       options.out_dir, "result", "run", {options.dataset_dir, options.config_path}, options.force};
   io::check_output_folder(out);
-  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+  const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
   const MethodResult result = run_method(options.method, in);
   io::StagedFolder staged(out);
   write_method_result(staged.path(), result, io::absolute_path(options.dataset_dir));

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "app/run_method.hpp"
-#include "app/sonar_readings.hpp"
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
+#include "io/sonar_readings.hpp"
+#include "io/truth.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {

@@ -32,7 +32,7 @@ std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
 
 /// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
 /// pose and the match's NEES in its observed directions.
-std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const Truth& truth) {
+std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const io::Truth& truth) {
   std::vector<io::MatchRow> rows;
   rows.reserve(slam.matches.size());
   for (const MatchRecord& m : slam.matches) {
@@ -75,7 +75,7 @@ std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecut
 
 /// The SLAM's counters for metrics.json (docs/formats.md); sets matches_accepted.
 std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstimate& slam,
-                                                             const Truth& truth,
+                                                             const io::Truth& truth,
                                                              int& matches_accepted) {
   matches_accepted = slam.totals.accepted;
   std::vector<std::pair<std::string, double>> diagnostics = {
@@ -131,16 +131,16 @@ struct Estimate {
   bool has_scans() const { return slam || !dead_reckoning_scans.empty(); }
 };
 
-Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* shared) {
+Estimate estimate(const MethodInfo& method, const io::RunInputs& in, SharedInputs* shared) {
   // SLAM methods: the sonar readings are read before the clock starts, like the logs; read once
   // and shared between the methods when `shared` is given.
-  std::optional<SonarInput> own_readings;
-  const auto readings = [&]() -> const SonarInput& {
-    std::optional<SonarInput>& slot = shared ? shared->sonar : own_readings;
-    if (!slot) slot = load_sonar_readings(in);
+  std::optional<io::SonarInput> own_readings;
+  const auto readings = [&]() -> const io::SonarInput& {
+    std::optional<io::SonarInput>& slot = shared ? shared->sonar : own_readings;
+    if (!slot) slot = io::load_sonar_readings(in);
     return *slot;
   };
-  const SonarInput* sonar = method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
+  const io::SonarInput* sonar = method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(in.calibration.dvl.x_m, in.calibration.dvl.y_m);
   Estimate e;
@@ -158,7 +158,7 @@ Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* s
   e.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
-  if (method.kind == MethodKind::kDeadReckoning && has_sonar_data(in)) {
+  if (method.kind == MethodKind::kDeadReckoning && io::has_sonar_data(in)) {
     if (shared && shared->dead_reckoning_scans) {
       e.dead_reckoning_scans = *shared->dead_reckoning_scans;
     } else {
@@ -173,7 +173,7 @@ Estimate estimate(const MethodInfo& method, const RunInputs& in, SharedInputs* s
 }
 
 /// The smoothed trajectory scored beside the online one (docs/formats.md).
-void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const Truth& truth,
+void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const io::Truth& truth,
                               RunMetrics& metrics) {
   const std::optional<ErrorStats> smoothed =
       error_stats(position_errors(*slam.smoothed_trajectory, truth.positions));
@@ -188,8 +188,9 @@ void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const Truth& truth,
 }
 
 /// Scores the estimate against the truth (the dataset has one).
-void score(const MethodInfo& method, const RunInputs& in, const Estimate& e, MethodResult& result) {
-  const Truth& truth = in.truth;
+void score(const MethodInfo& method, const io::RunInputs& in, const Estimate& e,
+           MethodResult& result) {
+  const io::Truth& truth = in.truth;
   result.errors = position_errors(e.trajectory(), truth.positions);
   result.metrics = score_errors(truth, result.errors, in.config.segments, in.dataset);
   result.t_first_truth_s = truth.positions.front().t_s;
@@ -218,7 +219,7 @@ void score(const MethodInfo& method, const RunInputs& in, const Estimate& e, Met
 }  // namespace
 
 /// The library's pipeline settings from a dataset read already.
-ScanSlamSetup scan_slam_setup(const RunInputs& in, const SonarInput& sonar) {
+ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar) {
   ScanSlamSetup setup;
   setup.start = in.start;
   setup.p_vehicle_dvl_m = {in.calibration.dvl.x_m, in.calibration.dvl.y_m};
@@ -227,7 +228,7 @@ ScanSlamSetup scan_slam_setup(const RunInputs& in, const SonarInput& sonar) {
   return setup;
 }
 
-MethodResult run_method(const std::string& name, const RunInputs& in, SharedInputs* shared) {
+MethodResult run_method(const std::string& name, const io::RunInputs& in, SharedInputs* shared) {
   const MethodInfo& method = method_info(name);
   const Estimate e = estimate(method, in, shared);
   MethodResult result;

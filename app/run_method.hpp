@@ -1,4 +1,4 @@
-// One method run on a dataset read already (app/truth's RunInputs, from a directory or held in
+// One method run on a dataset read already (io/truth's RunInputs, from a directory or held in
 // memory): dead reckoning, velocity integration or a trajectory SLAM on the sonar scans, timed and
 // scored against the truth when there is one. `msislab run` writes what it returns; each Monte
 // Carlo worker runs every method through it on the dataset it holds in memory.
@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "app/sonar_readings.hpp"
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
+#include "io/sonar_readings.hpp"
+#include "io/truth.hpp"
 #include "slam/scan_sequence.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
@@ -38,18 +38,18 @@ struct MethodResult {
 /// dead reckoning itself places after its clock; every SLAM method still builds its own scans on
 /// its clock).
 struct SharedInputs {
-  std::optional<SonarInput> sonar;
+  std::optional<io::SonarInput> sonar;
   std::optional<std::vector<PlacedScan>> dead_reckoning_scans;
 };
 
 /// The library pipeline's settings (slam/scan_slam_pipeline) from a dataset read already: its
 /// start, the DVL and sonar mounts, the sonar's beams per revolution.
-ScanSlamSetup scan_slam_setup(const RunInputs& in, const SonarInput& sonar);
+ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar);
 
 /// Runs a method on a dataset read already (from a directory or held in memory), sharing with
 /// the other methods on it through `shared` when given (the results are the same). Throws
 /// io::InputError.
-MethodResult run_method(const std::string& method, const RunInputs& in,
+MethodResult run_method(const std::string& method, const io::RunInputs& in,
                         SharedInputs* shared = nullptr);
 
 }  // namespace msislab::app

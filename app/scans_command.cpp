@@ -8,13 +8,13 @@
 
 #include "app/cli.hpp"
 #include "app/run_method.hpp"
-#include "app/sonar_readings.hpp"
-#include "app/truth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/results.hpp"
 #include "io/scan_figures.hpp"
+#include "io/sonar_readings.hpp"
+#include "io/truth.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {
@@ -82,11 +82,11 @@ io::OutputRequest scans_output(const ScansOptions& options) {
 
 ScansSummary build_scans_command(const ScansOptions& options) {
   io::check_output_folder(scans_output(options));
-  const RunInputs in = load_run_inputs(options.dataset_dir, options.config_path);
+  const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
-  const Truth& truth = in.truth;
-  const SonarInput sonar = load_sonar_readings(in.files, calibration, config.segmentation);
+  const io::Truth& truth = in.truth;
+  const io::SonarInput sonar = io::load_sonar_readings(in.files, calibration, config.segmentation);
 
   const std::vector<PlacedScan> scans =
       build_placed_scans(in.navigation, sonar.beams, config, scan_slam_setup(in, sonar));

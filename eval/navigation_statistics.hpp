@@ -1,7 +1,7 @@
 // Navigation noise statistics of a dataset, real or simulated, from its own logs (docs/simulator.md
 // "Navigation noise from the real logs"): DVL noise, dropouts, MRU heading noise and offset, the
 // GPS buoy's lag and error, and dead-reckoning drift per distance travelled. Pure functions of
-// already-loaded data returning plain structs; app/navigation_data reads the logs.
+// already-loaded data returning plain structs; io/navigation_data reads the logs.
 #pragma once
 
 #include <Eigen/Core>

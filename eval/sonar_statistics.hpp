@@ -1,7 +1,7 @@
 // The sonar statistics that compare a simulated dataset with the real one (docs/fidelity.md),
 // computed from the detections and the beam times alone, so the same code runs on both sides:
 // detected bins, runs and first ranges per beam, range distributions, readings per revolution and
-// the rotation of the head. The detections are grouped and checked by app/detected_beams.
+// the rotation of the head. The detections are grouped and checked by io/detected_beams.
 #pragma once
 
 #include <cstddef>

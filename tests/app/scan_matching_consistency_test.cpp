@@ -12,9 +12,9 @@
 #include <Eigen/LU>
 
 #include "app/simulate_command.hpp"
-#include "app/sonar_readings.hpp"
-#include "app/truth.hpp"
 #include "eval/evaluation.hpp"
+#include "io/sonar_readings.hpp"
+#include "io/truth.hpp"
 #include "io/tum.hpp"
 #include "slam/scan_matching.hpp"
 #include "slam/trajectory_slam.hpp"
@@ -43,8 +43,9 @@ TEST(ScanMatchingConsistency, ReplicaScanPairs) {
   const std::string dataset = tmp.file("replica");
   simulate({std::string(MSISLAB_SOURCE_DIR) + "/scenarios/stpere_replica.yaml", dataset,
             std::nullopt, 2});
-  const RunInputs in = load_run_inputs(dataset, "");
-  const SonarInput sonar = load_sonar_readings(in.files, in.calibration, in.config.segmentation);
+  const io::RunInputs in = io::load_run_inputs(dataset, "");
+  const io::SonarInput sonar =
+      io::load_sonar_readings(in.files, in.calibration, in.config.segmentation);
   ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};

@@ -19,7 +19,6 @@
 #include <vector>
 
 #include "app/run_command.hpp"
-#include "app/sonar_readings.hpp"
 #include "cli_runner.hpp"
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
@@ -27,6 +26,7 @@
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
 #include "io/scenario_yaml.hpp"
+#include "io/sonar_readings.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
 #include "sim/detection_model.hpp"
@@ -532,14 +532,14 @@ TEST(SimulateCommand, DetectionsAreTheDetectorOnEveryProfileInTheRealLayout) {
   config.segmentation.source = SonarSource::kDetections;
   const io::DatasetFiles files = io::find_dataset_files(box.dir.string());
   const Calibration calibration = io::load_calibration(files);
-  const SonarInput sonar = load_sonar_readings(files, calibration, config.segmentation);
+  const io::SonarInput sonar = io::load_sonar_readings(files, calibration, config.segmentation);
   EXPECT_EQ(sonar.source, "detections");
   ASSERT_EQ(sonar.beams.size(), beams.size());
   std::size_t with_readings = 0;
   for (const BeamReadings& b : sonar.beams) with_readings += !b.readings.empty();
   EXPECT_EQ(with_readings, detected_beams);
   config.segmentation.source = SonarSource::kRaw;
-  EXPECT_EQ(load_sonar_readings(files, calibration, config.segmentation).source, "IS log");
+  EXPECT_EQ(io::load_sonar_readings(files, calibration, config.segmentation).source, "IS log");
 }
 
 // The message of the InputError that simulate(options) throws ("" and a failure when none).

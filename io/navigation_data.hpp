@@ -6,9 +6,9 @@
 
 #include "eval/navigation_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 
 /// Reads a dataset directory (real or simulated) through io/. Throws io::InputError.
 NavigationData load_navigation_data(const std::string& dataset_dir);
 
-}  // namespace msislab::app
+}  // namespace msislab::io

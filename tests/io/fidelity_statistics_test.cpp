@@ -1,7 +1,7 @@
 // The fidelity statistics (eval/sonar_statistics) on samples and beams built by hand, with answers
-// worked out on paper: band shares, runs, the checks of the detections file (app/detected_beams),
+// worked out on paper: band shares, runs, the checks of the detections file (io/detected_beams),
 // and the per-beam, rotation and per-scan samples.
-#include "app/detected_beams.hpp"
+#include "io/detected_beams.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "io/input_error.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 namespace {
 
 TEST(BandShares, SplitsAtBandEdgesAndKeepsTheTopInTheLastBand) {
@@ -35,13 +35,13 @@ TEST(CountRuns, AGapOfOneMissingBinStartsARun) {
   EXPECT_EQ(count_runs({0.30000000000000004, 0.4}, 0.1), 1);  // ranges round to bins
 }
 
-io::DetectionRecord row(std::int32_t keyframe, std::int64_t beam_row, std::int32_t angle_idx,
-                        double range_m) {
+DetectionRecord row(std::int32_t keyframe, std::int64_t beam_row, std::int32_t angle_idx,
+                    double range_m) {
   return {keyframe, beam_row, 0.0, 0, angle_idx, angle_idx * 2.0 * M_PI / 4.0, range_m};
 }
 
 /// Two keyframes of 4 beams (rows 0..3 and 4..7): 4 beams with detections, 4 empty.
-std::vector<io::DetectionRecord> hand_rows() {
+std::vector<DetectionRecord> hand_rows() {
   return {row(1, 0, 3, 2.0), row(1, 0, 3, 2.1), row(1, 0, 3, 2.2),  // one run
           row(1, 2, 1, 5.0), row(1, 2, 1, 5.2), row(1, 2, 1, 7.0),  // three runs
           row(2, 4, 3, 3.0),                                        // angle 3 again
@@ -58,12 +58,12 @@ TEST(GroupDetections, GroupsRowsByBeam) {
   EXPECT_EQ(beams[3].ranges_m, (std::vector<double>{1.5, 1.6}));
 }
 
-void expect_rejected(const std::vector<io::DetectionRecord>& rows, std::size_t beam_count,
+void expect_rejected(const std::vector<DetectionRecord>& rows, std::size_t beam_count,
                      const std::string& what) {
   try {
     group_detections(rows, "x_detections.csv", beam_count, 4, 50.0);
     ADD_FAILURE() << "accepted; expected: " << what;
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.rfind("x_detections.csv: ", 0), 0u) << message;
     EXPECT_NE(message.find(what), std::string::npos) << message << "\nexpected: " << what;
@@ -71,7 +71,7 @@ void expect_rejected(const std::vector<io::DetectionRecord>& rows, std::size_t b
 }
 
 TEST(GroupDetections, RejectsWhatTheStatisticsCannotCount) {
-  std::vector<io::DetectionRecord> rows = hand_rows();
+  std::vector<DetectionRecord> rows = hand_rows();
   expect_rejected(rows, 7, "data row 8 (beam_row 7): not a row of the beam times (7 beams)");
   rows[6].keyframe = 0;
   expect_rejected(rows, 8, "data row 7 (beam_row 4): keyframe 0 after keyframe 1");
@@ -145,7 +145,7 @@ TEST(IncidenceFromNeighbours, RecoversAFlatWallsIncidence) {
 TEST(SonarStatistics, BandsTheRunLengthByIncidence) {
   // Keyframe 1 of 4 beams: rows 0, 1, 2 see a wall at 20.0, 20.5, 21.0 m (incidence atan(1 /
   // (20.5 x 2 x 0.05)) = 26 deg for row 1); row 1's nearest run is 10 bins long.
-  std::vector<io::DetectionRecord> rows = {row(1, 0, 0, 20.0)};
+  std::vector<DetectionRecord> rows = {row(1, 0, 0, 20.0)};
   for (int k = 0; k < 10; ++k) rows.push_back(row(1, 1, 1, 20.5 + 0.1 * k));
   rows.push_back(row(1, 1, 1, 30.0));  // a second run, not counted
   rows.push_back(row(1, 2, 2, 21.0));
@@ -158,8 +158,8 @@ TEST(SonarStatistics, BandsTheRunLengthByIncidence) {
 }
 
 TEST(SonarStatistics, PairsAnglesOnlyInConsecutiveKeyframes) {
-  std::vector<io::DetectionRecord> rows = hand_rows();
-  for (io::DetectionRecord& r : rows) {
+  std::vector<DetectionRecord> rows = hand_rows();
+  for (DetectionRecord& r : rows) {
     if (r.keyframe == 2) {
       r.keyframe = 3;
       r.beam_row += 4;  // rows 8 and 11: keyframe 2 has no detection
@@ -184,4 +184,4 @@ TEST(ReadingsPerKeyframe, SumsTheReadingsOfEachKeyframesBeams) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab::io

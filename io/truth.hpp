@@ -11,7 +11,7 @@
 #include "slam/navigation.hpp"
 #include "slam/slam_config.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 
 struct Truth {
   std::string kind;  ///< "simulation", "gps" or empty when the dataset has none
@@ -20,13 +20,13 @@ struct Truth {
   double depth_m = 0.0;            ///< vehicle depth for the TUM z (0 when unknown)
 };
 
-Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration);
+Truth load_truth(const DatasetFiles& files, const Calibration& calibration);
 
 /// Pose truth from a TUM file (the simulation's truth/trajectory.tum, or a file given to
 /// `msislab eval --truth`), recorded as `kind`.
 Truth read_tum_truth(const std::string& path, const std::string& kind);
 /// The same from the poses (at least one).
-Truth tum_truth(const std::vector<io::TumPose>& poses, const std::string& kind);
+Truth tum_truth(const std::vector<TumPose>& poses, const std::string& kind);
 
 /// Where every method starts: the first truth pose (GPS: first fix once heading is available,
 /// heading from the MRU), else the origin at the first heading reading. Throws io::InputError when
@@ -40,8 +40,8 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
 struct RunInputs {
   SlamConfig config;
   std::string dataset;  ///< the directory, or the in-memory dataset's name, for messages
-  io::DatasetFiles files;
-  std::shared_ptr<const io::DatasetRecords> records;  ///< set for a dataset held in memory
+  DatasetFiles files;
+  std::shared_ptr<const DatasetRecords> records;  ///< set for a dataset held in memory
   Calibration calibration;
   NavigationLog navigation;
   Truth truth;
@@ -51,6 +51,6 @@ struct RunInputs {
 /// Reads and checks them (config_path empty: the default config). Throws io::InputError.
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path);
 /// The same for a dataset held in memory. Throws io::InputError.
-RunInputs run_inputs_of(std::shared_ptr<const io::DatasetRecords> records, SlamConfig config);
+RunInputs run_inputs_of(std::shared_ptr<const DatasetRecords> records, SlamConfig config);
 
-}  // namespace msislab::app
+}  // namespace msislab::io

@@ -6,14 +6,14 @@
 #include <cmath>
 #include <iostream>
 
-#include "app/navigation_data.hpp"
 #include "io/mesh_io.hpp"
+#include "io/navigation_data.hpp"
 #include "io/scenario_yaml.hpp"
 #include "sim/navigation_sensors.hpp"
 #include "sim/vehicle.hpp"
 #include "test_support.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 namespace {
 
 void print(const NavigationStatistics& s) {
@@ -228,9 +228,9 @@ const std::vector<Compared> kCompared = {
 /// The shipped replica scenario with its scene, loaded once.
 struct Replica {
   sim::Scenario scenario =
-      io::read_scenario(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/stpere_replica.yaml");
-  sim::Scene scene{io::read_mesh(scenario.scene.mesh_path,
-                                 {scenario.scene.default_material, scenario.scene.group_materials}),
+      read_scenario(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/stpere_replica.yaml");
+  sim::Scene scene{read_mesh(scenario.scene.mesh_path,
+                             {scenario.scene.default_material, scenario.scene.group_materials}),
                    scenario.scene.surface};
 };
 
@@ -300,4 +300,4 @@ TEST(NavigationStatisticsStPere, DISABLED_CalibrateTheGpsError) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab::io

@@ -2,15 +2,15 @@
 // the detected bins of *_detections.csv[.gz] with the beam times of *_IS_timestamps.log.
 #pragma once
 
-#include "app/truth.hpp"
 #include "geometry/calibration.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
+#include "io/truth.hpp"
 #include "slam/beam_segmentation.hpp"
 #include "slam/scan_sequence.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 
 struct SonarInput {
   std::vector<BeamReadings> beams;  ///< every beam in time order, with or without readings
@@ -19,7 +19,7 @@ struct SonarInput {
 };
 
 /// Throws io::InputError when the dataset has neither a raw log nor detections with beam times.
-SonarInput load_sonar_readings(const io::DatasetFiles& files, const Calibration& calibration,
+SonarInput load_sonar_readings(const DatasetFiles& files, const Calibration& calibration,
                                const SegmentationConfig& segmentation);
 
 /// The same for a run's dataset, from its files or, held in memory, its records.
@@ -31,10 +31,10 @@ bool has_sonar_data(const RunInputs& in);
 /// order) with segment_detections: what load_sonar_readings does with a dataset's detections, for
 /// a caller that has read them already. Throws io::InputError naming files.detections when a
 /// beam_row is not a row of the times.
-SonarInput readings_from_detections(const io::DatasetFiles& files,
-                                    const std::vector<io::BeamTimeRecord>& times,
-                                    const std::vector<io::DetectionRecord>& rows,
-                                    const io::SonarSetup& setup, const SonarMount& mount,
+SonarInput readings_from_detections(const DatasetFiles& files,
+                                    const std::vector<BeamTimeRecord>& times,
+                                    const std::vector<DetectionRecord>& rows,
+                                    const SonarSetup& setup, const SonarMount& mount,
                                     const SegmentationConfig& segmentation);
 
-}  // namespace msislab::app
+}  // namespace msislab::io

@@ -1,4 +1,4 @@
-#include "app/truth.hpp"
+#include "io/truth.hpp"
 
 #include <algorithm>
 
@@ -6,18 +6,18 @@
 #include "io/input_error.hpp"
 #include "io/tum.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 
 Truth read_tum_truth(const std::string& path, const std::string& kind) {
-  const std::vector<io::TumPose> poses = io::read_tum(path);
-  if (poses.empty()) io::fail_file(path, "no poses");
+  const std::vector<TumPose> poses = read_tum(path);
+  if (poses.empty()) fail_file(path, "no poses");
   return tum_truth(poses, kind);
 }
 
-Truth tum_truth(const std::vector<io::TumPose>& poses, const std::string& kind) {
+Truth tum_truth(const std::vector<TumPose>& poses, const std::string& kind) {
   Truth truth;
   truth.kind = kind;
-  for (const io::TumPose& p : poses) {
+  for (const TumPose& p : poses) {
     truth.positions.push_back({p.t_s, {p.x_m, p.y_m}});
     truth.poses.push_back({p.t_s, {Pose2(p.x_m, p.y_m, p.yaw_rad)}});
   }
@@ -25,20 +25,20 @@ Truth tum_truth(const std::vector<io::TumPose>& poses, const std::string& kind) 
   return truth;
 }
 
-Truth load_truth(const io::DatasetFiles& files, const Calibration& calibration) {
+Truth load_truth(const DatasetFiles& files, const Calibration& calibration) {
   Truth truth;
   if (files.truth_trajectory) {
     truth = read_tum_truth(*files.truth_trajectory, "simulation");
   } else if (files.gps) {
     truth.kind = "gps";
-    truth.positions = io::load_gps_fixes(files, calibration);
+    truth.positions = load_gps_fixes(files, calibration);
   }
   return truth;
 }
 
 StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
                          const std::string& dataset_dir, double heading_sigma_rad) {
-  if (navigation.heading.empty()) io::fail_file(dataset_dir, "the MRU log has no heading rows");
+  if (navigation.heading.empty()) fail_file(dataset_dir, "the MRU log has no heading rows");
   const double t_heading0 = navigation.heading.front().t_s;
   StampedPose start;
   // The start is exact by definition (every method starts on the truth); a tiny variance keeps the
@@ -53,7 +53,7 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
   auto fix = std::find_if(truth.positions.begin(), truth.positions.end(),
                           [&](const PositionFix& f) { return f.t_s >= t_heading0; });
   if (fix == truth.positions.end()) {
-    if (!truth.kind.empty()) io::fail_file(dataset_dir, "no GPS fix after the first MRU heading");
+    if (!truth.kind.empty()) fail_file(dataset_dir, "no GPS fix after the first MRU heading");
     start.t_s = t_heading0;
     start.pose.mean = Pose2(0.0, 0.0, navigation.heading.front().yaw_rad);
     return start;
@@ -66,31 +66,31 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
 
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path) {
   RunInputs in;
-  in.config = config_path.empty() ? SlamConfig{} : io::read_slam_config(config_path);
+  in.config = config_path.empty() ? SlamConfig{} : read_slam_config(config_path);
   in.dataset = dataset_dir;
-  in.files = io::find_dataset_files(dataset_dir);
-  in.calibration = io::load_calibration(in.files);
-  in.navigation = io::load_navigation(in.files, in.calibration);
+  in.files = find_dataset_files(dataset_dir);
+  in.calibration = load_calibration(in.files);
+  in.navigation = load_navigation(in.files, in.calibration);
   in.truth = load_truth(in.files, in.calibration);
   // The config's segments win; without them a simulated dataset's own (its scenario's) apply.
-  if (in.config.segments.empty()) in.config.segments = io::load_truth_segments(in.files);
+  if (in.config.segments.empty()) in.config.segments = load_truth_segments(in.files);
   in.start = initial_pose(in.truth, in.navigation, dataset_dir,
                           in.config.dead_reckoning.heading_sigma_rad);
   return in;
 }
 
-RunInputs run_inputs_of(std::shared_ptr<const io::DatasetRecords> records, SlamConfig config) {
+RunInputs run_inputs_of(std::shared_ptr<const DatasetRecords> records, SlamConfig config) {
   RunInputs in;
   in.config = std::move(config);
   in.dataset = records->name;
   in.files.dir = records->name;
   in.calibration = records->calibration;
-  in.navigation = io::navigation_of(records->dvl, records->mti, in.calibration);
+  in.navigation = navigation_of(records->dvl, records->mti, in.calibration);
   if (!records->truth_trajectory.empty()) {
     in.truth = tum_truth(records->truth_trajectory, "simulation");
   } else if (!records->gps.empty()) {
     in.truth.kind = "gps";
-    in.truth.positions = io::gps_fixes_of(records->gps, in.calibration);
+    in.truth.positions = gps_fixes_of(records->gps, in.calibration);
   }
   if (in.config.segments.empty()) in.config.segments = records->truth_segments;
   in.start =
@@ -99,4 +99,4 @@ RunInputs run_inputs_of(std::shared_ptr<const io::DatasetRecords> records, SlamC
   return in;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::io

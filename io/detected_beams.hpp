@@ -9,15 +9,15 @@
 #include "eval/sonar_statistics.hpp"
 #include "io/detections.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 
 /// The beams of the detections file `path` that have rows, in beam_row order. Checks what the
 /// statistics rely on, with io::InputError naming the file and the row: every beam_row is a row of
 /// the beam times (beam_count of them), a beam's rows share keyframe and angle, the keyframe never
 /// decreases, a keyframe spans at most beams_per_revolution beam rows, the keyframes from the first
 /// to the last hold no more beams than the beam times, and every range lies in [0, max_range_m].
-std::vector<DetectedBeam> group_detections(const std::vector<io::DetectionRecord>& rows,
+std::vector<DetectedBeam> group_detections(const std::vector<DetectionRecord>& rows,
                                            const std::string& path, std::size_t beam_count,
                                            int beams_per_revolution, double max_range_m);
 
-}  // namespace msislab::app
+}  // namespace msislab::io

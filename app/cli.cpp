@@ -6,8 +6,8 @@
 #include <iostream>
 #include <vector>
 
-#include "app/methods.hpp"
 #include "app/montecarlo_command.hpp"
+#include "report/methods.hpp"
 
 namespace msislab::app {
 
@@ -33,7 +33,7 @@ void add_force_flag(CLI::App& command, bool& force) {
 
 std::string method_list() {
   std::string methods;
-  for (const std::string& m : method_names()) methods += (methods.empty() ? "" : ", ") + m;
+  for (const std::string& m : report::method_names()) methods += (methods.empty() ? "" : ", ") + m;
   return methods;
 }
 

@@ -14,7 +14,6 @@
 
 #include "app/cli.hpp"
 #include "app/directory_lock.hpp"
-#include "app/methods.hpp"
 #include "app/montecarlo_directory.hpp"
 #include "app/montecarlo_runs.hpp"
 #include "app/process.hpp"
@@ -25,6 +24,7 @@
 #include "io/montecarlo_files.hpp"
 #include "io/scenario_scene.hpp"
 #include "io/text_lines.hpp"
+#include "report/methods.hpp"
 
 namespace msislab::app {
 
@@ -35,7 +35,7 @@ namespace {
 void check_methods(const std::vector<std::string>& methods) {
   if (methods.empty()) throw io::InputError("--methods: no method given");
   for (std::size_t i = 0; i < methods.size(); ++i) {
-    method_info(methods[i], "--methods");
+    report::method_info(methods[i], "--methods");
     if (std::find(methods.begin(), methods.begin() + static_cast<long>(i), methods[i]) !=
         methods.begin() + static_cast<long>(i)) {
       throw io::InputError("--methods '" + methods[i] + "': given twice");

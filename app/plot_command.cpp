@@ -8,13 +8,14 @@
 #include <memory>
 
 #include "app/cli.hpp"
-#include "app/plot_figures.hpp"
-#include "app/plot_inputs.hpp"
-#include "app/sweep_figures.hpp"
 #include "io/acoustic_image.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_guard.hpp"
+#include "io/sonar_revolution.hpp"
 #include "plot/display.hpp"
+#include "report/plot_figures.hpp"
+#include "report/plot_inputs.hpp"
+#include "report/sweep_figures.hpp"
 
 namespace msislab::app {
 
@@ -24,21 +25,22 @@ namespace {
 
 class FigureWriter {
  public:
-  explicit FigureWriter(const PlotOptions& options) : options_(options) {}
+  explicit FigureWriter(const report::PlotOptions& options) : options_(options) {}
 
   void chart(const fs::path& dir, const std::string& name, const plot::ChartSpec& spec) {
     charts_.write_png(prepare(dir, name), spec);
   }
   /// trajectory.png and (with truth) error.png of one result, into its figures/.
-  void result(const ResultData& r) {
+  void result(const report::ResultData& r) {
     const fs::path dir = fs::path(r.dir) / "figures";
-    chart(dir, "trajectory.png",
-          trajectory_chart(r, options_.ellipse_every, options_.width_px, options_.height_px));
+    chart(
+        dir, "trajectory.png",
+        report::trajectory_chart(r, options_.ellipse_every, options_.width_px, options_.height_px));
     if (!r.errors.empty()) {
-      chart(dir, "error.png", error_chart({&r}, options_.width_px, options_.height_px));
+      chart(dir, "error.png", report::error_chart({&r}, options_.width_px, options_.height_px));
     }
   }
-  void acoustic_image(const fs::path& dir, const SonarRevolution& revolution) {
+  void acoustic_image(const fs::path& dir, const io::SonarRevolution& revolution) {
     const std::string dataset =
         fs::path(revolution.dataset_dir).lexically_normal().filename().string();
     io::write_acoustic_figure(
@@ -57,57 +59,61 @@ class FigureWriter {
     return written_.back();
   }
 
-  const PlotOptions& options_;
+  const report::PlotOptions& options_;
   plot::ChartWriter charts_;
   std::vector<std::string> written_;
 };
 
 /// A figure per result named after its method (its folder when two share a method).
-std::string comparison_name(const PlotInputs& in, const ResultData& r) {
-  const auto same_method = std::count_if(in.results.begin(), in.results.end(),
-                                         [&](const ResultData& o) { return o.method == r.method; });
+std::string comparison_name(const report::PlotInputs& in, const report::ResultData& r) {
+  const auto same_method =
+      std::count_if(in.results.begin(), in.results.end(),
+                    [&](const report::ResultData& o) { return o.method == r.method; });
   return (same_method > 1 ? r.name : r.method) + ".png";
 }
 
 }  // namespace
 
-std::vector<std::string> draw_plot(const PlotInputs& in) {
-  const PlotOptions& options = in.options;
+std::vector<std::string> draw_plot(const report::PlotInputs& in) {
+  const report::PlotOptions& options = in.options;
   const fs::path figures = fs::path(options.dir) / "figures";
   FigureWriter writer(options);
   if (in.comparison) {
-    std::vector<const ResultData*> with_errors;
-    for (const ResultData& r : in.results) {
-      writer.chart(figures, comparison_name(in, r),
-                   trajectory_chart(r, options.ellipse_every, options.width_px, options.height_px));
+    std::vector<const report::ResultData*> with_errors;
+    for (const report::ResultData& r : in.results) {
+      writer.chart(
+          figures, comparison_name(in, r),
+          report::trajectory_chart(r, options.ellipse_every, options.width_px, options.height_px));
       if (!r.errors.empty()) with_errors.push_back(&r);
     }
     if (!with_errors.empty()) {
       writer.chart(figures, "errors.png",
-                   error_chart(with_errors, options.width_px, options.height_px));
+                   report::error_chart(with_errors, options.width_px, options.height_px));
     }
   }
-  for (const ResultData& r : in.results) writer.result(r);
+  for (const report::ResultData& r : in.results) writer.result(r);
   if (!in.nees.empty()) {
-    writer.chart(figures, "nees.png", nees_chart(in.nees, options.width_px, options.height_px));
+    writer.chart(figures, "nees.png",
+                 report::nees_chart(in.nees, options.width_px, options.height_px));
   }
   if (!in.error_spread.empty()) {
     writer.chart(figures, "error_spread.png",
-                 error_spread_chart(in.error_spread, options.width_px, options.height_px));
+                 report::error_spread_chart(in.error_spread, options.width_px, options.height_px));
   }
   if (!in.error_histograms.empty()) {
     writer.chart(
         figures, "error_distribution.png",
-        error_distribution_chart(in.error_histograms, options.width_px, options.height_px));
+        report::error_distribution_chart(in.error_histograms, options.width_px, options.height_px));
   }
   if (in.sweep) {
     for (std::size_t k = 0; k < in.sweep->keys.size(); ++k) {
       std::string stem = in.sweep->keys[k];
       std::replace(stem.begin(), stem.end(), '.', '_');
       for (const char* metric : {"mean_error", "anees", "paired_difference", "linearisation"}) {
-        if (!sweep_has_metric(*in.sweep, metric)) continue;
-        writer.chart(figures, "sweep_" + stem + "_" + metric + ".png",
-                     sweep_chart(*in.sweep, k, metric, options.width_px, options.height_px));
+        if (!report::sweep_has_metric(*in.sweep, metric)) continue;
+        writer.chart(
+            figures, "sweep_" + stem + "_" + metric + ".png",
+            report::sweep_chart(*in.sweep, k, metric, options.width_px, options.height_px));
       }
     }
   }
@@ -115,12 +121,12 @@ std::vector<std::string> draw_plot(const PlotInputs& in) {
   return writer.written();
 }
 
-std::vector<std::string> plot(const PlotOptions& options) {
-  return draw_plot(load_plot_inputs(options));
+std::vector<std::string> plot(const report::PlotOptions& options) {
+  return draw_plot(report::load_plot_inputs(options));
 }
 
 void add_plot_command(CLI::App& app, CommandLine& line) {
-  auto options = std::make_shared<PlotOptions>();
+  auto options = std::make_shared<report::PlotOptions>();
   CLI::App* command = app.add_subcommand(
       "plot",
       "Draw the figures of a result, comparison or Monte Carlo directory as PNG into DIR/figures/ "
@@ -148,7 +154,7 @@ void add_plot_command(CLI::App& app, CommandLine& line) {
   // Reads every input first (bad input fails without a display), then draws; VTK needs an X
   // display, so without one the command runs again under xvfb-run.
   command->callback([options, &line] {
-    const PlotInputs inputs = load_plot_inputs(*options);
+    const report::PlotInputs inputs = report::load_plot_inputs(*options);
     if (!plot::x_display_available()) plot::rerun_under_xvfb(line.argc, line.argv);
     for (const std::string& file : draw_plot(inputs)) std::cout << "wrote " << file << "\n";
     std::cout << std::flush;

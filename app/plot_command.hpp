@@ -6,15 +6,15 @@
 #include <string>
 #include <vector>
 
-#include "app/plot_inputs.hpp"
+#include "report/plot_inputs.hpp"
 
 namespace msislab::app {
 
 /// Draws every figure the inputs allow and returns the files written, in order. Needs an X
 /// display (plot/display.hpp).
-std::vector<std::string> draw_plot(const PlotInputs& inputs);
+std::vector<std::string> draw_plot(const report::PlotInputs& inputs);
 
 /// load_plot_inputs, then draw_plot.
-std::vector<std::string> plot(const PlotOptions& options);
+std::vector<std::string> plot(const report::PlotOptions& options);
 
 }  // namespace msislab::app

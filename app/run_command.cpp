@@ -8,11 +8,11 @@
 
 #include "app/cli.hpp"
 #include "app/eval_command.hpp"
-#include "app/methods.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/results.hpp"
+#include "report/methods.hpp"
 
 namespace msislab::app {
 
@@ -36,7 +36,7 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
 }
 
 RunOutcome run(const RunOptions& options) {
-  method_info(options.method);  // an unknown method fails before anything is read
+  report::method_info(options.method);  // an unknown method fails before anything is read
   const io::OutputRequest out{
       options.out_dir, "result", "run", {options.dataset_dir, options.config_path}, options.force};
   io::check_output_folder(out);

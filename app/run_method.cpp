@@ -5,8 +5,8 @@
 #include <iterator>
 
 #include "app/eval_command.hpp"
-#include "app/methods.hpp"
 #include "io/input_error.hpp"
+#include "report/methods.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
@@ -131,7 +131,7 @@ struct Estimate {
   bool has_scans() const { return slam || !dead_reckoning_scans.empty(); }
 };
 
-Estimate estimate(const MethodInfo& method, const io::RunInputs& in, SharedInputs* shared) {
+Estimate estimate(const report::MethodInfo& method, const io::RunInputs& in, SharedInputs* shared) {
   // SLAM methods: the sonar readings are read before the clock starts, like the logs; read once
   // and shared between the methods when `shared` is given.
   std::optional<io::SonarInput> own_readings;
@@ -140,7 +140,8 @@ Estimate estimate(const MethodInfo& method, const io::RunInputs& in, SharedInput
     if (!slot) slot = io::load_sonar_readings(in);
     return *slot;
   };
-  const io::SonarInput* sonar = method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
+  const io::SonarInput* sonar =
+      method.kind == report::MethodKind::kTrajectorySlam ? &readings() : nullptr;
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(in.calibration.dvl.x_m, in.calibration.dvl.y_m);
   Estimate e;
@@ -149,7 +150,7 @@ Estimate estimate(const MethodInfo& method, const io::RunInputs& in, SharedInput
     e.slam = run_scan_slam(*backend, in.navigation, sonar->beams, in.config,
                            scan_slam_setup(in, *sonar));
     if (shared && !shared->dead_reckoning_scans) shared->dead_reckoning_scans = e.slam->scans;
-  } else if (method.kind == MethodKind::kIntegration) {
+  } else if (method.kind == report::MethodKind::kIntegration) {
     e.dead_reckoning.trajectory = integrate_velocities(in.navigation, in.start);
   } else {
     e.dead_reckoning =
@@ -158,7 +159,7 @@ Estimate estimate(const MethodInfo& method, const io::RunInputs& in, SharedInput
   e.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
-  if (method.kind == MethodKind::kDeadReckoning && io::has_sonar_data(in)) {
+  if (method.kind == report::MethodKind::kDeadReckoning && io::has_sonar_data(in)) {
     if (shared && shared->dead_reckoning_scans) {
       e.dead_reckoning_scans = *shared->dead_reckoning_scans;
     } else {
@@ -188,7 +189,7 @@ void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const io::Truth& tru
 }
 
 /// Scores the estimate against the truth (the dataset has one).
-void score(const MethodInfo& method, const io::RunInputs& in, const Estimate& e,
+void score(const report::MethodInfo& method, const io::RunInputs& in, const Estimate& e,
            MethodResult& result) {
   const io::Truth& truth = in.truth;
   result.errors = position_errors(e.trajectory(), truth.positions);
@@ -205,7 +206,7 @@ void score(const MethodInfo& method, const io::RunInputs& in, const Estimate& e,
   }
   if (e.slam) metrics.diagnostics = slam_diagnostics(*e.slam, truth, metrics.matches_accepted);
   if (e.slam && e.slam->smoothed_trajectory) add_smoothed_diagnostics(*e.slam, truth, metrics);
-  if (method.kind == MethodKind::kDeadReckoning) {
+  if (method.kind == report::MethodKind::kDeadReckoning) {
     const DeadReckoningResult& dr = e.dead_reckoning;
     metrics.diagnostics = {{"dvl_used", dr.dvl_used},
                            {"dvl_rejected", dr.dvl_rejected},
@@ -229,7 +230,7 @@ ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& son
 }
 
 MethodResult run_method(const std::string& name, const io::RunInputs& in, SharedInputs* shared) {
-  const MethodInfo& method = method_info(name);
+  const report::MethodInfo& method = report::method_info(name);
   const Estimate e = estimate(method, in, shared);
   MethodResult result;
   result.method = method.name;

@@ -12,12 +12,12 @@
 
 #include "app/cli.hpp"
 #include "app/directory_lock.hpp"
-#include "app/methods.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/sweep_yaml.hpp"
 #include "io/text_lines.hpp"
+#include "report/methods.hpp"
 
 namespace msislab::app {
 
@@ -100,7 +100,8 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   int shard_index = 0, shard_count = 1;
   check_shard_and_jobs(options.shard, options.jobs, shard_index, shard_count);
   const io::Sweep plan = io::read_sweep(options.sweep_path);
-  for (const std::string& m : plan.methods) method_info(m, options.sweep_path + ": key 'methods'");
+  for (const std::string& m : plan.methods)
+    report::method_info(m, options.sweep_path + ": key 'methods'");
   std::vector<io::CellInputs> inputs;
   for (std::size_t c = 0; c < plan.cells.size(); ++c) inputs.push_back(io::cell_inputs(plan, c));
   const std::string sweep_text = io::read_whole_file(options.sweep_path);

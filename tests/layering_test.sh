@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The layering of docs/architecture.md, checked on the sources: each library includes project
 # headers only from the libraries below it (stats, geometry < sim, slam < eval < io < plot <
-# app), so the dependency graph has no cycle and sim/ and slam/ do not know each other. Prints every
-# include that breaks it as file:line and fails; CMake's target links say the same, this says it
-# before anything is linked. And app/ defines no statistics or numerical estimation (below).
+# report < app), so the dependency graph has no cycle and sim/ and slam/ do not know each other.
+# Prints every include that breaks it as file:line and fails; CMake's target links say the same,
+# this says it before anything is linked. And app/ defines no statistics or numerical estimation
+# (below).
 # Usage: tests/layering_test.sh SOURCE_DIR
 set -euo pipefail
 cd "${1:?usage: tests/layering_test.sh SOURCE_DIR}"
@@ -16,7 +17,8 @@ declare -A allowed=(
   [eval]="stats geometry sim slam eval"
   [io]="stats geometry sim slam eval io"
   [plot]="stats geometry sim slam eval io plot"
-  [app]="stats geometry sim slam eval io plot app"
+  [report]="stats geometry sim slam eval io plot report"
+  [app]="stats geometry sim slam eval io plot report app"
 )
 status=0
 dirs=$(printf '%s\n' "${!allowed[@]}" | sort | tr '\n' ' ')

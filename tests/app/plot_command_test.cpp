@@ -11,16 +11,16 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
-#include "app/plot_figures.hpp"
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
-#include "app/sweep_figures.hpp"
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/results.hpp"
 #include "io/sweep_files.hpp"
 #include "plot/display.hpp"
+#include "report/plot_figures.hpp"
+#include "report/sweep_figures.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -92,7 +92,7 @@ void expect_figure(const std::string& path, int width, int height,
 
 TEST_F(PlotCommand, ResultDirectoryGetsTrajectoryErrorAndAcousticImage) {
   REQUIRE_X_DISPLAY();
-  PlotOptions options;
+  report::PlotOptions options;
   options.dir = dir("worldcentric");
   const std::vector<std::string> written = plot(options);
   const fs::path figures = fs::path(dir("worldcentric")) / "figures";
@@ -100,7 +100,7 @@ TEST_F(PlotCommand, ResultDirectoryGetsTrajectoryErrorAndAcousticImage) {
                                              (figures / "error.png").string(),
                                              (figures / "acoustic_image.png").string()};
   EXPECT_EQ(written, expected);
-  const std::uint32_t blue = method_colour("worldcentric");
+  const std::uint32_t blue = report::method_colour("worldcentric");
   expect_figure(expected[0], 1200, 900, {blue, 0x202020});
   expect_figure(expected[1], 1200, 900, {blue});
   expect_figure(expected[2], 1200, 900, {});
@@ -112,14 +112,15 @@ TEST_F(PlotCommand, ResultDirectoryGetsTrajectoryErrorAndAcousticImage) {
 
 TEST_F(PlotCommand, FolderOfResultsGetsComparisonFigures) {
   REQUIRE_X_DISPLAY();
-  PlotOptions options;
+  report::PlotOptions options;
   options.dir = tmp_->path().string();
   options.width_px = 1000;
   options.height_px = 800;
   const std::vector<std::string> written = plot(options);
   EXPECT_EQ(written.size(), 8u);  // 3 comparison, 2 x 2 per result, 1 acoustic image
   const fs::path figures = tmp_->path() / "figures";
-  const std::uint32_t red = method_colour("deadreckoning"), blue = method_colour("worldcentric");
+  const std::uint32_t red = report::method_colour("deadreckoning"),
+                      blue = report::method_colour("worldcentric");
   expect_figure((figures / "deadreckoning.png").string(), 1000, 800, {red, 0x202020});
   expect_figure((figures / "worldcentric.png").string(), 1000, 800, {blue, 0x202020});
   expect_figure((figures / "errors.png").string(), 1000, 800, {red, blue});
@@ -157,7 +158,7 @@ TEST(PlotMonteCarlo, NeesFigure) {
   ASSERT_EQ(written.size(), 1u);
   EXPECT_EQ(written[0], mc + "/figures/nees.png");
   expect_figure(written[0], 1200, 900,
-                {method_colour("worldcentric"), method_colour("deadreckoning")});
+                {report::method_colour("worldcentric"), report::method_colour("deadreckoning")});
 }
 
 // With the spread files the Monte Carlo directory gets its three figures: NEES, the error against
@@ -189,7 +190,7 @@ TEST(PlotMonteCarlo, SpreadFigures) {
                                       mc + "/figures/error_distribution.png"}));
   for (const std::string& figure : written) {
     expect_figure(figure, 1200, 900,
-                  {method_colour("worldcentric"), method_colour("deadreckoning")});
+                  {report::method_colour("worldcentric"), report::method_colour("deadreckoning")});
   }
   // A malformed spread file is one clear error naming it.
   write_text(mc + "/errors.csv",
@@ -260,8 +261,8 @@ TEST(PlotSweep, AFigurePerKeyAndMetric) {
     const bool paired = figure.find("paired") != std::string::npos;
     const bool linearisation = figure.find("linearisation") != std::string::npos;
     std::vector<std::uint32_t> colours;
-    if (!paired) colours.push_back(method_colour("robocentric"));
-    if (!linearisation) colours.push_back(method_colour("deadreckoning"));
+    if (!paired) colours.push_back(report::method_colour("robocentric"));
+    if (!linearisation) colours.push_back(report::method_colour("deadreckoning"));
     expect_figure(figure, 1200, 900, colours, 20);
   }
 }
@@ -276,20 +277,21 @@ TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
     }
     return out;
   };
-  EXPECT_EQ(labels(sweep_chart(table, 0, "mean_error", 800, 600)),
+  EXPECT_EQ(labels(report::sweep_chart(table, 0, "mean_error", 800, 600)),
             (std::vector<std::string>{
                 "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
                 "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
   // A filter sigma set with each noise (its value follows the noise) does not.
   table.keys.push_back("slam.dead_reckoning.heading_sigma_deg");
   for (io::SweepRow& r : table.rows) r.values.push_back(r.values[0]);
-  EXPECT_EQ(labels(sweep_chart(table, 0, "mean_error", 800, 600)),
+  EXPECT_EQ(labels(report::sweep_chart(table, 0, "mean_error", 800, 600)),
             (std::vector<std::string>{
                 "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
                 "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
   // Against the iterations, the noise and the sigma both split them; linearisation errors: a
   // line per kind, robocentric only.
-  const std::vector<std::string> lines = labels(sweep_chart(table, 1, "linearisation", 800, 600));
+  const std::vector<std::string> lines =
+      labels(report::sweep_chart(table, 1, "linearisation", 800, 600));
   ASSERT_EQ(lines.size(), 9u);
   EXPECT_EQ(lines[0],
             "Robocentric SLAM: match update, heading_noise_deg=0.500000, "
@@ -297,12 +299,12 @@ TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
   EXPECT_EQ(lines[8],
             "Robocentric SLAM: pose read-out, heading_noise_deg=2.000000, "
             "heading_sigma_deg=2.000000");
-  EXPECT_TRUE(sweep_has_metric(table, "paired_difference"));
+  EXPECT_TRUE(report::sweep_has_metric(table, "paired_difference"));
   table.rows.erase(std::remove_if(table.rows.begin(), table.rows.end(),
                                   [](const io::SweepRow& r) { return r.method != "robocentric"; }),
                    table.rows.end());
-  EXPECT_FALSE(sweep_has_metric(table, "paired_difference"));
-  EXPECT_THROW(sweep_chart(table, 0, "speed", 800, 600), std::invalid_argument);
+  EXPECT_FALSE(report::sweep_has_metric(table, "paired_difference"));
+  EXPECT_THROW(report::sweep_chart(table, 0, "speed", 800, 600), std::invalid_argument);
 }
 
 TEST(PlotMonteCarlo, CliPrintsTheFilesItWrote) {
@@ -325,7 +327,7 @@ TEST(PlotMonteCarlo, CliWithoutDisplayRerunsUnderXvfb) {
   const CliResult rerun = run_msislab("plot " + shell_quote(mc), tmp, "env -u DISPLAY");
   EXPECT_EQ(rerun.exit_code, 0) << rerun.err;
   EXPECT_EQ(rerun.out, "wrote " + mc + "/figures/nees.png\n");
-  expect_figure(mc + "/figures/nees.png", 1200, 900, {method_colour("worldcentric")});
+  expect_figure(mc + "/figures/nees.png", 1200, 900, {report::method_colour("worldcentric")});
 }
 
 TEST(PlotMonteCarlo, CliWithoutDisplayOrXvfbIsOneClearError) {

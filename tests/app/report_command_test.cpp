@@ -15,6 +15,7 @@
 #include "io/montecarlo_files.hpp"
 #include "io/output_guard.hpp"
 #include "io/results.hpp"
+#include "io/sensitivity_csv.hpp"
 #include "io/sweep_files.hpp"
 #include "test_support.hpp"
 

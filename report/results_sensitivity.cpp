@@ -1,10 +1,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "app/methods.hpp"
-#include "app/report_markdown.hpp"
+#include "report/methods.hpp"
+#include "report/results_markdown.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace {
 
@@ -54,4 +54,4 @@ void sensitivity_section(std::ostringstream& md, const std::string& source,
      << fixed(100.0 * kCliffShare, 0) << " %: " << cliffs << " of " << rows.size() << ".\n";
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

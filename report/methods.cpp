@@ -1,4 +1,4 @@
-#include "app/methods.hpp"
+#include "report/methods.hpp"
 
 #include <algorithm>
 #include <iterator>
@@ -6,7 +6,7 @@
 #include "io/input_error.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 const std::vector<MethodInfo>& methods() {
   static const std::vector<MethodInfo> registry = {
@@ -89,4 +89,4 @@ std::size_t method_rank(const std::string& name) {
   return info ? static_cast<std::size_t>(info - methods().data()) : methods().size();
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

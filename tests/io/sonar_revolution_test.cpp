@@ -1,8 +1,8 @@
-// `msislab image --keyframe K`: a keyframe of a dataset's detections drawn like a raw revolution,
-// its detected bins at full intensity and everything else 0, so the real data (detections only)
-// and a simulated dataset can be looked at side by side; a keyframe the file does not hold is one
-// clear error.
-#include "app/image_command.hpp"
+// A keyframe of a dataset's detections read as a revolution (io/sonar_revolution; `msislab image
+// --keyframe K` draws it like a raw one): its detected bins at full intensity and the rest 0, so
+// the real data (detections only) and a simulated dataset can be looked at side by side; a
+// keyframe the file does not hold is one clear error.
+#include "io/sonar_revolution.hpp"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 #include "io/stpere_logs.hpp"
 #include "test_support.hpp"
 
-namespace msislab::app {
+namespace msislab::io {
 namespace {
 
 using testing::TempDir;
@@ -23,16 +23,16 @@ using testing::TempDir;
 /// Two keyframes: keyframe 1 with two beams (bins at 2.0 and 2.1 m on the first, 3.0 m on the
 /// second), keyframe 2 with one beam at 4.0 m.
 std::string detections_dataset(const TempDir& tmp) {
-  io::write_setup_log(tmp.file("x_SETUP.log"), io::SonarSetup{});
-  const double step = io::SonarSetup{}.step_rad;
-  io::write_detections(tmp.file("x_detections.csv"), {{1, 10, 100.0, 1, 199, 199 * step, 2.0},
-                                                      {1, 10, 100.0, 1, 199, 199 * step, 2.1},
-                                                      {1, 11, 100.1, 2, 198, 198 * step, 3.0},
-                                                      {2, 210, 114.0, 3, 199, 199 * step, 4.0}});
+  write_setup_log(tmp.file("x_SETUP.log"), SonarSetup{});
+  const double step = SonarSetup{}.step_rad;
+  write_detections(tmp.file("x_detections.csv"), {{1, 10, 100.0, 1, 199, 199 * step, 2.0},
+                                                  {1, 10, 100.0, 1, 199, 199 * step, 2.1},
+                                                  {1, 11, 100.1, 2, 198, 198 * step, 3.0},
+                                                  {2, 210, 114.0, 3, 199, 199 * step, 4.0}});
   return tmp.path().string();
 }
 
-TEST(ImageCommand, AKeyframeOfDetectionsBecomesBeamsOfFullIntensity) {
+TEST(DetectedRevolution, AKeyframeOfDetectionsBecomesBeamsOfFullIntensity) {
   const TempDir tmp;
   const SonarRevolution one = read_detected_revolution(detections_dataset(tmp), 1);
   ASSERT_EQ(one.beams.size(), 2u);
@@ -49,24 +49,24 @@ TEST(ImageCommand, AKeyframeOfDetectionsBecomesBeamsOfFullIntensity) {
   }
   EXPECT_EQ(lit, (std::vector<int>{19, 20}));  // bin j at (j + 1) x 0.1 m
   EXPECT_EQ(one.beams[1].intensity[29], 255);
-  EXPECT_DOUBLE_EQ(one.beams[1].transducer_angle_rad, 198 * io::SonarSetup{}.step_rad);
+  EXPECT_DOUBLE_EQ(one.beams[1].transducer_angle_rad, 198 * SonarSetup{}.step_rad);
   const SonarRevolution two = read_detected_revolution(tmp.path().string(), 2);
   ASSERT_EQ(two.beams.size(), 1u);
   EXPECT_EQ(two.beams[0].intensity[39], 255);
 }
 
-TEST(ImageCommand, AKeyframeBeyondTheFileNamesTheKeyframesItHolds) {
+TEST(DetectedRevolution, AKeyframeBeyondTheFileNamesTheKeyframesItHolds) {
   const TempDir tmp;
   try {
     read_detected_revolution(detections_dataset(tmp), 3);
     ADD_FAILURE() << "no InputError";
-  } catch (const io::InputError& e) {
+  } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--keyframe 3: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("has keyframes 1..2"), std::string::npos) << e.what();
   }
   const TempDir empty;
-  EXPECT_THROW(read_detected_revolution(empty.path().string(), 1), io::InputError);
+  EXPECT_THROW(read_detected_revolution(empty.path().string(), 1), InputError);
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab::io

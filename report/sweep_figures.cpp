@@ -1,4 +1,4 @@
-#include "app/sweep_figures.hpp"
+#include "report/sweep_figures.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/methods.hpp"
-#include "app/plot_figures.hpp"
+#include "report/methods.hpp"
+#include "report/plot_figures.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace {
 
@@ -248,4 +248,4 @@ plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const 
   return chart;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -8,7 +8,7 @@
 #include "io/sweep_files.hpp"
 #include "plot/chart.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 /// Whether any row has a value of the metric (the figures drawn are those with data).
 bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
@@ -22,4 +22,4 @@ bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
 plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
                             int width_px, int height_px);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -14,7 +14,7 @@
 #include "slam/scan_slam.hpp"
 #include "slam/slam_config.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 enum class MethodKind {
   kIntegration,     ///< DVL velocities integrated with the MRU heading, no filter
@@ -54,4 +54,4 @@ plot::SeriesStyle method_style(const std::string& name);
 /// Where its row goes in a table: its registry index; unknown methods after all of them.
 std::size_t method_rank(const std::string& name);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -10,14 +10,14 @@
 #include <string>
 #include <vector>
 
-#include "app/image_command.hpp"
 #include "eval/evaluation.hpp"
 #include "io/result_readers.hpp"
 #include "io/results.hpp"
+#include "io/sonar_revolution.hpp"
 #include "io/sweep_files.hpp"
 #include "io/truth.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 struct PlotOptions {
   std::string dir;
@@ -45,11 +45,11 @@ struct PlotInputs {
   /// DIR itself when it holds trajectory.tum; else its subdirectories that do (a comparison).
   std::vector<ResultData> results;
   bool comparison = false;
-  std::vector<io::NeesRow> nees;                 ///< DIR/nees.csv of a Monte Carlo directory
-  std::vector<io::ErrorSpreadRow> error_spread;  ///< its errors.csv, when present
-  std::vector<ErrorHistogram> error_histograms;  ///< its error_histogram.csv, when present
-  std::optional<io::SweepTable> sweep;           ///< DIR/sweep.csv of a sweep directory
-  std::optional<SonarRevolution> revolution;     ///< when the dataset has a *_IS.log
+  std::vector<io::NeesRow> nees;                  ///< DIR/nees.csv of a Monte Carlo directory
+  std::vector<io::ErrorSpreadRow> error_spread;   ///< its errors.csv, when present
+  std::vector<ErrorHistogram> error_histograms;   ///< its error_histogram.csv, when present
+  std::optional<io::SweepTable> sweep;            ///< DIR/sweep.csv of a sweep directory
+  std::optional<io::SonarRevolution> revolution;  ///< when the dataset has a *_IS.log
 };
 
 /// Reads everything `plot` needs. Throws io::InputError for a missing DIR, a malformed file, a
@@ -60,4 +60,4 @@ PlotInputs load_plot_inputs(const PlotOptions& options);
 /// (hidden folders and figures/ skipped).
 std::vector<std::filesystem::path> result_subdirs(const std::filesystem::path& dir);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

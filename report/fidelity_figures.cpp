@@ -1,4 +1,4 @@
-#include "app/fidelity_figures.hpp"
+#include "report/fidelity_figures.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "io/text_lines.hpp"
 #include "stats/sample_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace {
 
@@ -148,4 +148,4 @@ std::vector<plot::ChartSpec> revolution_charts(const FigureSide& real, const Fig
   return {revolution_panel(real, kReal, max_range_m), revolution_panel(sim, kSim, max_range_m)};
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

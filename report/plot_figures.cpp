@@ -1,4 +1,4 @@
-#include "app/plot_figures.hpp"
+#include "report/plot_figures.hpp"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 #include <set>
 #include <stdexcept>
 
-#include "app/methods.hpp"
 #include "io/text_lines.hpp"
+#include "report/methods.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace {
 
@@ -310,4 +310,4 @@ plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& hist
   return chart;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

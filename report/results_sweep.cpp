@@ -3,11 +3,11 @@
 #include <iomanip>
 #include <sstream>
 
-#include "app/methods.hpp"
-#include "app/report_markdown.hpp"
 #include "io/input_error.hpp"
+#include "report/methods.hpp"
+#include "report/results_markdown.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace fs = std::filesystem;
 
@@ -148,4 +148,4 @@ void sweep_section(std::ostringstream& md, const SweepFolder& sweep) {
   }
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -2,13 +2,13 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/fidelity_command.hpp"
 #include "io/atomic_file.hpp"
 #include "io/results.hpp"
 #include "io/text_lines.hpp"
+#include "report/fidelity_report.hpp"
 #include "slam/beam_segmentation.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace fs = std::filesystem;
 
@@ -189,4 +189,4 @@ io::Json fidelity_json(const FidelityReport& r) {
           {"rows", fidelity_rows_json(r.table)}};
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

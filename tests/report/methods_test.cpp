@@ -1,5 +1,5 @@
 // The method registry: one entry per method, what run, montecarlo, plot and report read of it.
-#include "app/methods.hpp"
+#include "report/methods.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "io/input_error.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 namespace {
 
 TEST(Methods, EveryMethodHasADistinctNameTitleAndColour) {
@@ -52,4 +52,4 @@ TEST(Methods, AnUnknownMethodIsOneClearErrorOrShownAsNamed) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -1,7 +1,7 @@
 // The fidelity table: ratios, the sonar rows of two hand-made statistics, a row appended later
 // (as the navigation rows will be), and the Markdown and JSON renderings (the JSON read back by
 // the project's strict reader).
-#include "app/fidelity_table.hpp"
+#include "report/fidelity_table.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +11,7 @@
 
 #include "io/json.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 namespace {
 
 const FidelityRow& find_row(const FidelityTable& table, const std::string& key) {
@@ -128,4 +128,4 @@ TEST(FidelityRowsJson, EveryRowReadsBack) {
 }
 
 }  // namespace
-}  // namespace msislab::app
+}  // namespace msislab::report

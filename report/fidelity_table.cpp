@@ -1,4 +1,4 @@
-#include "app/fidelity_table.hpp"
+#include "report/fidelity_table.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "io/text_lines.hpp"
 #include "stats/sample_statistics.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace {
 
@@ -175,4 +175,4 @@ io::Json fidelity_rows_json(const FidelityTable& table) {
   return rows;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -10,7 +10,7 @@
 #include "io/detected_beams.hpp"
 #include "plot/chart.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 /// How a dataset appears in the figures.
 struct FigureSide {
@@ -33,4 +33,4 @@ std::vector<plot::ChartSpec> range_charts(const FigureSide& real, const FigureSi
 std::vector<plot::ChartSpec> revolution_charts(const FigureSide& real, const FigureSide& sim,
                                                double max_range_m);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -11,7 +11,7 @@
 #include "io/detected_beams.hpp"
 #include "io/json.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 struct FidelityRow {
   std::string section;  ///< the group it is printed under, e.g. "Per beam"
@@ -42,4 +42,4 @@ std::string fidelity_markdown(const FidelityTable& table);
 /// undefined value is NaN (written as null) or null.
 io::Json fidelity_rows_json(const FidelityTable& table);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

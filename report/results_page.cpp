@@ -2,12 +2,12 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/methods.hpp"
-#include "app/report_markdown.hpp"
 #include "io/text_lines.hpp"
+#include "report/methods.hpp"
+#include "report/results_markdown.hpp"
 #include "stats/chi_square.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace fs = std::filesystem;
 
@@ -291,4 +291,4 @@ std::string results_markdown(const ResultsReport& report) {
   return md.str();
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -1,6 +1,7 @@
-// The Markdown of `msislab report`'s page (app/report_command.hpp): Table I, the figure lists,
-// a section per Monte Carlo directory (app/report_page.cpp), per sweep (app/report_sweep.cpp) and
-// for the real result's sensitivity (app/report_sensitivity.cpp), and the cell formats they share.
+// The Markdown of `msislab report`'s page (report/results_page.hpp): Table I, the figure lists,
+// a section per Monte Carlo directory (report/results_page.cpp), per sweep
+// (report/results_sweep.cpp) and for the real result's sensitivity
+// (report/results_sensitivity.cpp), and the cell formats they share.
 #pragma once
 
 #include <optional>
@@ -8,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "app/report_command.hpp"
+#include "report/results_page.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 /// A table cell: the value with `decimals` decimals, "n/a" when it is not finite or missing.
 std::string fixed(double value, int decimals);
@@ -29,4 +30,4 @@ void sweep_section(std::ostringstream& md, const SweepFolder& sweep);
 void sensitivity_section(std::ostringstream& md, const std::string& source,
                          const std::vector<io::SensitivityRow>& rows);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -1,4 +1,4 @@
-#include "app/plot_inputs.hpp"
+#include "report/plot_inputs.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,7 +9,7 @@
 #include "io/output_guard.hpp"
 #include "io/tum.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 namespace fs = std::filesystem;
 
@@ -86,9 +86,9 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
 }
 
 /// The revolution of the first dataset (--dataset first) that has a raw sonar log.
-std::optional<SonarRevolution> find_revolution(const Datasets& datasets, int revolution) {
+std::optional<io::SonarRevolution> find_revolution(const Datasets& datasets, int revolution) {
   for (const std::string& dir : datasets.in_order()) {
-    if (io::find_dataset_files(dir).is_log) return read_revolution(dir, revolution);
+    if (io::find_dataset_files(dir).is_log) return io::read_revolution(dir, revolution);
   }
   if (revolution >= 0) {
     throw io::InputError("--revolution " + std::to_string(revolution) +
@@ -155,4 +155,4 @@ PlotInputs load_plot_inputs(const PlotOptions& options) {
   return in;
 }
 
-}  // namespace msislab::app
+}  // namespace msislab::report

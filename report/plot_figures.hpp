@@ -5,11 +5,11 @@
 #include <string>
 #include <vector>
 
-#include "app/methods.hpp"
-#include "app/plot_inputs.hpp"
 #include "plot/chart.hpp"
+#include "report/methods.hpp"
+#include "report/plot_inputs.hpp"
 
-namespace msislab::app {
+namespace msislab::report {
 
 /// The colour scaled towards black by `factor` (ellipses stand apart from their trajectory, a
 /// method's further lines are darker shades).
@@ -40,4 +40,4 @@ plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& hist
 /// Run-averaged NEES against scan index per method, with the 95% bounds; log y axis.
 plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px);
 
-}  // namespace msislab::app
+}  // namespace msislab::report

@@ -101,7 +101,7 @@ std::string definitions(const FidelityReport& r) {
          "normal incidence, so the rows measure the beam's effective width and the echo's "
          "tail.\n"
          "- **Points per scan after segmentation**: the readings the project's front end takes "
-         "from the detections (`app::load_sonar_readings` on detections, default "
+         "from the detections (`io::load_sonar_readings` on detections, default "
          "`SegmentationConfig`: " +
          to_string(seg.method) + ", bins under " + io::format_number(seg.min_range_m) +
          " m ignored, " + readings_rule(seg) +

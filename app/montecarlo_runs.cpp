@@ -4,6 +4,7 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <filesystem>
@@ -22,6 +23,7 @@
 #include "io/text_lines.hpp"
 #include "sim/scene.hpp"
 #include "sim/simulator.hpp"
+#include "sim/thread_pool.hpp"
 
 namespace msislab::app {
 
@@ -104,7 +106,9 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     scenario.seed = seed;
     const sim::Scene scene(ctx.mesh, scenario.scene.surface);
     injected_fault(run, "simulate");
-    const sim::SimulationResult result = sim::simulate(scenario, scene, ctx.simulation_threads);
+    const sim::SimulationResult result =
+        ctx.sonar_echoes ? sim::simulate(scenario, scene, *ctx.sonar_echoes, ctx.simulation_threads)
+                         : sim::simulate(scenario, scene, ctx.simulation_threads);
     records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
     dataset_label = records->name;
     if (ctx.keep_datasets) {
@@ -180,6 +184,20 @@ void remove_leftovers(const std::string& dir, const std::vector<std::string>& me
   } else {
     fs::remove_all(fs::path(dir) / "scratch", ec);
   }
+}
+
+std::shared_ptr<const sim::SonarEchoes> trace_echoes_once(const RunContext& ctx, int threads) {
+  sim::ThreadPoolScope pool;  // the workers fork after this: no TBB thread may outlive it
+  std::shared_ptr<const sim::SonarEchoes> echoes;
+  try {
+    const sim::Scene scene(ctx.mesh, ctx.scenario.scene.surface);
+    echoes = std::make_shared<const sim::SonarEchoes>(
+        sim::trace_sonar(ctx.scenario, scene, std::max(threads, 1)));
+  } catch (const std::exception&) {
+    echoes = nullptr;
+  }
+  pool.finish();
+  return echoes;
 }
 
 std::vector<PendingRun> pending_runs(const RunContext& ctx, const std::vector<int>& runs) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "io/montecarlo_files.hpp"
 #include "sim/mesh.hpp"
 #include "sim/scenario.hpp"
+#include "sim/simulator.hpp"
 #include "slam/slam_config.hpp"
 
 namespace msislab::app {
@@ -26,6 +28,8 @@ struct RunContext {
   SlamConfig config;
   int simulation_threads = 1;
   bool keep_datasets = false;
+  /// The sonar's echoes, traced once for every run (null: each run traces its own).
+  std::shared_ptr<const sim::SonarEchoes> sonar_echoes;
 };
 
 /// A run with the methods it still lacks.
@@ -36,6 +40,11 @@ struct PendingRun {
 
 /// The runs of `runs` with a method that has not finished (no metrics.json), in order.
 std::vector<PendingRun> pending_runs(const RunContext& ctx, const std::vector<int>& runs);
+
+/// The scenario's sonar echoes, traced once on `threads` threads before the workers fork (they
+/// do not depend on the seed; the workers share them copy-on-write). Ends the thread pool it
+/// used. Null when tracing fails: each run then simulates whole and records its own failure.
+std::shared_ptr<const sim::SonarEchoes> trace_echoes_once(const RunContext& ctx, int threads);
 
 /// The shared parent folders (scratch/, runs/<method>/, datasets/), made by the caller, not by the
 /// workers at the same time.

@@ -10,9 +10,6 @@ namespace msislab::sim {
 
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
-/// At grazing incidence a footprint's area and extent grow without bound as 1 / cos; the beam
-/// bounds them in fact, so cos(incidence) is taken as at least this.
-constexpr double kMinFootprintCos = 0.02;
 
 Eigen::Vector3f direction(double azimuth_rad, double elevation_rad) {
   return Eigen::Vector3f(static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)),
@@ -29,14 +26,6 @@ Eigen::Vector3f direction_d_elevation(double azimuth_rad, double elevation_rad) 
   return Eigen::Vector3f(static_cast<float>(-std::sin(elevation_rad) * std::cos(azimuth_rad)),
                          static_cast<float>(-std::sin(elevation_rad) * std::sin(azimuth_rad)),
                          static_cast<float>(std::cos(elevation_rad)));
-}
-
-/// strength x cos^n(incidence), the backscatter law per unit area. Lambert's n = 2 multiplies by
-/// the cosine twice, in the order the law always had, so its bytes stay the same.
-double with_incidence_law(double strength, double cos_incidence, float exponent) {
-  if (exponent == 2.0f) return strength * cos_incidence * cos_incidence;
-  if (exponent == 1.0f) return strength * cos_incidence;
-  return strength * std::pow(cos_incidence, static_cast<double>(exponent));
 }
 
 /// Rotation about z by the beam axis azimuth (cos, sin).
@@ -179,20 +168,43 @@ struct MsisModel::Workspace {
   std::vector<Echo> echoes;   ///< of one bounce, in the order of the routes
   EchoProfile profile;
   ReceiverScratch receiver;
-  std::vector<double> echo_scratch;
 };
 
 RenderedBeam MsisModel::render(const BeamSlot& slot, const VehicleTrajectory& trajectory,
                                Rng& rng) const {
+  return receive(trace(slot, trajectory), rng);
+}
+
+BeamEchoes MsisModel::trace(const BeamSlot& slot, const VehicleTrajectory& trajectory) const {
   thread_local Workspace work;
   const Ping ping = ping_of(slot, trajectory);
-  RenderedBeam beam;
+  BeamEchoes beam;
   beam.slot = slot;
   work.profile.reset(sonar_.bins);
   beam.rays_cast = trace_routes(ping, work);
   work.profile.settle();
   beam.truth = truth_of(ping, work.profile, trajectory.at(slot.t_s).pose);
-  beam.intensity = receiver_.to_intensity(work.profile, rng, work.echo_scratch);
+  // The bins from the first to the last that received anything.
+  const std::size_t n = work.profile.direct.size();
+  std::size_t first = 0, end = n;
+  const auto power = [&](std::size_t k) {
+    return work.profile.direct[k] + work.profile.multipath[k];
+  };
+  while (first < n && power(first) == 0.0) ++first;
+  while (end > first && power(end - 1) == 0.0) --end;
+  beam.first_bin = static_cast<std::uint32_t>(first);
+  beam.power.reserve(end - first);
+  for (std::size_t k = first; k < end; ++k) beam.power.push_back(power(k));
+  return beam;
+}
+
+RenderedBeam MsisModel::receive(const BeamEchoes& echoes, Rng& rng) const {
+  thread_local std::vector<double> scratch;
+  RenderedBeam beam;
+  beam.slot = echoes.slot;
+  beam.rays_cast = echoes.rays_cast;
+  beam.truth = echoes.truth;
+  beam.intensity = receiver_.to_intensity(echoes.first_bin, echoes.power, rng, scratch);
   return beam;
 }
 
@@ -257,41 +269,12 @@ Echo MsisModel::echo_at(const Route& route, const RayHit& hit, int bounce) const
       footprint_extent(route.path_m, d, route.cell_azimuth, route.cell_elevation, hit.normal);
   echo.power =
       route.route_gain *
-      with_incidence_law(material.backscatter, cos_incidence, material.incidence_exponent) *
+      backscatter_per_area(material.backscatter, cos_incidence, material.incidence_exponent) *
       footprint_area(route.path_m, route.ray->cell_sr, cos_incidence);
   echo.log_gain = roughness_log_gain(hit_point);
   echo.multipath = bounce > 0;
   echo.material_id = hit.material_id;
   return echo;
-}
-
-double MsisModel::footprint_extent(double path_m, const Eigen::Vector3f& direction,
-                                   const Eigen::Vector3f& cell_azimuth,
-                                   const Eigen::Vector3f& cell_elevation,
-                                   const Eigen::Vector3f& normal) const {
-  if (!sonar_.footprint) return 0.0;
-  // A surface at distance t along d, normal n: t(d) = const / (d . n), so a change dd of the
-  // direction moves the hit by dt = -t (dd . n) / (d . n). Over the cell's two edges the ranges
-  // cover two boxes; their sum has the variance of a box of width sqrt(w_a^2 + w_e^2).
-  constexpr double kMaxExtent_m = 10.0;
-  const double cos_incidence =
-      std::max(std::abs(static_cast<double>(direction.dot(normal))), kMinFootprintCos);
-  const double w_azimuth = path_m * std::abs(cell_azimuth.dot(normal)) / cos_incidence;
-  const double w_elevation = path_m * std::abs(cell_elevation.dot(normal)) / cos_incidence;
-  // Both widths are bounded (path <= the sonar's range, cos >= kMinFootprintCos): no overflow.
-  return std::min(std::sqrt(w_azimuth * w_azimuth + w_elevation * w_elevation), kMaxExtent_m);
-}
-
-double MsisModel::footprint_area(double path_m, double cell_sr, double cos_incidence) const {
-  if (!sonar_.footprint) return 1.0;
-  return path_m * path_m * cell_sr / std::max(cos_incidence, kMinFootprintCos);
-}
-
-double MsisModel::roughness_log_gain(const Eigen::Vector3f& point_m) const {
-  if (sonar_.roughness_db <= 0.0) return 0.0;
-  // Log-normal with mean 1: 10^(sigma_dB g / 10) / E[.], g the unit field.
-  const double sigma_ln = sonar_.roughness_db * std::log(10.0) / 10.0;
-  return sigma_ln * roughness_field(point_m, sonar_.roughness_length_m) - 0.5 * sigma_ln * sigma_ln;
 }
 
 BeamTruth MsisModel::truth_of(const Ping& ping, const EchoProfile& echoes,

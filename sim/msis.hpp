@@ -43,12 +43,27 @@ struct RenderedBeam {
   BeamTruth truth;
 };
 
+/// What the sonar receives on one beam before speckle and noise: no random draw goes into it, so
+/// it is the same for every seed of a scenario.
+struct BeamEchoes {
+  BeamSlot slot;
+  BeamTruth truth;
+  std::uint32_t rays_cast = 0;  ///< primary and bounce rays traced for this beam
+  std::uint32_t first_bin = 0;  ///< power[k] is bin first_bin + k; the bins around it hold none
+  std::vector<double> power;    ///< direct and specular echo power per bin
+};
+
 class MsisModel {
  public:
   MsisModel(const Scene& scene, const SonarConfig& sonar, double vehicle_depth_m);
 
-  /// Renders one beam; rng supplies the speckle and noise of this beam only.
+  /// Renders one beam; rng supplies the speckle and noise of this beam only. The same as
+  /// receive(trace(slot, trajectory), rng).
   RenderedBeam render(const BeamSlot& slot, const VehicleTrajectory& trajectory, Rng& rng) const;
+  /// A beam's rays traced and their echoes gathered over the bins, with the beam's truth.
+  BeamEchoes trace(const BeamSlot& slot, const VehicleTrajectory& trajectory) const;
+  /// The beam as displayed: speckle, the pulse's spread, noise, gain, TVG and quantisation.
+  RenderedBeam receive(const BeamEchoes& echoes, Rng& rng) const;
 
   /// Number of rays cast per beam before bounces.
   std::size_t rays_per_beam() const { return rays_.size(); }

@@ -156,7 +156,8 @@ std::uint8_t MsisReceiver::quantise(double shown) const {
   return static_cast<std::uint8_t>(at);
 }
 
-std::vector<std::uint8_t> MsisReceiver::to_intensity(const EchoProfile& profile, Rng& rng,
+std::vector<std::uint8_t> MsisReceiver::to_intensity(std::uint32_t first_bin,
+                                                     const std::vector<double>& power, Rng& rng,
                                                      std::vector<double>& echo) const {
   static const ExponentialTable exponential;
   const double kMaxExponential = ExponentialTable::max();
@@ -164,9 +165,9 @@ std::vector<std::uint8_t> MsisReceiver::to_intensity(const EchoProfile& profile,
   // cell): Rayleigh amplitude = exponential power, averaged over L independent looks (the bin's
   // samples), Gamma(L, 1/L) with mean 1. The pulse and the receiver filter then smooth the
   // speckled echo, so its tail decays with the echo instead of flickering bin by bin.
-  echo.resize(static_cast<std::size_t>(sonar_.bins));
-  for (std::size_t k = 0; k < echo.size(); ++k) {
-    echo[k] = profile.direct[k] + profile.multipath[k];
+  echo.assign(static_cast<std::size_t>(sonar_.bins), 0.0);
+  std::copy(power.begin(), power.end(), echo.begin() + first_bin);
+  for (std::size_t k = first_bin; k < first_bin + power.size(); ++k) {
     if (!sonar_.speckle || echo[k] == 0.0) continue;
     double looks = 0.0;
     for (int l = 0; l < sonar_.speckle_looks; ++l) looks += exponential(rng);
@@ -180,10 +181,10 @@ std::vector<std::uint8_t> MsisReceiver::to_intensity(const EchoProfile& profile,
       continue;
     }
     // Background noise: exponential power after the receiver.
-    const double power = echo[k] + noise_power_ * exponential(rng);
+    const double received = echo[k] + noise_power_ * exponential(rng);
     // intensity = round(255 (10 log10(power x tvg) - min_db) / span_db), clamped to 0..255:
     // the number of quantisation boundaries the shown power reaches.
-    intensity[k] = quantise(power * tvg_linear_[k]);
+    intensity[k] = quantise(received * tvg_linear_[k]);
   }
   return intensity;
 }

@@ -36,10 +36,11 @@ class MsisReceiver {
   void add_echoes(const Ping& ping, const std::vector<Echo>& echoes, EchoProfile& profile,
                   ReceiverScratch& scratch) const;
 
-  /// The settled profile as displayed intensities; rng supplies this beam's speckle and noise.
-  /// `scratch` is working memory, reused across beams.
-  std::vector<std::uint8_t> to_intensity(const EchoProfile& profile, Rng& rng,
-                                         std::vector<double>& scratch) const;
+  /// A beam's echo power as displayed intensities: power[k] is bin first_bin + k, the other bins
+  /// received nothing. rng supplies this beam's speckle and noise; `scratch` is working memory,
+  /// reused across beams.
+  std::vector<std::uint8_t> to_intensity(std::uint32_t first_bin, const std::vector<double>& power,
+                                         Rng& rng, std::vector<double>& scratch) const;
 
   /// Gain + TVG of a bin as a power ratio.
   double tvg(std::size_t bin) const { return tvg_linear_[bin]; }

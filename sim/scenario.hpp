@@ -47,7 +47,7 @@ struct VehicleConfig {
 
 /// Shape of the transducer's one-way power pattern in each plane.
 enum class BeamPattern {
-  kGaussian,  ///< exp(-2 ln2 (2a/W)^2): no sidelobes
+  kGaussian,  ///< one-way exp(-(ln2 / 2) (2a/W)^2): no sidelobes
   kSinc,      ///< sinc^2 of a uniformly driven line aperture: nulls and -13 dB sidelobes
 };
 

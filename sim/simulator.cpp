@@ -4,6 +4,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "sim/random.hpp"
 
@@ -23,36 +24,77 @@ Calibration calibration_of(const Scenario& scenario) {
 }
 
 namespace {
-std::vector<RenderedBeam> render_beams(const Scenario& scenario, const Scene& scene,
-                                       const VehicleTrajectory& truth, int threads) {
-  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+
+/// The scenario's beams, up to the sonar's stop time.
+std::vector<BeamSlot> beam_slots(const Scenario& scenario, const VehicleTrajectory& truth) {
   const double stop_s = scenario.sonar.stop_s
                             ? std::min(truth.end_s(), truth.start_s() + *scenario.sonar.stop_s)
                             : truth.end_s();
-  const std::vector<BeamSlot> slots = beam_schedule(scenario.sonar, truth.start_s(), stop_s);
-  std::vector<RenderedBeam> beams(slots.size());
-  // TBB (Embree's own task scheduler) spreads the beams over `threads` threads; each beam owns
-  // its slot in the output and its random stream, so the bytes do not depend on which thread
-  // renders it.
-  tbb::task_arena arena(threads);
-  arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, slots.size(), [&](std::size_t i) {
-      Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
-      beams[i] = model.render(slots[i], truth, rng);
-    });
-  });
-  return beams;
+  return beam_schedule(scenario.sonar, truth.start_s(), stop_s);
 }
-}  // namespace
 
-SimulationResult simulate(const Scenario& scenario, const Scene& scene, int threads) {
-  VehicleTrajectory truth = follow_path(scenario.vehicle);
-  std::vector<RenderedBeam> beams = render_beams(scenario, scene, truth, std::max(threads, 1));
+/// f(i) for every beam i over `threads` threads. TBB (Embree's own task scheduler) spreads the
+/// beams; each beam owns its slot in the output and its random stream, so the bytes do not
+/// depend on which thread does it.
+template <typename PerBeam>
+void for_each_beam(std::size_t count, int threads, const PerBeam& f) {
+  tbb::task_arena arena(std::max(threads, 1));
+  arena.execute([&] { tbb::parallel_for(std::size_t{0}, count, f); });
+}
+
+SimulationResult with_navigation(const Scenario& scenario, const Scene& scene,
+                                 VehicleTrajectory truth, std::vector<RenderedBeam> beams) {
   std::vector<DvlSample> dvl =
       simulate_dvl(truth, scenario.dvl, scene, scenario.vehicle.depth_m, scenario.seed);
   std::vector<MruSample> mru = simulate_mru(truth, scenario.mru, scenario.seed);
   std::vector<GpsFix> gps = simulate_gps(truth, scenario.gps, scenario.seed);
   return {std::move(truth), std::move(beams), std::move(dvl), std::move(mru), std::move(gps)};
+}
+
+}  // namespace
+
+SimulationResult simulate(const Scenario& scenario, const Scene& scene, int threads) {
+  VehicleTrajectory truth = follow_path(scenario.vehicle);
+  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+  const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
+  std::vector<RenderedBeam> beams(slots.size());
+  for_each_beam(slots.size(), threads, [&](std::size_t i) {
+    Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+    beams[i] = model.render(slots[i], truth, rng);
+  });
+  return with_navigation(scenario, scene, std::move(truth), std::move(beams));
+}
+
+SonarEchoes trace_sonar(const Scenario& scenario, const Scene& scene, int threads) {
+  const VehicleTrajectory truth = follow_path(scenario.vehicle);
+  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+  const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
+  SonarEchoes echoes;
+  echoes.beams.resize(slots.size());
+  for_each_beam(slots.size(), threads,
+                [&](std::size_t i) { echoes.beams[i] = model.trace(slots[i], truth); });
+  return echoes;
+}
+
+SimulationResult simulate(const Scenario& scenario, const Scene& scene, const SonarEchoes& echoes,
+                          int threads) {
+  VehicleTrajectory truth = follow_path(scenario.vehicle);
+  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+  const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
+  const auto same_slot = [](const BeamSlot& a, const BeamEchoes& b) {
+    return a.index == b.slot.index && a.t_s == b.slot.t_s &&
+           a.transducer_angle_rad == b.slot.transducer_angle_rad;
+  };
+  if (!std::equal(slots.begin(), slots.end(), echoes.beams.begin(), echoes.beams.end(),
+                  same_slot)) {
+    throw std::invalid_argument("simulate: the traced echoes are not this scenario's beams");
+  }
+  std::vector<RenderedBeam> beams(slots.size());
+  for_each_beam(slots.size(), threads, [&](std::size_t i) {
+    Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+    beams[i] = model.receive(echoes.beams[i], rng);
+  });
+  return with_navigation(scenario, scene, std::move(truth), std::move(beams));
 }
 
 }  // namespace msislab::sim

@@ -16,6 +16,13 @@ constexpr double kLn2 = 0.69314718055994530942;
 constexpr double kSincHalfPower = 1.0019063576966067;
 }  // namespace
 
+// Lambert's n = 2 and n = 1 without pow.
+double backscatter_per_area(double strength, double cos_incidence, float exponent) {
+  if (exponent == 2.0f) return strength * cos_incidence * cos_incidence;
+  if (exponent == 1.0f) return strength * cos_incidence;
+  return strength * std::pow(cos_incidence, static_cast<double>(exponent));
+}
+
 double pattern_1d(double angle_rad, double width_rad, BeamPattern shape) {
   const double u = 2.0 * angle_rad / width_rad;
   if (shape == BeamPattern::kGaussian) return std::exp(-0.5 * kLn2 * u * u);

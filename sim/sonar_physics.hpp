@@ -10,6 +10,9 @@
 
 namespace msislab::sim {
 
+/// strength x cos^n(incidence): a surface's backscatter per unit area (n = 2: Lambert).
+double backscatter_per_area(double strength, double cos_incidence, float exponent);
+
 /// One-way power pattern in one plane: 1 on the axis, 1/sqrt(2) (so -3 dB two-way) at
 /// +-width/2. Gaussian exp(-ln2 u^2 / 2), or sinc^2(x) of a uniformly driven line aperture, with
 /// u = 2a / width and x scaled so that sinc^4 = 1/2 at u = 1.

@@ -41,6 +41,15 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
   for (const ScanPoint& r : reference) {
     reference_lambda_max = std::max(reference_lambda_max, largest_eigenvalue(r.cov));
   }
+  // The reference in order of x: a current point's candidates lie within its reach in x, a
+  // window found by bisection (padded by a rounding margin; the test of |d|^2 stays exact).
+  std::vector<std::size_t> by_x(reference.size());
+  for (std::size_t i = 0; i < by_x.size(); ++i) by_x[i] = i;
+  std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
+    return reference[a].p_m.x() < reference[b].p_m.x();
+  });
+  std::vector<double> x_sorted(by_x.size());
+  for (std::size_t k = 0; k < by_x.size(); ++k) x_sorted[k] = reference[by_x[k]].p_m.x();
   for (std::size_t j = 0; j < current.size(); ++j) {
     Matrix23d J_q;
     Eigen::Matrix2d J_p;
@@ -48,14 +57,21 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
     const Eigen::Matrix2d C =
         J_q * q.cov * J_q.transpose() + J_p * current[j].cov * J_p.transpose();
     const double reach2 = gate_chi2 * (largest_eigenvalue(C) + reference_lambda_max);
+    const double reach_x = std::sqrt(reach2) * (1.0 + 1e-12) + 1e-12;
+    const auto lo = std::lower_bound(x_sorted.begin(), x_sorted.end(), moved.x() - reach_x);
+    const auto hi = std::upper_bound(lo, x_sorted.end(), moved.x() + reach_x);
+    // The nearest in the gate; among equals the lowest index, as a pass in index order finds.
     double best = gate_chi2;
     std::size_t best_i = reference.size();
-    for (std::size_t i = 0; i < reference.size(); ++i) {
+    for (auto k = lo; k != hi; ++k) {
+      const std::size_t i = by_x[static_cast<std::size_t>(k - x_sorted.begin())];
       const Eigen::Vector2d d = moved - reference[i].p_m;
       if (d.squaredNorm() > reach2) continue;
       const Eigen::Matrix2d S = C + reference[i].cov;
       const double d2 = d.dot(S.inverse() * d);
-      if (d2 < best) best = d2, best_i = i;
+      if (d2 < best || (d2 == best && best_i < reference.size() && i < best_i)) {
+        best = d2, best_i = i;
+      }
       if (d2 < nearest_d2[i]) nearest_d2[i] = d2, nearest_current[i] = j;
     }
     if (best_i < reference.size()) pairs.push_back({j, best_i});

@@ -220,7 +220,6 @@ void Scene::intersect(const std::vector<Ray>& rays, std::vector<RayHit>& hits) c
   hits.resize(rays.size());
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   const auto surface_material_id = static_cast<std::uint32_t>(materials_.size() - 1);
   for (std::size_t first = 0; first < rays.size(); first += kPacketSize) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketSize, rays.size() - first));

@@ -37,7 +37,7 @@ class Scene {
 
   /// The first surface along a ray (rtcIntersect1).
   RayHit intersect(const Ray& ray) const;
-  /// Many rays at once (Embree packets of 16, traced as coherent); hits[i] answers rays[i].
+  /// Many rays at once (Embree packets of 16); hits[i] answers rays[i].
   void intersect(const std::vector<Ray>& rays, std::vector<RayHit>& hits) const;
 
   /// Mesh materials followed by the water surface's (the last entry).

@@ -113,8 +113,8 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
           ? 1
           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   make_run_folders(ctx);
-  // The sonar's echoes do not depend on the seed: traced once, on the jobs' cores, for all runs.
-  if (!todo.empty()) ctx.sonar_echoes = trace_echoes_once(ctx, jobs);
+  // The scenario's rays do not depend on the seed: traced once, on the jobs' cores, for all runs.
+  if (!todo.empty()) ctx.trace = trace_once(ctx, jobs);
 
   MonteCarloOutcome outcome;
   outcome.runs = runs.size();

@@ -104,11 +104,12 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     note_stage(ctx.dir, run, "simulate");
     sim::Scenario scenario = ctx.scenario;
     scenario.seed = seed;
-    const sim::Scene scene(ctx.mesh, scenario.scene.surface);
     injected_fault(run, "simulate");
-    const sim::SimulationResult result =
-        ctx.sonar_echoes ? sim::simulate(scenario, scene, *ctx.sonar_echoes, ctx.simulation_threads)
-                         : sim::simulate(scenario, scene, ctx.simulation_threads);
+    const sim::SimulationResult result = [&] {
+      if (ctx.trace) return sim::simulate(scenario, *ctx.trace, ctx.simulation_threads);
+      const sim::Scene scene(ctx.mesh, scenario.scene.surface);
+      return sim::simulate(scenario, scene, ctx.simulation_threads);
+    }();
     records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
     dataset_label = records->name;
     if (ctx.keep_datasets) {
@@ -186,18 +187,18 @@ void remove_leftovers(const std::string& dir, const std::vector<std::string>& me
   }
 }
 
-std::shared_ptr<const sim::SonarEchoes> trace_echoes_once(const RunContext& ctx, int threads) {
+std::shared_ptr<const sim::ScenarioTrace> trace_once(const RunContext& ctx, int threads) {
   sim::ThreadPoolScope pool;  // the workers fork after this: no TBB thread may outlive it
-  std::shared_ptr<const sim::SonarEchoes> echoes;
+  std::shared_ptr<const sim::ScenarioTrace> trace;
   try {
     const sim::Scene scene(ctx.mesh, ctx.scenario.scene.surface);
-    echoes = std::make_shared<const sim::SonarEchoes>(
-        sim::trace_sonar(ctx.scenario, scene, std::max(threads, 1)));
+    trace = std::make_shared<const sim::ScenarioTrace>(
+        sim::trace_scenario(ctx.scenario, scene, std::max(threads, 1)));
   } catch (const std::exception&) {
-    echoes = nullptr;
+    trace = nullptr;
   }
   pool.finish();
-  return echoes;
+  return trace;
 }
 
 std::vector<PendingRun> pending_runs(const RunContext& ctx, const std::vector<int>& runs) {

@@ -28,8 +28,8 @@ struct RunContext {
   SlamConfig config;
   int simulation_threads = 1;
   bool keep_datasets = false;
-  /// The sonar's echoes, traced once for every run (null: each run traces its own).
-  std::shared_ptr<const sim::SonarEchoes> sonar_echoes;
+  /// The scenario's rays, traced once for every run (null: each run traces its own).
+  std::shared_ptr<const sim::ScenarioTrace> trace;
 };
 
 /// A run with the methods it still lacks.
@@ -41,10 +41,11 @@ struct PendingRun {
 /// The runs of `runs` with a method that has not finished (no metrics.json), in order.
 std::vector<PendingRun> pending_runs(const RunContext& ctx, const std::vector<int>& runs);
 
-/// The scenario's sonar echoes, traced once on `threads` threads before the workers fork (they
-/// do not depend on the seed; the workers share them copy-on-write). Ends the thread pool it
-/// used. Null when tracing fails: each run then simulates whole and records its own failure.
-std::shared_ptr<const sim::SonarEchoes> trace_echoes_once(const RunContext& ctx, int threads);
+/// The scenario's rays (the sonar's echoes, the DVL's altitudes), traced once on `threads` threads
+/// before the workers fork (they do not depend on the seed; the workers share them copy-on-write
+/// and build no scene). Ends the thread pool it used. Null when tracing fails: each run then
+/// simulates whole and records its own failure.
+std::shared_ptr<const sim::ScenarioTrace> trace_once(const RunContext& ctx, int threads);
 
 /// The shared parent folders (scratch/, runs/<method>/, datasets/), made by the caller, not by the
 /// workers at the same time.

@@ -199,12 +199,20 @@ BeamEchoes MsisModel::trace(const BeamSlot& slot, const VehicleTrajectory& traje
 }
 
 RenderedBeam MsisModel::receive(const BeamEchoes& echoes, Rng& rng) const {
+  return receive_beam(receiver_, echoes, rng);
+}
+
+MsisReceiver MsisModel::receiver_of(const SonarConfig& sonar) {
+  return MsisReceiver(sonar, pattern_norm_of(aperture_rays(sonar), sonar));
+}
+
+RenderedBeam receive_beam(const MsisReceiver& receiver, const BeamEchoes& echoes, Rng& rng) {
   thread_local std::vector<double> scratch;
   RenderedBeam beam;
   beam.slot = echoes.slot;
   beam.rays_cast = echoes.rays_cast;
   beam.truth = echoes.truth;
-  beam.intensity = receiver_.to_intensity(echoes.first_bin, echoes.power, rng, scratch);
+  beam.intensity = receiver.to_intensity(echoes.first_bin, echoes.power, rng, scratch);
   return beam;
 }
 

@@ -65,6 +65,9 @@ class MsisModel {
   /// The beam as displayed: speckle, the pulse's spread, noise, gain, TVG and quantisation.
   RenderedBeam receive(const BeamEchoes& echoes, Rng& rng) const;
 
+  /// The receiver of this sonar (what receive() uses), without a scene.
+  static MsisReceiver receiver_of(const SonarConfig& sonar);
+
   /// Number of rays cast per beam before bounces.
   std::size_t rays_per_beam() const { return rays_.size(); }
 
@@ -120,6 +123,9 @@ class MsisModel {
   double pattern_norm_ = 1.0;  ///< divides every one-way pattern value
   MsisReceiver receiver_;
 };
+
+/// A traced beam as displayed through `receiver` (MsisModel::receive without the model).
+RenderedBeam receive_beam(const MsisReceiver& receiver, const BeamEchoes& echoes, Rng& rng);
 
 /// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption
 /// 2 alpha r dB (Urick). Falls strictly with range.

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
+#include <string>
 
 #include "geometry/calibration.hpp"
 #include "sim/random.hpp"
@@ -33,8 +35,27 @@ double altitude_below(const Scene& scene, const Pose2& pose, double depth_m, dou
 }
 }  // namespace
 
+std::vector<double> dvl_altitudes(const VehicleTrajectory& truth, const DvlConfig& dvl,
+                                  const Scene& scene, double depth_m) {
+  std::vector<double> altitudes_m;
+  for (const double t_s : sample_times(truth, dvl.rate_hz)) {
+    altitudes_m.push_back(altitude_below(scene, truth.at(t_s).pose, depth_m, dvl.max_altitude_m));
+  }
+  return altitudes_m;
+}
+
 std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
                                     const Scene& scene, double depth_m, std::uint64_t seed) {
+  return simulate_dvl(truth, dvl, dvl_altitudes(truth, dvl, scene, depth_m), seed);
+}
+
+std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
+                                    const std::vector<double>& altitudes_m, std::uint64_t seed) {
+  const std::vector<double> times = sample_times(truth, dvl.rate_hz);
+  if (altitudes_m.size() != times.size()) {
+    throw std::invalid_argument("simulate_dvl: " + std::to_string(altitudes_m.size()) +
+                                " altitudes for " + std::to_string(times.size()) + " samples");
+  }
   Rng rng = make_rng(seed, RandomStream::kDvl, 0);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
@@ -51,11 +72,12 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
           : 0.0;
   bool degraded = u01(rng) < dvl.degraded_fraction;
   std::vector<DvlSample> samples;
-  for (const double t_s : sample_times(truth, dvl.rate_hz)) {
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    const double t_s = times[i];
     const VehicleState s = truth.at(t_s);
     DvlSample sample;
     sample.t_s = t_s;
-    sample.altitude_m = altitude_below(scene, s.pose, depth_m, dvl.max_altitude_m);
+    sample.altitude_m = altitudes_m[i];
     // Velocity of the DVL's mount point: v + r x p, in the vehicle frame, then the DVL frame.
     const Eigen::Vector2d v_vehicle(s.surge_mps - s.yaw_rate_radps * dvl.mount.y_m,
                                     s.sway_mps + s.yaw_rate_radps * dvl.mount.x_m);

@@ -33,6 +33,13 @@ struct GpsFix {
 
 std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
                                     const Scene& scene, double depth_m, std::uint64_t seed);
+/// The DVL's altitude above the bottom at each of its sample times (0: no bottom within its
+/// range): the scene's part of the DVL, with no random draw in it.
+std::vector<double> dvl_altitudes(const VehicleTrajectory& truth, const DvlConfig& dvl,
+                                  const Scene& scene, double depth_m);
+/// simulate_dvl with the altitudes of dvl_altitudes() given: the same samples.
+std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlConfig& dvl,
+                                    const std::vector<double>& altitudes_m, std::uint64_t seed);
 std::vector<MruSample> simulate_mru(const VehicleTrajectory& truth, const MruConfig& mru,
                                     std::uint64_t seed);
 /// The towed buoy's step: it stays put while within tether_m of the vehicle, else it is dragged

@@ -42,10 +42,10 @@ void for_each_beam(std::size_t count, int threads, const PerBeam& f) {
   arena.execute([&] { tbb::parallel_for(std::size_t{0}, count, f); });
 }
 
-SimulationResult with_navigation(const Scenario& scenario, const Scene& scene,
-                                 VehicleTrajectory truth, std::vector<RenderedBeam> beams) {
-  std::vector<DvlSample> dvl =
-      simulate_dvl(truth, scenario.dvl, scene, scenario.vehicle.depth_m, scenario.seed);
+SimulationResult with_navigation(const Scenario& scenario,
+                                 const std::vector<double>& dvl_altitude_m, VehicleTrajectory truth,
+                                 std::vector<RenderedBeam> beams) {
+  std::vector<DvlSample> dvl = simulate_dvl(truth, scenario.dvl, dvl_altitude_m, scenario.seed);
   std::vector<MruSample> mru = simulate_mru(truth, scenario.mru, scenario.seed);
   std::vector<GpsFix> gps = simulate_gps(truth, scenario.gps, scenario.seed);
   return {std::move(truth), std::move(beams), std::move(dvl), std::move(mru), std::move(gps)};
@@ -62,39 +62,40 @@ SimulationResult simulate(const Scenario& scenario, const Scene& scene, int thre
     Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
     beams[i] = model.render(slots[i], truth, rng);
   });
-  return with_navigation(scenario, scene, std::move(truth), std::move(beams));
+  const std::vector<double> altitudes_m =
+      dvl_altitudes(truth, scenario.dvl, scene, scenario.vehicle.depth_m);
+  return with_navigation(scenario, altitudes_m, std::move(truth), std::move(beams));
 }
 
-SonarEchoes trace_sonar(const Scenario& scenario, const Scene& scene, int threads) {
+ScenarioTrace trace_scenario(const Scenario& scenario, const Scene& scene, int threads) {
   const VehicleTrajectory truth = follow_path(scenario.vehicle);
   const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
   const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
-  SonarEchoes echoes;
-  echoes.beams.resize(slots.size());
+  ScenarioTrace trace;
+  trace.beams.resize(slots.size());
   for_each_beam(slots.size(), threads,
-                [&](std::size_t i) { echoes.beams[i] = model.trace(slots[i], truth); });
-  return echoes;
+                [&](std::size_t i) { trace.beams[i] = model.trace(slots[i], truth); });
+  trace.dvl_altitude_m = dvl_altitudes(truth, scenario.dvl, scene, scenario.vehicle.depth_m);
+  return trace;
 }
 
-SimulationResult simulate(const Scenario& scenario, const Scene& scene, const SonarEchoes& echoes,
-                          int threads) {
+SimulationResult simulate(const Scenario& scenario, const ScenarioTrace& trace, int threads) {
   VehicleTrajectory truth = follow_path(scenario.vehicle);
-  const MsisModel model(scene, scenario.sonar, scenario.vehicle.depth_m);
+  const MsisReceiver receiver = MsisModel::receiver_of(scenario.sonar);
   const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
   const auto same_slot = [](const BeamSlot& a, const BeamEchoes& b) {
     return a.index == b.slot.index && a.t_s == b.slot.t_s &&
            a.transducer_angle_rad == b.slot.transducer_angle_rad;
   };
-  if (!std::equal(slots.begin(), slots.end(), echoes.beams.begin(), echoes.beams.end(),
-                  same_slot)) {
+  if (!std::equal(slots.begin(), slots.end(), trace.beams.begin(), trace.beams.end(), same_slot)) {
     throw std::invalid_argument("simulate: the traced echoes are not this scenario's beams");
   }
   std::vector<RenderedBeam> beams(slots.size());
   for_each_beam(slots.size(), threads, [&](std::size_t i) {
     Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
-    beams[i] = model.receive(echoes.beams[i], rng);
+    beams[i] = receive_beam(receiver, trace.beams[i], rng);
   });
-  return with_navigation(scenario, scene, std::move(truth), std::move(beams));
+  return with_navigation(scenario, trace.dvl_altitude_m, std::move(truth), std::move(beams));
 }
 
 }  // namespace msislab::sim

@@ -23,18 +23,19 @@ struct SimulationResult {
 /// Runs a scenario on a scene with `threads` worker threads (>= 1).
 SimulationResult simulate(const Scenario& scenario, const Scene& scene, int threads);
 
-/// The sonar's echoes on every beam of a scenario, before speckle and noise. The vehicle follows
-/// its path without a random draw, so they are the same for every seed: the runs of a Monte Carlo
-/// test trace them once and share them.
-struct SonarEchoes {
+/// What a scenario's rays give, traced once: the sonar's echoes on every beam before speckle and
+/// noise, and the DVL's altitude at each sample. The vehicle follows its path without a random
+/// draw, so both are the same for every seed: the runs of a Monte Carlo test trace them once and
+/// share them.
+struct ScenarioTrace {
   std::vector<BeamEchoes> beams;
+  std::vector<double> dvl_altitude_m;
 };
-SonarEchoes trace_sonar(const Scenario& scenario, const Scene& scene, int threads);
+ScenarioTrace trace_scenario(const Scenario& scenario, const Scene& scene, int threads);
 
-/// simulate(), with the sonar's beams received from `echoes` instead of traced again: the same
-/// bytes, when `echoes` is trace_sonar() of this scenario or of one that differs from it only in
-/// its seed. std::invalid_argument when their beams are not this scenario's.
-SimulationResult simulate(const Scenario& scenario, const Scene& scene, const SonarEchoes& echoes,
-                          int threads);
+/// simulate() from a trace instead of the scene: the same bytes, when `trace` is
+/// trace_scenario() of this scenario or of one that differs from it only in its seed.
+/// std::invalid_argument when its beams or DVL samples are not this scenario's.
+SimulationResult simulate(const Scenario& scenario, const ScenarioTrace& trace, int threads);
 
 }  // namespace msislab::sim

@@ -25,6 +25,19 @@ double largest_eigenvalue(const Eigen::Matrix2d& m) {
   return half_trace + std::sqrt(half_diff * half_diff + m(0, 1) * m(1, 0));
 }
 
+/// d^T (C + R)^-1 d, written out as Eigen computes d.dot((C + R).inverse() * d) for a 2 x 2 (the
+/// cofactors over the determinant, then the products in the same order): the same bits, without
+/// the temporaries.
+double mahalanobis2(const Eigen::Vector2d& d, const Eigen::Matrix2d& C, const Eigen::Matrix2d& R) {
+  const double s00 = C(0, 0) + R(0, 0), s01 = C(0, 1) + R(0, 1);
+  const double s10 = C(1, 0) + R(1, 0), s11 = C(1, 1) + R(1, 1);
+  const double inverse_determinant = 1.0 / (s00 * s11 - s10 * s01);
+  const double i00 = s11 * inverse_determinant, i01 = -s01 * inverse_determinant;
+  const double i10 = -s10 * inverse_determinant, i11 = s00 * inverse_determinant;
+  const double r0 = i00 * d(0) + i01 * d(1), r1 = i10 * d(0) + i11 * d(1);
+  return d(0) * r0 + d(1) * r1;
+}
+
 /// E-step: each current point moved by the guess (covariance including the guess's) to its
 /// nearest reference point in Mahalanobis distance, when within the gate; when `reciprocal`, only
 /// the pairs whose current point is also the one nearest to their reference point.
@@ -67,8 +80,7 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
       const std::size_t i = by_x[static_cast<std::size_t>(k - x_sorted.begin())];
       const Eigen::Vector2d d = moved - reference[i].p_m;
       if (d.squaredNorm() > reach2) continue;
-      const Eigen::Matrix2d S = C + reference[i].cov;
-      const double d2 = d.dot(S.inverse() * d);
+      const double d2 = mahalanobis2(d, C, reference[i].cov);
       if (d2 < best || (d2 == best && best_i < reference.size() && i < best_i)) {
         best = d2, best_i = i;
       }

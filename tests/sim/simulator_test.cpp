@@ -1,6 +1,6 @@
-// The whole simulation: the sonar's echoes traced once and shared by runs of other seeds give the
-// bytes each run would have traced for itself, for any thread count, and are refused for another
-// scenario's beams.
+// The whole simulation: the scenario's rays (the sonar's echoes, the DVL's altitudes) traced once
+// and shared by runs of other seeds give the bytes each run would have traced for itself, for any
+// thread count, and are refused for another scenario's beams or DVL samples.
 #include "sim/simulator.hpp"
 
 #include <gtest/gtest.h>
@@ -47,23 +47,26 @@ void expect_same_beams(const SimulationResult& a, const SimulationResult& b) {
   ASSERT_EQ(a.dvl.size(), b.dvl.size());
   for (std::size_t i = 0; i < a.dvl.size(); ++i) {
     EXPECT_EQ(a.dvl[i].t_s, b.dvl[i].t_s);
+    EXPECT_EQ(a.dvl[i].altitude_m, b.dvl[i].altitude_m);
+    EXPECT_EQ(a.dvl[i].bottom_lock, b.dvl[i].bottom_lock);
+    EXPECT_EQ(a.dvl[i].v_dvl_mps, b.dvl[i].v_dvl_mps);
   }
 }
 
 TEST(Simulator, SharedEchoesGiveEachSeedTheBeamsItWouldHaveTraced) {
   const TriangleMesh mesh = basin_mesh();
   const Scene scene(mesh, Material{"surface", 0.001f, 0.9f});
-  const SonarEchoes echoes = trace_sonar(basin_scenario(1), scene, 2);
-  ASSERT_GT(echoes.beams.size(), 200u);
+  const ScenarioTrace trace = trace_scenario(basin_scenario(1), scene, 2);
+  ASSERT_GT(trace.beams.size(), 200u);
   for (const std::uint64_t seed : {1u, 2u}) {
     const Scenario scenario = basin_scenario(seed);
     const SimulationResult traced = simulate(scenario, scene, 1);
-    expect_same_beams(traced, simulate(scenario, scene, echoes, 1));
-    expect_same_beams(traced, simulate(scenario, scene, echoes, 2));
+    expect_same_beams(traced, simulate(scenario, trace, 1));
+    expect_same_beams(traced, simulate(scenario, trace, 2));
   }
   // And the seeds differ where they should: speckle and noise.
-  const SimulationResult one = simulate(basin_scenario(1), scene, echoes, 1);
-  const SimulationResult two = simulate(basin_scenario(2), scene, echoes, 1);
+  const SimulationResult one = simulate(basin_scenario(1), trace, 1);
+  const SimulationResult two = simulate(basin_scenario(2), trace, 1);
   int differing = 0;
   for (std::size_t i = 0; i < one.beams.size(); ++i) {
     differing += one.beams[i].intensity != two.beams[i].intensity ? 1 : 0;
@@ -74,13 +77,16 @@ TEST(Simulator, SharedEchoesGiveEachSeedTheBeamsItWouldHaveTraced) {
 TEST(Simulator, EchoesOfAnotherScenarioAreRefused) {
   const TriangleMesh mesh = basin_mesh();
   const Scene scene(mesh, Material{"surface", 0.001f, 0.9f});
-  const SonarEchoes echoes = trace_sonar(basin_scenario(1), scene, 1);
+  const ScenarioTrace trace = trace_scenario(basin_scenario(1), scene, 1);
   Scenario shorter = basin_scenario(1);
   shorter.sonar.stop_s = 10.0;
-  EXPECT_THROW(simulate(shorter, scene, echoes, 1), std::invalid_argument);
+  EXPECT_THROW(simulate(shorter, trace, 1), std::invalid_argument);
   Scenario slower = basin_scenario(1);
   slower.sonar.revolution_s = 14.0;
-  EXPECT_THROW(simulate(slower, scene, echoes, 1), std::invalid_argument);
+  EXPECT_THROW(simulate(slower, trace, 1), std::invalid_argument);
+  Scenario dvl_faster = basin_scenario(1);
+  dvl_faster.dvl.rate_hz *= 2.0;
+  EXPECT_THROW(simulate(dvl_faster, trace, 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -37,7 +37,12 @@ bool iterated_ekf_update(std::vector<Pose2>::iterator x, std::size_t count,
     for (std::size_t j = 0; j < count; ++j) {
       dx.segment<3>(static_cast<Eigen::Index>(3 * j)) = pose_difference(prior[j], x[j]);
     }
-    PHt.noalias() = P * H.transpose();
+    // H is zero outside the columns of the poses h depends on: P H^T over those columns only.
+    Eigen::Index first_col = 0, end_col = H.cols();
+    while (first_col < end_col && H.col(first_col).isZero(0.0)) ++first_col;
+    while (end_col > first_col && H.col(end_col - 1).isZero(0.0)) --end_col;
+    PHt.noalias() = P.middleCols(first_col, end_col - first_col) *
+                    H.middleCols(first_col, end_col - first_col).transpose();
     const Eigen::MatrixXd S = H * PHt + R;
     const Eigen::VectorXd innovation = z_minus_h - H * dx;
     if (iteration == 0 && !at_first(x_prior, z_minus_h, innovation, S)) return false;

@@ -55,9 +55,12 @@ std::vector<Association> associate(const std::vector<ScanPoint>& reference,
     reference_lambda_max = std::max(reference_lambda_max, largest_eigenvalue(r.cov));
   }
   // The reference in order of x: a current point's candidates lie within its reach in x, a
-  // window found by bisection (padded by a rounding margin; the test of |d|^2 stays exact).
-  std::vector<std::size_t> by_x(reference.size());
-  for (std::size_t i = 0; i < by_x.size(); ++i) by_x[i] = i;
+  // window found by bisection (padded by a rounding margin; the test of |d|^2 stays exact). A
+  // point whose x is not finite never passes that test: it is left out.
+  std::vector<std::size_t> by_x;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    if (std::isfinite(reference[i].p_m.x())) by_x.push_back(i);
+  }
   std::sort(by_x.begin(), by_x.end(), [&](std::size_t a, std::size_t b) {
     return reference[a].p_m.x() < reference[b].p_m.x();
   });

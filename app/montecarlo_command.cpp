@@ -113,8 +113,9 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
           ? 1
           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   make_run_folders(ctx);
-  // The scenario's rays do not depend on the seed: traced once, on the jobs' cores, for all runs.
-  if (!todo.empty()) ctx.trace = trace_once(ctx, jobs);
+  // The scenario's rays do not depend on the seed: traced once for all runs, before any worker,
+  // on as many threads as the runs would use between them.
+  if (!todo.empty()) ctx.trace = trace_once(ctx, std::max(jobs, ctx.simulation_threads));
 
   MonteCarloOutcome outcome;
   outcome.runs = runs.size();

@@ -46,6 +46,16 @@ const Fixture& fixture() {
 
 double g_bare_rays_per_s = 0.0;
 
+/// The renderer's primary rays of every benchmarked beam, in order.
+std::vector<sim::Ray> renderer_primary_rays(const Fixture& f) {
+  std::vector<sim::Ray> rays;
+  for (const auto& slot : f.slots) {
+    const auto beam_rays = f.model.primary_rays(slot, f.truth);
+    rays.insert(rays.end(), beam_rays.begin(), beam_rays.end());
+  }
+  return rays;
+}
+
 /// An Embree scene of the mesh plus the same water-surface quad sim::Scene adds.
 RTCScene bare_scene(RTCDevice device, const sim::TriangleMesh& mesh) {
   Eigen::AlignedBox3f box;
@@ -83,11 +93,7 @@ RTCScene bare_scene(RTCDevice device, const sim::TriangleMesh& mesh) {
 
 void BM_BareEmbreeOnTheRenderersRays(benchmark::State& state) {
   const Fixture& f = fixture();
-  std::vector<sim::Ray> rays;
-  for (const auto& slot : f.slots) {
-    const auto beam_rays = f.model.primary_rays(slot, f.truth);
-    rays.insert(rays.end(), beam_rays.begin(), beam_rays.end());
-  }
+  const std::vector<sim::Ray> rays = renderer_primary_rays(f);
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = bare_scene(device, f.mesh);
   RTCIntersectContext context;
@@ -126,11 +132,7 @@ template <int N, typename RayHitN>
 void packet_loop(benchmark::State& state,
                  void (*intersect)(const int*, RTCScene, RTCIntersectContext*, RayHitN*)) {
   const Fixture& f = fixture();
-  std::vector<sim::Ray> rays;
-  for (const auto& slot : f.slots) {
-    const auto beam_rays = f.model.primary_rays(slot, f.truth);
-    rays.insert(rays.end(), beam_rays.begin(), beam_rays.end());
-  }
+  const std::vector<sim::Ray> rays = renderer_primary_rays(f);
   RTCDevice device = rtcNewDevice(nullptr);
   RTCScene scene = bare_scene(device, f.mesh);
   RTCIntersectContext context;

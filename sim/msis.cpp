@@ -39,13 +39,6 @@ Eigen::Vector3f mirror(const Eigen::Vector3f& v, const Eigen::Vector3f& normal) 
 
 }  // namespace
 
-double two_way_loss(double range_m, double absorption_db_per_m) {
-  // 10^(-(40 log10 r + 2 alpha r) / 10) = r^-4 exp(-0.2 ln(10) alpha r), without log10 or pow.
-  const double r = std::max(range_m, 1.0);
-  const double r2 = r * r;
-  return std::exp(-0.2 * std::log(10.0) * absorption_db_per_m * range_m) / (r2 * r2);
-}
-
 std::vector<BeamSlot> beam_schedule(const SonarConfig& sonar, double t_begin_s, double t_end_s) {
   const double period_s = sonar.revolution_s / sonar.steps_per_revolution;
   const double step_rad = 2.0 * M_PI / sonar.steps_per_revolution;

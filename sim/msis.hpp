@@ -127,8 +127,4 @@ class MsisModel {
 /// A traced beam as displayed through `receiver` (MsisModel::receive without the model).
 RenderedBeam receive_beam(const MsisReceiver& receiver, const BeamEchoes& echoes, Rng& rng);
 
-/// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption
-/// 2 alpha r dB (Urick). Falls strictly with range.
-double two_way_loss(double range_m, double absorption_db_per_m);
-
 }  // namespace msislab::sim

@@ -17,7 +17,7 @@ MsisReceiver::MsisReceiver(const SonarConfig& sonar, double pattern_norm)
     : sonar_(sonar),
       pattern_norm_(pattern_norm),
       gaussian_pattern_(sonar.beam_pattern == BeamPattern::kGaussian),
-      absorption_per_m_(0.2 * std::log(10.0) * sonar.absorption_db_per_m),
+      absorption_per_m_(two_way_absorption_per_m(sonar.absorption_db_per_m)),
       noise_power_(std::pow(10.0, sonar.noise_level_db / 10.0)) {
   // pattern_1d's Gaussian exp(-ln2 u^2 / 2) with u = 2 angle / width.
   const double h_width = sonar.horizontal_beamwidth_deg * kDegToRad;
@@ -58,14 +58,9 @@ void MsisReceiver::receive_geometry(const Ping& ping, const Echo& echo, Receiver
   scratch.forward_m[i] = rx_axis.x() * to_hit.x() + rx_axis.y() * to_hit.y();
   scratch.left_m[i] = rx_axis.x() * to_hit.y() - rx_axis.y() * to_hit.x();
   scratch.sin_elevation[i] = std::clamp(to_hit.z() / rx_leg_m, -1.0, 1.0);
-  // power x receive pattern x two-way loss (sim/msis.hpp two_way_loss), with the roughness, the
-  // absorption and a Gaussian pattern under one exp.
+  // power x receive pattern x two-way loss (two_way_loss, sim/sonar_physics), with the roughness,
+  // the absorption and a Gaussian pattern under one exp.
   scratch.exponent[i] = echo.log_gain - absorption_per_m_ * echo.path_m;
-}
-
-void MsisReceiver::add_echo(const Ping& ping, const Echo& echo, EchoProfile& profile) const {
-  thread_local ReceiverScratch scratch;
-  add_echoes(ping, {echo}, profile, scratch);
 }
 
 void MsisReceiver::add_echoes(const Ping& ping, const std::vector<Echo>& echoes,
@@ -98,9 +93,8 @@ void MsisReceiver::add_echoes(const Ping& ping, const std::vector<Echo>& echoes,
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    const double r_m = std::max(echoes[i].path_m, 1.0);
     const double received =
-        echoes[i].power / pattern_norm_ * scratch.received[i] / (r_m * r_m * r_m * r_m);
+        echoes[i].power / pattern_norm_ * scratch.received[i] / two_way_spreading(echoes[i].path_m);
     lay_over_bins(echoes[i], scratch.range_m[i], received, profile);
   }
 }

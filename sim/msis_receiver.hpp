@@ -27,12 +27,9 @@ class MsisReceiver {
   /// `pattern_norm` divides every one-way pattern value (the transmitter's normalisation).
   MsisReceiver(const SonarConfig& sonar, double pattern_norm);
 
-  /// Adds an echo, spread uniformly over its range -+ extent / 2, to the profile: received at
-  /// t + 2 path / c by the head where it is then, through the receive pattern and the two-way
-  /// loss.
-  void add_echo(const Ping& ping, const Echo& echo, EchoProfile& profile) const;
-  /// add_echo for many echoes, in order: the same sums, their angles and exps computed in
-  /// blocks (SLEEF's vector functions).
+  /// Adds each echo, spread uniformly over its range -+ extent / 2, to the profile, in order:
+  /// received at t + 2 path / c by the head where it is then, through the receive pattern and
+  /// the two-way loss; the angles and exps computed in blocks (SLEEF's vector functions).
   void add_echoes(const Ping& ping, const std::vector<Echo>& echoes, EchoProfile& profile,
                   ReceiverScratch& scratch) const;
 

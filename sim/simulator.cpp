@@ -33,6 +33,11 @@ std::vector<BeamSlot> beam_slots(const Scenario& scenario, const VehicleTrajecto
   return beam_schedule(scenario.sonar, truth.start_s(), stop_s);
 }
 
+/// The random stream of a beam's speckle and noise.
+Rng beam_rng(const Scenario& scenario, const BeamSlot& slot) {
+  return make_rng(scenario.seed, RandomStream::kSonarBeam, slot.index);
+}
+
 /// f(i) for every beam i over `threads` threads. TBB (Embree's own task scheduler) spreads the
 /// beams; each beam owns its slot in the output and its random stream, so the bytes do not
 /// depend on which thread does it.
@@ -59,7 +64,7 @@ SimulationResult simulate(const Scenario& scenario, const Scene& scene, int thre
   const std::vector<BeamSlot> slots = beam_slots(scenario, truth);
   std::vector<RenderedBeam> beams(slots.size());
   for_each_beam(slots.size(), threads, [&](std::size_t i) {
-    Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+    Rng rng = beam_rng(scenario, slots[i]);
     beams[i] = model.render(slots[i], truth, rng);
   });
   const std::vector<double> altitudes_m =
@@ -92,7 +97,7 @@ SimulationResult simulate(const Scenario& scenario, const ScenarioTrace& trace, 
   }
   std::vector<RenderedBeam> beams(slots.size());
   for_each_beam(slots.size(), threads, [&](std::size_t i) {
-    Rng rng = make_rng(scenario.seed, RandomStream::kSonarBeam, slots[i].index);
+    Rng rng = beam_rng(scenario, slots[i]);
     beams[i] = receive_beam(receiver, trace.beams[i], rng);
   });
   return with_navigation(scenario, trace.dvl_altitude_m, std::move(truth), std::move(beams));

@@ -16,6 +16,20 @@ constexpr double kLn2 = 0.69314718055994530942;
 constexpr double kSincHalfPower = 1.0019063576966067;
 }  // namespace
 
+double two_way_loss(double range_m, double absorption_db_per_m) {
+  return std::exp(-two_way_absorption_per_m(absorption_db_per_m) * range_m) /
+         two_way_spreading(range_m);
+}
+
+double two_way_absorption_per_m(double absorption_db_per_m) {
+  return 0.2 * std::log(10.0) * absorption_db_per_m;
+}
+
+double two_way_spreading(double range_m) {
+  const double r = std::max(range_m, 1.0);
+  return r * r * r * r;
+}
+
 // Lambert's n = 2 and n = 1 without pow.
 double backscatter_per_area(double strength, double cos_incidence, float exponent) {
   if (exponent == 2.0f) return strength * cos_incidence * cos_incidence;

@@ -10,6 +10,15 @@
 
 namespace msislab::sim {
 
+/// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption
+/// 2 alpha r dB (Urick), exp(-two_way_absorption_per_m(alpha) r) / two_way_spreading(r). Falls
+/// strictly with range. The receiver applies the same two factors.
+double two_way_loss(double range_m, double absorption_db_per_m);
+/// 10^(-2 alpha r / 10) = exp(-this x r): the absorption of both ways as a rate, 1/m.
+double two_way_absorption_per_m(double absorption_db_per_m);
+/// The spreading of both ways as the divisor r^4, r at least 1 m.
+double two_way_spreading(double range_m);
+
 /// strength x cos^n(incidence): a surface's backscatter per unit area (n = 2: Lambert).
 double backscatter_per_area(double strength, double cos_incidence, float exponent);
 

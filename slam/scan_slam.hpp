@@ -1,6 +1,6 @@
 // What every scan-based SLAM back end offers the commands (the paper's two filters and the pose
 // graph): scans in, each step's matches and counts out, and the scans' world poses with their
-// covariances. `msislab run` drives any of them the same way (app/methods registers them).
+// covariances. `msislab run` drives any of them the same way (report/methods registers them).
 #pragma once
 
 #include <Eigen/Core>

@@ -9,6 +9,7 @@
 #include <cstdio>
 
 #include "sim/random.hpp"
+#include "sim/sonar_physics.hpp"
 
 namespace msislab::sim {
 namespace {

@@ -205,6 +205,7 @@ void read_pose_graph(YamlMap map, PoseGraphSlamConfig& c) {
   if (c.graph.robust_start_factor < 1.0) map.fail("robust_start_factor", "must be >= 1");
   read_count(map, "max_iterations", c.graph.max_iterations, 1, 100000);
   read_count(map, "solve_every", c.solve_every, 1, 1000000);
+  read_count(map, "online_window_scans", c.online_window_scans, 0, 1000000);
   map.finish();
 }
 

@@ -162,12 +162,25 @@ std::size_t PoseGraph::add_node(const Pose2& initial_world) {
     throw std::length_error("pose graph: more than " + std::to_string(kMaxNodes) + " nodes");
   }
   poses_.push_back(initial_world.vector());  // within the reserved capacity: nothing moves
+  fixed_.push_back(false);
   problem_->problem.AddParameterBlock(poses_.back().data(), 3);
   return poses_.size() - 1;
 }
 
 void PoseGraph::fix_node(std::size_t i) {
   problem_->problem.SetParameterBlockConstant(poses_.at(i).data());
+  fixed_.at(i) = true;
+}
+
+void PoseGraph::hold_before(std::size_t first_free) {
+  first_free = std::min(first_free, poses_.size());
+  for (std::size_t i = first_free; i < held_before_; ++i) {
+    if (!fixed_[i]) problem_->problem.SetParameterBlockVariable(poses_[i].data());
+  }
+  for (std::size_t i = held_before_; i < first_free; ++i) {
+    problem_->problem.SetParameterBlockConstant(poses_[i].data());
+  }
+  held_before_ = first_free;
 }
 
 void PoseGraph::add_prior(std::size_t i, const GaussianPose2& z_world) {
@@ -198,7 +211,7 @@ void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_ra
                                      poses_.at(i).data());
 }
 
-PoseGraphSolve PoseGraph::solve() {
+PoseGraphSolve PoseGraph::solve(bool count_downweighted) {
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   options.max_num_iterations = config_.max_iterations;
@@ -218,6 +231,7 @@ PoseGraphSolve PoseGraph::solve() {
   out.final_cost = summary.final_cost;
   // Down-weighted: beyond the gate, a squared whitened norm above c^2.
   for (const ceres::ResidualBlockId id : problem_->robust) {
+    if (!count_downweighted) break;
     double cost = 0.0;  // without the loss: half the squared norm
     problem_->problem.EvaluateResidualBlock(id, false, &cost, nullptr, nullptr);
     out.edges_downweighted += 2.0 * cost > config_.robust_scale_chi2;
@@ -306,6 +320,7 @@ class Information {
 }  // namespace
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
+  hold_before(0);
   const Information information(problem_->problem, poses_);
   std::vector<Eigen::Matrix3d> out;
   // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
@@ -324,6 +339,7 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
 }
 
 Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes) {
+  hold_before(0);
   return Information(problem_->problem, poses_).joint(nodes);
 }
 

@@ -72,6 +72,9 @@ class PoseGraph {
   std::size_t nodes() const { return poses_.size(); }
   /// Holds a node where it is (the gauge; a prior with a singular covariance).
   void fix_node(std::size_t i);
+  /// Holds the nodes before `first_free` where they are in the following solves (a windowed
+  /// online solve); 0 frees them all again. Fixed nodes stay fixed.
+  void hold_before(std::size_t first_free);
   /// z ~ x_i with covariance cov (positive definite).
   void add_prior(std::size_t i, const GaussianPose2& z_world);
   /// z ~ A ((-)x_i (+) x_j): the pose of node j seen from node i, in the directions whose
@@ -83,11 +86,13 @@ class PoseGraph {
   void add_heading(std::size_t i, double yaw_world_rad, double sigma_rad);
 
   /// Solves from the current poses (warm start: each solve starts where the last ended).
-  PoseGraphSolve solve();
+  /// count_downweighted: evaluate every robust edge afterwards for edges_downweighted (else 0).
+  PoseGraphSolve solve(bool count_downweighted = true);
 
   Pose2 pose(std::size_t i) const;
   /// The marginal covariances of the given nodes at the current poses (the whole graph's
-  /// information J^T J, robust edges at their weight there, factored by sparse Cholesky). Throws
+  /// information J^T J, robust edges at their weight there, factored by sparse Cholesky; held
+  /// nodes are freed first, fixed ones have zero covariance). Throws
   /// std::runtime_error when the graph's information is singular (a node without a path to a
   /// prior or fixed node).
   std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);
@@ -111,6 +116,8 @@ class PoseGraph {
   /// increase with the node index: nothing the solver does then depends on the memory layout
   /// (the environment's size, the output path's length), for "same seed, same bytes".
   std::vector<Eigen::Vector3d> poses_;
+  std::vector<bool> fixed_;      ///< per node: held for good (the gauge)
+  std::size_t held_before_ = 0;  ///< nodes before this are held for now (hold_before)
   std::unique_ptr<Problem> problem_;
 };
 

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <limits>
 
-#include "slam/iterated_ekf.hpp"
 #include "slam/match_validation.hpp"
 #include "slam/numerical_error.hpp"
 
@@ -25,56 +24,8 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
     graph_->fix_node(0);
     start_cov_.setZero();
   }
+  window_cov_ = start_cov_;
 }
-
-namespace {
-
-/// The nodes a scan may touch (the newest last) as the graph knows them: their means and joint
-/// covariance. Every edge the scan adds (odometry, compass, matches) involves only these nodes, so
-/// an EKF update of this small joint gives exactly their marginal in the grown graph, to first
-/// order: the filters' prediction and innovation, without solving the graph or computing its
-/// covariance again for each match.
-struct LocalBelief {
-  std::vector<std::size_t> nodes;
-  std::vector<Pose2> means;
-  Eigen::MatrixXd cov;
-
-  Eigen::Index newest() const { return static_cast<Eigen::Index>(nodes.size()) - 1; }
-
-  /// The pose of the newest node seen from the belief's node c, with its Jacobian H (3 x 3n).
-  GaussianPose2 predict(Eigen::Index c, Eigen::MatrixXd* H) const {
-    const Eigen::Index t = newest();
-    Eigen::Matrix3d J_c, J_t;
-    const Pose2 h = means[c].between(means[t], &J_c, &J_t);
-    H->setZero(3, cov.cols());
-    H->block<3, 3>(0, 3 * c) = J_c;
-    H->block<3, 3>(0, 3 * t) = J_t;
-    const Eigen::Matrix3d P = *H * cov * H->transpose();
-    return {h, 0.5 * (P + P.transpose())};
-  }
-
-  /// The filters' iterated EKF update (slam/iterated_ekf.hpp) of the whole belief behind their
-  /// NIS gate (infinite: none); residual(H) gives z (-) h at the current means and sets H.
-  /// False, and the belief unchanged, when the gate rejects the observation.
-  template <class Residual>
-  bool update(const Residual& residual, const Eigen::MatrixXd& R, int iterations,
-              double gate_chi2 = std::numeric_limits<double>::infinity()) {
-    Eigen::MatrixXd K, PHt;
-    const auto gate = [&](const Eigen::VectorXd&, const Eigen::VectorXd&,
-                          const Eigen::VectorXd& innovation, const Eigen::MatrixXd& S) {
-      return innovation.dot(S.ldlt().solve(innovation)) <= gate_chi2;
-    };
-    if (!iterated_ekf_update(means.begin(), means.size(), cov, residual, R, iterations, gate, K,
-                             PHt)) {
-      return false;
-    }
-    cov.noalias() -= K * PHt.transpose();
-    cov = 0.5 * (cov + cov.transpose());
-    return true;
-  }
-};
-
-}  // namespace
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   smoothed_.clear();
@@ -83,12 +34,25 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   const GaussianPose2 motion = motion_ok ? scan.motion : unknown_motion();
   const std::size_t k = motions_.size();
   const std::size_t node = k + 1;
+  const bool windowed = config_.online_window_scans > 0;
 
   // The odometry edge (Eq. 2): the newest node's belief is the previous one's composed with the
-  // motion, exact for its marginal since nothing else touches it yet.
-  const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
-  GaussianPose2 newest = compose(previous, motion);
-  graph_->add_node(newest.mean);
+  // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
+  // the window.
+  PoseGraphBelief belief;
+  if (windowed) {
+    for (std::size_t i = window_first_; i < node; ++i) {
+      belief.nodes.push_back(i);
+      belief.means.push_back(graph_->pose(i));
+    }
+    belief.cov = window_cov_;
+    belief.append_composed(node, static_cast<Eigen::Index>(node - 1 - window_first_), motion);
+  } else {
+    const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
+    const GaussianPose2 newest = compose(previous, motion);
+    belief = {{node}, {newest.mean}, newest.cov, 0};
+  }
+  graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
   graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
   motions_.push_back(motion);
   points_.push_back(finite_points(scan.points));
@@ -97,7 +61,11 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   // The compass, before association as the filters do, behind the same gate.
   if (front_end_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
       scan.compass_sigma_rad > 0.0 &&
-      update_compass(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad, newest)) {
+      update_compass(scan.compass_yaw_world_rad, scan.compass_sigma_rad, belief)) {
+    graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+    for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
+      graph_->set_pose(belief.nodes[i], belief.means[i]);
+    }
     stats.compass_accepted = true;
     ++totals_.compass_accepted;
   }
@@ -107,66 +75,93 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     ++totals_.skipped;
   } else {
     // Associate (paper Eq. 3-4): past scans whose estimated centre lies within gamma.
+    const Pose2 newest_mean = belief.means[static_cast<std::size_t>(belief.newest)];
     std::vector<double> distances_m(k);
     for (std::size_t j = 0; j < k; ++j) {
-      distances_m[j] = (graph_->pose(j + 1).translation() - newest.mean.translation()).norm();
+      distances_m[j] = (graph_->pose(j + 1).translation() - newest_mean.translation()).norm();
     }
     const std::vector<std::pair<double, std::size_t>> candidates =
         nearest_candidates(distances_m, points_, front_end_);
     stats.candidates = static_cast<int>(candidates.size());
-    if (!candidates.empty()) newest = match(k, candidates, stats);
+    if (!candidates.empty()) {
+      std::vector<Eigen::Index> in_belief;
+      if (windowed) {
+        in_belief = append_outside_window(belief, candidates);
+      } else {
+        belief = whole_graph_belief(node, newest_mean, candidates);
+        for (Eigen::Index c = 0; c < belief.newest; ++c) in_belief.push_back(c);
+      }
+      match(k, candidates, in_belief, belief, stats);
+      // The updated means start the next solve; windowed, nodes older than the window stay held.
+      for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
+        if (!windowed || belief.nodes[i] >= window_first_) {
+          graph_->set_pose(belief.nodes[i], belief.means[i]);
+        }
+      }
+    }
     totals_.candidates += stats.candidates;
     totals_.matched += stats.matched;
     totals_.accepted += stats.accepted;
   }
+  const Eigen::Index t = belief.newest;
+  const GaussianPose2 newest{belief.means[static_cast<std::size_t>(t)],
+                             belief.cov.block<3, 3>(3 * t, 3 * t)};
   require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
                  scan.t_s, "compass and match updates");
+  if (windowed) keep_window(belief);
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
-    solve();
+    solve(!windowed);  // windowed, edges_downweighted waits for the smoothing solve
     require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, scan.t_s, "solve");
   }
   online_.push_back({graph_->pose(node), newest.cov});
   return stats;
 }
 
-bool PoseGraphSlam::update_compass(std::size_t node, double yaw_world_rad, double sigma_rad,
-                                   GaussianPose2& newest) {
-  LocalBelief belief{{node}, {newest.mean}, newest.cov};
+bool PoseGraphSlam::update_compass(double yaw_world_rad, double sigma_rad,
+                                   PoseGraphBelief& belief) {
+  const Eigen::Index t = belief.newest;
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
-    *H = Eigen::RowVector3d(0.0, 0.0, 1.0);
-    return Eigen::VectorXd::Constant(1, normalize_angle(yaw_world_rad - belief.means[0].yaw()));
+    H->setZero(1, belief.cov.cols());
+    (*H)(0, 3 * t + 2) = 1.0;
+    return Eigen::VectorXd::Constant(
+        1, normalize_angle(yaw_world_rad - belief.means[static_cast<std::size_t>(t)].yaw()));
   };
   // Linear in the yaw: one step is exact.
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
-  if (!belief.update(residual, R, 1, front_end_.compass_gate_chi2)) return false;
-  newest = {belief.means[0], belief.cov};
-  graph_->add_heading(node, yaw_world_rad, sigma_rad);
-  graph_->set_pose(node, newest.mean);
-  return true;
+  return belief.update(residual, R, 1, front_end_.compass_gate_chi2);
 }
 
-GaussianPose2 PoseGraphSlam::match(std::size_t k,
-                                   const std::vector<std::pair<double, std::size_t>>& candidates,
-                                   SlamStepStats& stats) {
-  const std::size_t node = k + 1;
-  LocalBelief belief;
-  for (const auto& candidate : candidates) belief.nodes.push_back(candidate.second + 1);
+PoseGraphBelief PoseGraphSlam::whole_graph_belief(
+    std::size_t node, const Pose2& newest_mean,
+    const std::vector<std::pair<double, std::size_t>>& candidates) {
+  PoseGraphBelief belief;
+  for (const auto& candidate : candidates) {
+    belief.nodes.push_back(candidate.second + 1);
+    belief.means.push_back(graph_->pose(candidate.second + 1));
+  }
   belief.nodes.push_back(node);
-  for (const std::size_t i : belief.nodes) belief.means.push_back(graph_->pose(i));
+  belief.means.push_back(newest_mean);
+  belief.newest = static_cast<Eigen::Index>(candidates.size());
   belief.cov = graph_->joint_covariance(belief.nodes);
+  return belief;
+}
 
+void PoseGraphSlam::match(std::size_t k,
+                          const std::vector<std::pair<double, std::size_t>>& candidates,
+                          const std::vector<Eigen::Index>& in_belief, PoseGraphBelief& belief,
+                          SlamStepStats& stats) {
+  const std::size_t node = k + 1;
   // Predictions (Eq. 5): one after the other, each from the belief the earlier matches of this
   // scan left (the filters' default), or all from the belief before them (joint_update).
   std::vector<GaussianPose2> joint_predictions;
   Eigen::MatrixXd H;
   for (std::size_t c = 0; front_end_.joint_update && c < candidates.size(); ++c) {
-    joint_predictions.push_back(belief.predict(static_cast<Eigen::Index>(c), &H));
+    joint_predictions.push_back(belief.predict(in_belief[c], &H));
   }
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const std::size_t j = candidates[c].second;
-    const GaussianPose2 predicted = front_end_.joint_update
-                                        ? joint_predictions[c]
-                                        : belief.predict(static_cast<Eigen::Index>(c), &H);
+    const GaussianPose2 predicted =
+        front_end_.joint_update ? joint_predictions[c] : belief.predict(in_belief[c], &H);
     ValidatedMatch m = match_and_validate(points_[j], points_[k], predicted, front_end_.matching,
                                           front_end_.validation);
     stats.matched += m.match.valid;
@@ -184,7 +179,7 @@ GaussianPose2 PoseGraphSlam::match(std::size_t k,
         ++stats.accepted;
         // The update (Eq. 6-10).
         const auto residual = [&](Eigen::MatrixXd* H_match) -> Eigen::VectorXd {
-          const Pose2 h = belief.predict(static_cast<Eigen::Index>(c), &H).mean;
+          const Pose2 h = belief.predict(in_belief[c], &H).mean;
           *H_match = A * H;
           return A * pose_difference(m.match.estimate.mean, h);
         };
@@ -197,19 +192,49 @@ GaussianPose2 PoseGraphSlam::match(std::size_t k,
     stats.rejections.count(m);
     totals_.rejections.count(m);
   }
-  // The updated means start the next solve.
-  for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
-    graph_->set_pose(belief.nodes[i], belief.means[i]);
-  }
-  const Eigen::Index t = belief.newest();
-  return {belief.means.back(), belief.cov.block<3, 3>(3 * t, 3 * t)};
 }
 
-void PoseGraphSlam::solve() const { downweighted_ = graph_->solve().edges_downweighted; }
+std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
+    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates) {
+  std::vector<Eigen::Index> in_belief;
+  for (const auto& candidate : candidates) {
+    const std::size_t i = candidate.second + 1;
+    if (i >= window_first_) {
+      in_belief.push_back(static_cast<Eigen::Index>(i - window_first_));
+    } else {
+      // Its correlation with the window is not kept: the one approximation of the window.
+      in_belief.push_back(static_cast<Eigen::Index>(belief.nodes.size()));
+      belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
+      ++outside_window_matches_;
+    }
+  }
+  return in_belief;
+}
+
+void PoseGraphSlam::keep_window(const PoseGraphBelief& belief) {
+  const auto kept = static_cast<std::size_t>(belief.newest) + 1;  // the window's nodes, in order
+  const std::size_t dropped =
+      kept - std::min(kept, static_cast<std::size_t>(config_.online_window_scans));
+  left_window_cov_.resize(window_first_ + dropped, Eigen::Matrix3d::Zero());
+  for (std::size_t d = 0; d < dropped; ++d) {
+    const auto at = static_cast<Eigen::Index>(3 * d);
+    left_window_cov_[window_first_ + d] = belief.cov.block<3, 3>(at, at);
+  }
+  const auto first = static_cast<Eigen::Index>(3 * dropped);
+  const auto size = static_cast<Eigen::Index>(3 * (kept - dropped));
+  window_cov_ = belief.cov.block(first, first, size, size);
+  window_first_ += dropped;
+  graph_->hold_before(window_first_);
+}
+
+void PoseGraphSlam::solve(bool count_downweighted) const {
+  downweighted_ = graph_->solve(count_downweighted).edges_downweighted;
+}
 
 void PoseGraphSlam::smooth() const {
   if (!smoothed_.empty() || motions_.empty()) return;
-  solve();
+  graph_->hold_before(0);
+  solve(true);
   std::vector<std::size_t> nodes;
   for (std::size_t i = 1; i <= motions_.size(); ++i) nodes.push_back(i);
   const std::vector<Eigen::Matrix3d> covariances = graph_->covariances(nodes);

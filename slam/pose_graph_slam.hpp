@@ -19,6 +19,14 @@
 // means of the scan's nodes); each scan's pose then is the online estimate (online_poses). The last
 // scan triggers nothing special: scan_pose_world solves once more and gives the smoothed
 // trajectory.
+// Windowed (online_window_scans = W > 0), for long missions: the joint covariance of the newest W
+// nodes is kept from scan to scan instead of factoring the whole graph's information each scan;
+// each scan composes its node onto it, updates it by its compass and matches and drops the nodes
+// that fall out of the window (marginalising them: their rows and columns go). While a scan's
+// candidates lie in the window this is the same first-order marginal; a candidate older than the
+// window joins with its covariance from when it left, uncorrelated with the window (the one
+// approximation, counted by matches_outside_window). The online solves hold the nodes older than
+// the window; the smoothing solve frees them all.
 #pragma once
 
 #include <memory>
@@ -26,6 +34,7 @@
 #include <vector>
 
 #include "slam/pose_graph.hpp"
+#include "slam/pose_graph_belief.hpp"
 #include "slam/trajectory_slam.hpp"
 
 namespace msislab {
@@ -33,6 +42,11 @@ namespace msislab {
 struct PoseGraphSlamConfig {
   PoseGraphConfig graph;
   int solve_every = 1;  ///< solve after every k-th scan (and for the smoothed trajectory)
+  /// The online window, in scans: 0, the whole graph (each scan's belief from the whole graph's
+  /// information, each solve over every node); W > 0, the newest W nodes (their joint
+  /// covariance kept by the EKF, older nodes held in the online solves), so that a step's cost
+  /// does not grow with the mission (docs/pose_graph.md, "Long missions").
+  int online_window_scans = 0;
 };
 
 class PoseGraphSlam : public ScanSlam {
@@ -50,21 +64,36 @@ class PoseGraphSlam : public ScanSlam {
   std::optional<std::vector<GaussianPose2>> online_poses() const override { return online_; }
   /// Matches the robust loss set aside at the last solve (beyond the gate there).
   std::optional<int> matches_downweighted() const override { return downweighted_; }
+  /// Windowed: the candidates so far that were older than the window (matched against their
+  /// covariance from when they left it, uncorrelated with the window).
+  int matches_outside_window() const { return outside_window_matches_; }
 
  private:
   /// Solves the graph (const: the smoothed solution is a cache of the same graph, and solving
-  /// a solved graph leaves it where it is).
-  void solve() const;
+  /// a solved graph leaves it where it is); count_downweighted as PoseGraph::solve.
+  void solve(bool count_downweighted) const;
   /// The compass on the newest node (its belief `newest`, updated in place) behind the filters'
   /// gate; adds the heading edge when it passes.
-  bool update_compass(std::size_t node, double yaw_world_rad, double sigma_rad,
-                      GaussianPose2& newest);
-  /// Matches scan k against the candidates, adds the accepted matches as edges, and returns
-  /// the newest node's belief after them.
-  GaussianPose2 match(std::size_t k, const std::vector<std::pair<double, std::size_t>>& candidates,
-                      SlamStepStats& stats);
+  bool update_compass(double yaw_world_rad, double sigma_rad, PoseGraphBelief& belief);
+  /// Matches scan k against the candidates (candidate c at index in_belief[c] of the belief),
+  /// adds the accepted matches as edges and updates the belief by each.
+  void match(std::size_t k, const std::vector<std::pair<double, std::size_t>>& candidates,
+             const std::vector<Eigen::Index>& in_belief, PoseGraphBelief& belief,
+             SlamStepStats& stats);
   /// The final solve and every scan's covariance, once after the last add_scan.
   void smooth() const;
+  /// The scan's nodes as the whole graph knows them: the candidates' (in their order), then the
+  /// newest's (newest_mean, with the covariance from the graph's information).
+  PoseGraphBelief whole_graph_belief(std::size_t node, const Pose2& newest_mean,
+                                     const std::vector<std::pair<double, std::size_t>>& candidates);
+  /// Windowed (online_window_scans > 0): the window's belief with the newest node composed on,
+  /// and the candidates' indices in it (a candidate older than the window appended, uncorrelated,
+  /// with its covariance from when it left the window).
+  std::vector<Eigen::Index> append_outside_window(
+      PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates);
+  /// Windowed: keeps the window's part of the belief, dropping (marginalising) the nodes that
+  /// fall out of it, and holds those in the graph's online solves.
+  void keep_window(const PoseGraphBelief& belief);
 
   TrajectorySlamConfig front_end_;
   PoseGraphSlamConfig config_;
@@ -73,8 +102,14 @@ class PoseGraphSlam : public ScanSlam {
   std::vector<GaussianPose2> motions_;  ///< motions_[i]: scan i from scan i-1 (or the start)
   std::vector<std::vector<ScanPoint>> points_;
   std::vector<GaussianPose2> online_;
+  /// Windowed: the joint covariance of nodes window_first_.. (the newest last), and each node's
+  /// marginal from when it left the window.
+  std::size_t window_first_ = 0;
+  Eigen::MatrixXd window_cov_;
+  std::vector<Eigen::Matrix3d> left_window_cov_;
   SlamTotals totals_;
   mutable int downweighted_ = 0;
+  int outside_window_matches_ = 0;               ///< candidates older than the window (windowed)
   mutable std::vector<GaussianPose2> smoothed_;  ///< filled by smooth(); cleared by add_scan
 };
 

@@ -287,18 +287,23 @@ TEST(SlamConfigYaml, PoseGraphKeys) {
   const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
   EXPECT_EQ(defaults.pose_graph.graph.robust_loss, RobustLoss::kDynamicCovarianceScaling);
   EXPECT_EQ(defaults.pose_graph.solve_every, 1);
+  EXPECT_EQ(defaults.pose_graph.online_window_scans, 0);
   const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
                                                    "pose_graph:\n"
                                                    "  robust_loss: cauchy\n"
                                                    "  robust_scale_chi2: 0\n"
                                                    "  robust_start_factor: 1\n"
                                                    "  max_iterations: 20\n"
-                                                   "  solve_every: 5\n"));
+                                                   "  solve_every: 5\n"
+                                                   "  online_window_scans: 100\n"));
   EXPECT_EQ(c.pose_graph.graph.robust_loss, RobustLoss::kCauchy);
   EXPECT_EQ(c.pose_graph.graph.robust_scale_chi2, 0.0);
   EXPECT_EQ(c.pose_graph.graph.robust_start_factor, 1.0);
   EXPECT_EQ(c.pose_graph.graph.max_iterations, 20);
   EXPECT_EQ(c.pose_graph.solve_every, 5);
+  EXPECT_EQ(c.pose_graph.online_window_scans, 100);
+  expect_bad_slam_config("pose_graph:\n  online_window_scans: -1\n", 2,
+                         "pose_graph.online_window_scans");
   expect_bad_slam_config("pose_graph:\n  robust_loss: huber\n", 2, "pose_graph.robust_loss");
   expect_bad_slam_config("pose_graph:\n  robust_start_factor: 0.5\n", 2,
                          "pose_graph.robust_start_factor");

@@ -13,73 +13,10 @@
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 #include "stats/chi_square.hpp"
+#include "tests/slam/synthetic_loop.hpp"
 
 namespace msislab {
 namespace {
-
-/// Walls of a 40 x 30 m basin plus a pier and a block inside, sampled every 0.4 m.
-std::vector<Eigen::Vector2d> basin() {
-  std::vector<Eigen::Vector2d> points;
-  auto wall = [&](Eigen::Vector2d a, Eigen::Vector2d b) {
-    const int n = static_cast<int>((b - a).norm() / 0.4);
-    for (int i = 0; i <= n; ++i) points.push_back(a + (b - a) * i / n);
-  };
-  wall({-20, -15}, {20, -15});
-  wall({20, -15}, {20, 15});
-  wall({20, 15}, {-20, 15});
-  wall({-20, 15}, {-20, -15});
-  wall({0, 15}, {0, 8});     // a pier
-  wall({-6, -4}, {-2, -4});  // a block
-  wall({-2, -4}, {-2, -1});
-  return points;
-}
-
-struct Loop {
-  std::vector<Pose2> truth;  ///< scan poses in the world
-  std::vector<Scan> scans;
-};
-
-/// Scan poses every 4 m around a 24 x 16 m rectangle, twice; each scan sees the basin within
-/// 25 m (point noise 0.05 m x noise); motions are the true ones with noise (0.08 m, 0.08 m,
-/// 0.6 deg, times noise).
-Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> n01(0.0, 1.0);
-  const auto world = basin();
-  std::vector<Pose2> truth;
-  for (int lap = 0; lap < 2; ++lap) {
-    for (int i = 0; i < 6; ++i) truth.emplace_back(-12.0 + 4 * i, -8.0, 0.0);
-    for (int i = 0; i < 4; ++i) truth.emplace_back(12.0, -8.0 + 4 * i, M_PI / 2);
-    for (int i = 0; i < 6; ++i) truth.emplace_back(12.0 - 4 * i, 8.0, M_PI);
-    for (int i = 0; i < 4; ++i) truth.emplace_back(-12.0, 8.0 - 4 * i, -M_PI / 2);
-  }
-  const Eigen::Vector3d sigma = noise_scale * Eigen::Vector3d(0.08, 0.08, 0.6 * M_PI / 180);
-  const double sigma_point_m = 0.05 * noise_scale;
-  Loop loop;
-  loop.truth = truth;
-  for (std::size_t k = 0; k < truth.size(); ++k) {
-    Scan scan;
-    scan.t_s = static_cast<double>(k);
-    const Pose2 true_motion = k == 0 ? truth[0] : truth[k - 1].between(truth[k]);
-    const Eigen::Vector3d noise(sigma.x() * n01(rng), sigma.y() * n01(rng), sigma.z() * n01(rng));
-    scan.motion.mean = k == 0 ? true_motion : Pose2(true_motion.vector() + noise);
-    scan.motion.cov = k == 0 ? Eigen::Matrix3d::Identity() * 1e-9
-                             : Eigen::Matrix3d(sigma.cwiseProduct(sigma).asDiagonal());
-    const bool blind = empty_scans && k % 7 == 3;
-    for (const auto& p_world : world) {
-      const Eigen::Vector2d p = truth[k].inverse().transform(p_world);
-      if (blind || p.norm() > 25.0) continue;
-      ScanPoint point;
-      point.p_m = p + sigma_point_m * Eigen::Vector2d(n01(rng), n01(rng));
-      point.cov = sigma_point_m * sigma_point_m * Eigen::Matrix2d::Identity();
-      point.cov_reading = point.cov;
-      point.p_vehicle_m = point.p_m;
-      scan.points.push_back(point);
-    }
-    loop.scans.push_back(scan);
-  }
-  return loop;
-}
 
 double final_error_m(const std::vector<Pose2>& estimate, const std::vector<Pose2>& truth) {
   return (estimate.back().translation() - truth.back().translation()).norm();

@@ -1,0 +1,86 @@
+// What the pose-graph SLAM knows of the nodes a scan touches while it adds the scan's edges: their
+// means and joint covariance, updated edge by edge with the filters' iterated EKF
+// (slam/iterated_ekf.hpp). Every edge a scan adds (odometry, compass, matches) involves only these
+// nodes, so the EKF update of their joint gives their marginal in the grown graph, to first order,
+// without solving the graph or factoring its information for each edge (docs/pose_graph.md).
+#pragma once
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <limits>
+#include <vector>
+
+#include "geometry/gaussian_pose.hpp"
+#include "slam/iterated_ekf.hpp"
+
+namespace msislab {
+
+struct PoseGraphBelief {
+  std::vector<std::size_t> nodes;  ///< graph node of each pose, in the covariance's order
+  std::vector<Pose2> means;        ///< world frame
+  Eigen::MatrixXd cov;             ///< joint, 3n x 3n
+  Eigen::Index newest = 0;         ///< the scan's own node, as an index into nodes
+
+  /// The pose of the newest node seen from the belief's node c, with its Jacobian H (3 x 3n).
+  GaussianPose2 predict(Eigen::Index c, Eigen::MatrixXd* H) const {
+    Eigen::Matrix3d J_c, J_t;
+    const Pose2 h = means[c].between(means[newest], &J_c, &J_t);
+    H->setZero(3, cov.cols());
+    H->block<3, 3>(0, 3 * c) = J_c;
+    H->block<3, 3>(0, 3 * newest) = J_t;
+    const Eigen::Matrix3d P = *H * cov * H->transpose();
+    return {h, 0.5 * (P + P.transpose())};
+  }
+
+  /// Appends node `node` as `previous (+) motion` (the odometry edge, Eq. 2), previous the index
+  /// of the node the motion starts from; it becomes the newest. Exact for the marginal: nothing
+  /// else touches the new node yet.
+  void append_composed(std::size_t node, Eigen::Index previous, const GaussianPose2& motion) {
+    Eigen::Matrix3d J_previous, J_motion;
+    const Pose2 mean = means[previous].compose(motion.mean, &J_previous, &J_motion);
+    const Eigen::Index n = cov.rows();
+    cov.conservativeResize(n + 3, n + 3);
+    cov.bottomRows<3>().leftCols(n) = J_previous * cov.middleRows<3>(3 * previous).leftCols(n);
+    cov.rightCols<3>().topRows(n) = cov.bottomRows<3>().leftCols(n).transpose();
+    const Eigen::Matrix3d P =
+        J_previous * cov.block<3, 3>(3 * previous, 3 * previous) * J_previous.transpose() +
+        J_motion * motion.cov * J_motion.transpose();
+    cov.bottomRightCorner<3, 3>() = 0.5 * (P + P.transpose());
+    nodes.push_back(node);
+    means.push_back(mean);
+    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
+  /// Appends a node with its own covariance, uncorrelated with the others.
+  void append_independent(std::size_t node, const GaussianPose2& x) {
+    const Eigen::Index n = cov.rows();
+    cov.conservativeResize(n + 3, n + 3);
+    cov.bottomRows<3>().setZero();
+    cov.rightCols<3>().setZero();
+    cov.bottomRightCorner<3, 3>() = x.cov;
+    nodes.push_back(node);
+    means.push_back(x.mean);
+  }
+
+  /// The filters' iterated EKF update (slam/iterated_ekf.hpp) of the whole belief behind their
+  /// NIS gate (infinite: none); residual(H) gives z (-) h at the current means and sets H.
+  /// False, and the belief unchanged, when the gate rejects the observation.
+  template <class Residual>
+  bool update(const Residual& residual, const Eigen::MatrixXd& R, int iterations,
+              double gate_chi2 = std::numeric_limits<double>::infinity()) {
+    Eigen::MatrixXd K, PHt;
+    const auto gate = [&](const Eigen::VectorXd&, const Eigen::VectorXd&,
+                          const Eigen::VectorXd& innovation, const Eigen::MatrixXd& S) {
+      return innovation.dot(S.ldlt().solve(innovation)) <= gate_chi2;
+    };
+    if (!iterated_ekf_update(means.begin(), means.size(), cov, residual, R, iterations, gate, K,
+                             PHt)) {
+      return false;
+    }
+    cov.noalias() -= K * PHt.transpose();
+    cov = 0.5 * (cov + cov.transpose());
+    return true;
+  }
+};
+
+}  // namespace msislab

@@ -26,7 +26,7 @@ struct ReportOptions {
   /// The CSV of tools/real_sensitivity.sh (may be empty): the real result's sensitivity section.
   std::string sensitivity_csv;
   /// A methods file (may be empty): the titles, colours and line styles of external methods.
-  std::string methods_file;
+  std::string methods_file{};
 };
 
 struct ReportOutcome {

@@ -19,9 +19,9 @@ struct RunOptions {
   std::string dataset_dir;
   std::string method;
   std::string out_dir;
-  std::string config_path;   ///< empty: the default SLAM config
-  bool force = false;        ///< replace a folder msislab did not write
-  std::string methods_file;  ///< external methods (docs/formats.md); empty: none
+  std::string config_path;     ///< empty: the default SLAM config
+  bool force = false;          ///< replace a folder msislab did not write
+  std::string methods_file{};  ///< external methods (docs/formats.md); empty: none
 };
 
 struct RunOutcome {

@@ -46,6 +46,7 @@ void check_methods(const std::vector<std::string>& methods) {
 /// Reads and checks every input and locks the directory; then makes or resumes it: scenario.yaml
 /// and config.yaml copies, montecarlo.json.
 RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock>& lock) {
+  report::load_methods_file(options.methods_file);
   check_methods(options.methods);
   RunContext ctx;
   io::MonteCarloManifest& manifest = ctx.manifest;
@@ -59,25 +60,28 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   ctx.mesh = std::move(checked.mesh);
   if (!options.config_path.empty()) ctx.config = io::read_slam_config(options.config_path);
   ctx.scenario_text = io::read_whole_file(options.scenario_path);
-  const std::string config_text =
-      options.config_path.empty() ? "" : io::read_whole_file(options.config_path);
+  DirectoryInputs inputs;
+  inputs.scenario_text = ctx.scenario_text;
+  if (!options.config_path.empty()) inputs.config_text = io::read_whole_file(options.config_path);
+  if (!options.methods_file.empty())
+    inputs.methods_text = io::read_whole_file(options.methods_file);
   manifest.executable_digest = executable_digest(self_executable());
+  manifest.has_config = !options.config_path.empty();
+  manifest.has_methods_file = !options.methods_file.empty();
 
-  lock.emplace(
-      io::OutputRequest{options.out_dir,
-                        "montecarlo",
-                        "montecarlo",
-                        {options.scenario_path, options.config_path, ctx.scenario.scene.mesh_path},
-                        false},
-      "msislab montecarlo " + options.scenario_path);
-  check_resumable(options.out_dir, ctx.scenario_text, !options.config_path.empty(), config_text,
-                  options.scenario_path, manifest.executable_digest);
+  lock.emplace(io::OutputRequest{options.out_dir,
+                                 "montecarlo",
+                                 "montecarlo",
+                                 {options.scenario_path, options.config_path,
+                                  ctx.scenario.scene.mesh_path, options.methods_file},
+                                 false},
+               "msislab montecarlo " + options.scenario_path);
+  check_resumable(options.out_dir, manifest, inputs, options.scenario_path);
   manifest.scenario_source = io::absolute_path(options.scenario_path);
   manifest.first_seed = ctx.scenario.seed;
   manifest.runs = options.runs;
   manifest.methods = options.methods;
-  manifest.has_config = !options.config_path.empty();
-  write_directory_header(options.out_dir, manifest, ctx.scenario_text, config_text);
+  write_directory_header(options.out_dir, manifest, inputs);
   ctx.dir = options.out_dir;
   ctx.keep_datasets = options.keep_datasets;
   return ctx;
@@ -137,7 +141,10 @@ MonteCarloOutcome montecarlo(const MonteCarloOptions& options, const MonteCarloL
 std::string draw_montecarlo_figures(const std::string& dir, const std::string& executable) {
   const std::string exe = executable.empty() ? self_executable() : executable;
   const std::string stderr_path = (fs::path(dir) / ".plot_stderr.txt").string();
-  const ProcessResult result = run_process({exe, "plot", dir}, stderr_path);
+  std::vector<std::string> argv = {exe, "plot", dir};
+  const fs::path methods = fs::path(dir) / "methods.yaml";
+  if (fs::exists(methods)) argv.insert(argv.end(), {"--methods-file", methods.string()});
+  const ProcessResult result = run_process(argv, stderr_path);
   const std::string failure = result.ok() ? "" : describe_failure(result, stderr_path);
   std::error_code ec;
   fs::remove(stderr_path, ec);
@@ -234,9 +241,13 @@ void add_montecarlo_command(CLI::App& app, CommandLine& line) {
   mc->add_option("--config,-c", options.config_path, "SLAM config YAML for every run");
   mc->add_option("--shard", options.shard,
                  "i/N: only the runs r with r % N == i (0 <= i < N); merge the shards afterwards");
+  mc->add_option("--methods-file", options.methods_file,
+                 "Methods file (YAML) declaring external methods for --methods; copied to "
+                 "DIR/methods.yaml (docs/formats.md)");
   mc->add_flag("--keep-datasets", options.keep_datasets,
                "Also write each run's simulated dataset to DIR/datasets/run_<rrrr> (about 70 MB "
-               "each on the St. Pere replica)");
+               "each on the St. Pere replica); without it an external method's dataset is "
+               "written to DIR/scratch and removed after its run");
   mc->add_flag("--no-plot", cli->no_plot,
                "Do not draw the figures at the end (shards never draw; see msislab plot)");
   mc->require_subcommand(0, 1);

@@ -24,6 +24,7 @@ struct MonteCarloOptions {
   std::string config_path;     ///< SLAM config for every run; empty: the defaults
   std::string shard;           ///< "i/N": only the runs r with r % N == i; empty: every run
   bool keep_datasets = false;  ///< also write each run's dataset to DIR/datasets/run_<rrrr>
+  std::string methods_file{};  ///< external methods (docs/formats.md); empty: none
 };
 
 /// Where the messages go: progress on `log` (a bar redrawn in place when `terminal`).

@@ -48,9 +48,8 @@ std::string executable_digest(const std::string& executable_path) {
   return hex;
 }
 
-void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
-                     const std::string& config_text, const std::string& scenario_path,
-                     const std::string& digest) {
+void check_resumable(const std::string& dir, const io::MonteCarloManifest& manifest,
+                     const DirectoryInputs& inputs, const std::string& scenario_path) {
   const fs::path d(dir);
   if (!fs::exists(d / "montecarlo.json")) return;
   const auto differs = [&](const char* name, bool present, const std::string& text) {
@@ -58,14 +57,20 @@ void check_resumable(const std::string& dir, const std::string& scenario_text, b
     if (!fs::exists(file)) return present;
     return !present || io::read_whole_file(file.string()) != text;
   };
-  if (differs("scenario.yaml", true, scenario_text)) {
+  if (differs("scenario.yaml", true, inputs.scenario_text)) {
     io::fail_file(dir, "holds runs of another scenario (its scenario.yaml differs from " +
                            scenario_path + "); choose another --out");
   }
-  if (differs("config.yaml", has_config, config_text)) {
+  if (differs("config.yaml", manifest.has_config, inputs.config_text)) {
     io::fail_file(dir,
                   "holds runs made with another SLAM config (config.yaml); choose another --out");
   }
+  if (differs("methods.yaml", manifest.has_methods_file, inputs.methods_text)) {
+    io::fail_file(dir,
+                  "holds runs made with another methods file (methods.yaml differs from "
+                  "--methods-file, or one of them is absent); choose another --out");
+  }
+  const std::string& digest = manifest.executable_digest;
   const std::string made_by =
       io::read_manifest_json((d / "montecarlo.json").string()).executable_digest;
   if (made_by != digest) {
@@ -77,11 +82,12 @@ void check_resumable(const std::string& dir, const std::string& scenario_text, b
 }
 
 void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
-                            const std::string& scenario_text, const std::string& config_text) {
+                            const DirectoryInputs& inputs) {
   io::create_output_dir(dir);
   const fs::path d(dir);
-  write_text((d / "scenario.yaml").string(), scenario_text);
-  if (manifest.has_config) write_text((d / "config.yaml").string(), config_text);
+  write_text((d / "scenario.yaml").string(), inputs.scenario_text);
+  if (manifest.has_config) write_text((d / "config.yaml").string(), inputs.config_text);
+  if (manifest.has_methods_file) write_text((d / "methods.yaml").string(), inputs.methods_text);
   io::write_manifest_json((d / "montecarlo.json").string(), manifest);
 }
 

@@ -24,15 +24,22 @@ std::vector<int> runs_of(const io::MonteCarloManifest& manifest);
 /// defaults or code, has another digest. InputError when the file cannot be read.
 std::string executable_digest(const std::string& executable_path);
 
-/// InputError unless dir is new or holds runs made from the same scenario and config bytes by
-/// the executable with this digest.
-void check_resumable(const std::string& dir, const std::string& scenario_text, bool has_config,
-                     const std::string& config_text, const std::string& scenario_path,
-                     const std::string& digest);
+/// The bytes of the files a Monte Carlo directory keeps copies of.
+struct DirectoryInputs {
+  std::string scenario_text;
+  std::string config_text;   ///< when the manifest has_config
+  std::string methods_text;  ///< when the manifest has_methods_file
+};
 
-/// Creates dir and writes scenario.yaml, config.yaml (when has_config) and montecarlo.json.
+/// InputError unless dir is new or holds runs made from the same scenario, config and methods
+/// file bytes by the executable with this digest.
+void check_resumable(const std::string& dir, const io::MonteCarloManifest& manifest,
+                     const DirectoryInputs& inputs, const std::string& scenario_path);
+
+/// Creates dir and writes scenario.yaml, config.yaml (when has_config), methods.yaml (when
+/// has_methods_file) and montecarlo.json.
 void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
-                            const std::string& scenario_text, const std::string& config_text);
+                            const DirectoryInputs& inputs);
 
 /// Summarises the given runs of every method from their run directories and writes summary.json,
 /// nees.csv and seeds.csv.

@@ -16,7 +16,7 @@ namespace {
 
 struct ShardHeader {
   io::MonteCarloManifest manifest;
-  std::string scenario_text, config_text;
+  DirectoryInputs inputs;
 };
 
 ShardHeader read_shard(const std::string& shard) {
@@ -26,9 +26,12 @@ ShardHeader read_shard(const std::string& shard) {
   }
   ShardHeader header;
   header.manifest = io::read_manifest_json((d / "montecarlo.json").string());
-  header.scenario_text = io::read_whole_file((d / "scenario.yaml").string());
+  header.inputs.scenario_text = io::read_whole_file((d / "scenario.yaml").string());
   if (header.manifest.has_config) {
-    header.config_text = io::read_whole_file((d / "config.yaml").string());
+    header.inputs.config_text = io::read_whole_file((d / "config.yaml").string());
+  }
+  if (header.manifest.has_methods_file) {
+    header.inputs.methods_text = io::read_whole_file((d / "methods.yaml").string());
   }
   return header;
 }
@@ -38,9 +41,14 @@ void check_same_settings(const ShardHeader& a, const ShardHeader& b, const std::
   const auto differ = [&](const std::string& what) {
     io::fail_file(b_dir, "made with another " + what + " than " + a_dir + "; cannot merge them");
   };
-  if (a.scenario_text != b.scenario_text) differ("scenario (scenario.yaml)");
-  if (a.manifest.has_config != b.manifest.has_config || a.config_text != b.config_text) {
+  if (a.inputs.scenario_text != b.inputs.scenario_text) differ("scenario (scenario.yaml)");
+  if (a.manifest.has_config != b.manifest.has_config ||
+      a.inputs.config_text != b.inputs.config_text) {
     differ("SLAM config (config.yaml)");
+  }
+  if (a.manifest.has_methods_file != b.manifest.has_methods_file ||
+      a.inputs.methods_text != b.inputs.methods_text) {
+    differ("methods file (methods.yaml)");
   }
   if (a.manifest.runs != b.manifest.runs) differ("--runs");
   if (a.manifest.methods != b.manifest.methods) differ("--methods");
@@ -77,10 +85,9 @@ MonteCarloOutcome merge_montecarlo(const MergeOptions& options) {
   const DirectoryLock lock(
       {options.out_dir, "montecarlo", "montecarlo merge", options.shard_dirs, false},
       "msislab montecarlo merge");
-  check_resumable(options.out_dir, first.scenario_text, manifest.has_config, first.config_text,
-                  (fs::path(options.shard_dirs.front()) / "scenario.yaml").string(),
-                  manifest.executable_digest);
-  write_directory_header(options.out_dir, manifest, first.scenario_text, first.config_text);
+  check_resumable(options.out_dir, manifest, first.inputs,
+                  (fs::path(options.shard_dirs.front()) / "scenario.yaml").string());
+  write_directory_header(options.out_dir, manifest, first.inputs);
 
   // A run is taken from the first shard that finished it, else from one that recorded a failure.
   const std::vector<int> runs = runs_of(manifest);

@@ -12,15 +12,18 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "app/external_method.hpp"
 #include "app/montecarlo_directory.hpp"
 #include "app/process.hpp"
 #include "app/run_command.hpp"
 #include "app/worker_processes.hpp"
 #include "io/atomic_file.hpp"
+#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
+#include "report/methods.hpp"
 #include "sim/scene.hpp"
 #include "sim/simulator.hpp"
 #include "sim/thread_pool.hpp"
@@ -90,8 +93,67 @@ void injected_fault(int run, const std::string& where) {
   }
 }
 
+bool is_external(const std::string& method) {
+  return report::method_info(method).kind == report::MethodKind::kExternal;
+}
+
+/// What an external method of run r is given: the dataset on disk (DIR/datasets/run_<rrrr> with
+/// --keep-datasets, else written to DIR/scratch for this run only) and the SLAM config.
+struct ExternalFiles {
+  std::string dataset_dir;
+  std::string config_path;
+};
+
+ExternalFiles external_files(const RunContext& ctx, int run, const sim::Scenario& scenario,
+                             const sim::SimulationResult& result, const std::string& kept) {
+  ExternalFiles files;
+  files.dataset_dir = kept;
+  if (files.dataset_dir.empty()) {
+    files.dataset_dir = io::absolute_path(scratch_file(ctx.dir, run, ".dataset"));
+    io::write_simulated_dataset({files.dataset_dir, "dataset", "montecarlo", {}, false}, scenario,
+                                result, ctx.scenario_text);
+  }
+  if (ctx.manifest.has_config) {
+    files.config_path = io::absolute_path((fs::path(ctx.dir) / "config.yaml").string());
+  } else {
+    files.config_path = io::absolute_path(scratch_file(ctx.dir, run, ".config.yaml"));
+    io::write_dead_reckoning_config(files.config_path, ctx.config.dead_reckoning);
+  }
+  return files;
+}
+
+/// Runs one method of run r on the dataset and puts its result (or its failed.json) in place.
+void run_one_method(const RunContext& ctx, int run, const std::string& method,
+                    const io::RunInputs& in, SharedInputs& shared, const ExternalFiles* files,
+                    const std::string& dataset_label) {
+  const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
+  ExternalSetup setup;
+  if (files) {
+    setup = {files->dataset_dir, files->config_path, seed,
+             scratch_file(ctx.dir, run, ("." + method).c_str())};
+  }
+  try {
+    injected_fault(run, method);
+    const MethodResult result = run_method(method, in, &shared, files ? &setup : nullptr);
+    if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");
+    // The summary needs neither the map nor the dataset; the map is large.
+    put_in_place(ctx.dir, method, run, [&](const std::string& out) {
+      write_method_result(out, result, dataset_label, /*write_map=*/false);
+      io::write_errors_csv((fs::path(out) / "errors.csv").string(), result.errors,
+                           result.t_first_truth_s);
+    });
+  } catch (const ExternalMethodError& e) {
+    record_failure(ctx.dir, method, {run, seed, "run", e.what(), e.stderr_tail()});
+  } catch (const std::exception& e) {
+    record_failure(ctx.dir, method, {run, seed, "run", e.what(), {}});
+  }
+  std::error_code ec;
+  if (files) fs::remove_all(setup.work_dir, ec);
+}
+
 /// Worker process of run r: simulates into memory, runs the pending methods on the dataset and
-/// puts each method's result (or its failed.json) in place.
+/// puts each method's result (or its failed.json) in place. The dataset is written to disk only
+/// for an external method (or with --keep-datasets).
 int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& pending) {
   // The worker's stderr goes to a file, whose last line explains a crash.
   const int err = ::open(scratch_file(ctx.dir, run, ".stderr").c_str(),
@@ -100,6 +162,8 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
   const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
   std::shared_ptr<const io::DatasetRecords> records;
   std::string dataset_label;
+  std::optional<ExternalFiles> files;
+  std::string files_failure;
   try {
     note_stage(ctx.dir, run, "simulate");
     sim::Scenario scenario = ctx.scenario;
@@ -112,36 +176,45 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
     }();
     records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
     dataset_label = records->name;
+    std::string kept;
     if (ctx.keep_datasets) {
       dataset_label = io::absolute_path((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
       io::write_simulated_dataset({dataset_label, "dataset", "montecarlo", {}, false}, scenario,
                                   result, ctx.scenario_text);
+      kept = dataset_label;
+    }
+    if (std::any_of(pending.begin(), pending.end(), is_external)) {
+      try {
+        files = external_files(ctx, run, scenario, result, kept);
+      } catch (const std::exception& e) {
+        files_failure = std::string("writing the dataset for external methods: ") + e.what();
+      }
     }
   } catch (const std::exception& e) {
     for (const std::string& method : pending) {
-      record_failure(ctx.dir, method, {run, seed, "simulate", e.what()});
+      record_failure(ctx.dir, method, {run, seed, "simulate", e.what(), {}});
     }
     return 0;
   }
   std::optional<io::RunInputs> in;
   SharedInputs shared;
   for (const std::string& method : pending) {
-    try {
-      note_stage(ctx.dir, run, "run");
-      if (!in) in = io::run_inputs_of(records, ctx.config);
-      injected_fault(run, method);
-      const MethodResult result = run_method(method, *in, &shared);
-      if (!result.metrics) throw io::InputError("no metrics (no truth in the dataset?)");
-      // The summary needs neither the map nor the dataset; the map is large.
-      put_in_place(ctx.dir, method, run, [&](const std::string& out) {
-        write_method_result(out, result, dataset_label, /*write_map=*/false);
-        io::write_errors_csv((fs::path(out) / "errors.csv").string(), result.errors,
-                             result.t_first_truth_s);
-      });
-    } catch (const std::exception& e) {
-      record_failure(ctx.dir, method, {run, seed, "run", e.what()});
+    note_stage(ctx.dir, run, "run");
+    if (is_external(method) && !files) {
+      record_failure(ctx.dir, method, {run, seed, "simulate", files_failure, {}});
+      continue;
     }
+    try {
+      if (!in) in = io::run_inputs_of(records, ctx.config);
+    } catch (const std::exception& e) {
+      record_failure(ctx.dir, method, {run, seed, "run", e.what(), {}});
+      continue;
+    }
+    run_one_method(ctx, run, method, *in, shared, is_external(method) ? &*files : nullptr,
+                   dataset_label);
   }
+  std::error_code ec;
+  if (files && !ctx.keep_datasets) fs::remove_all(files->dataset_dir, ec);
   return 0;
 }
 
@@ -180,8 +253,15 @@ void remove_leftovers(const std::string& dir, const std::vector<std::string>& me
     }
   }
   if (run) {
-    for (const char* suffix : {".stderr", ".stage"})
-      fs::remove(scratch_file(dir, *run, suffix), ec);
+    // The worker's notes, and an external method's dataset, config and work folders.
+    const fs::path scratch = fs::path(dir) / "scratch";
+    const std::string own = run_name(*run) + ".";
+    std::vector<fs::path> leftovers;
+    for (const auto& entry : fs::directory_iterator(scratch, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(own, 0) == 0 || name.rfind("." + own, 0) == 0) leftovers.push_back(entry);
+    }
+    for (const fs::path& path : leftovers) fs::remove_all(path, ec);
   } else {
     fs::remove_all(fs::path(dir) / "scratch", ec);
   }
@@ -240,8 +320,11 @@ int execute_runs(const RunContext& ctx, const std::vector<PendingRun>& todo, int
       const bool recorded = fs::exists(fs::path(run_dir(dir, method, r)) / "failed.json");
       if (!result.ok() || !recorded) {
         record_failure(dir, method,
-                       {r, seed, crashed_stage(dir, r),
-                        describe_failure(result, scratch_file(dir, r, ".stderr"))});
+                       {r,
+                        seed,
+                        crashed_stage(dir, r),
+                        describe_failure(result, scratch_file(dir, r, ".stderr")),
+                        {}});
       }
     }
     ++executed;

@@ -13,6 +13,7 @@
 #include "io/output_guard.hpp"
 #include "io/sonar_revolution.hpp"
 #include "plot/display.hpp"
+#include "report/methods.hpp"
 #include "report/plot_figures.hpp"
 #include "report/plot_inputs.hpp"
 #include "report/sweep_figures.hpp"
@@ -151,9 +152,14 @@ void add_plot_command(CLI::App& app, CommandLine& line) {
       ->add_option("--revolution,-r", options->revolution,
                    "Sonar revolution of the acoustic image (default: the middle one)")
       ->check(CLI::NonNegativeNumber);
+  auto methods_file = std::make_shared<std::string>();
+  command->add_option("--methods-file", *methods_file,
+                      "Methods file (YAML): titles, colours and line styles of external methods "
+                      "(without it they are drawn under their names)");
   // Reads every input first (bad input fails without a display), then draws; VTK needs an X
   // display, so without one the command runs again under xvfb-run.
-  command->callback([options, &line] {
+  command->callback([options, methods_file, &line] {
+    report::load_methods_file(*methods_file);
     const report::PlotInputs inputs = report::load_plot_inputs(*options);
     if (!plot::x_display_available()) plot::rerun_under_xvfb(line.argc, line.argv);
     for (const std::string& file : draw_plot(inputs)) std::cout << "wrote " << file << "\n";

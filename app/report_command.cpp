@@ -10,6 +10,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
+#include "report/methods.hpp"
 #include "report/results_page.hpp"
 
 namespace msislab::app {
@@ -26,6 +27,7 @@ void copy_figure(const fs::path& from, const fs::path& to) {
 }  // namespace
 
 ReportOutcome write_report(const ReportOptions& options) {
+  report::load_methods_file(options.methods_file);
   if (options.out_path.empty()) throw io::InputError("report: no output page given");
   if (fs::path(options.out_path).extension() != ".md") {
     io::fail_file(options.out_path,
@@ -116,6 +118,9 @@ void add_report_command(CLI::App& app, CommandLine&) {
   report->add_option("--sensitivity", options->sensitivity_csv,
                      "The CSV of tools/real_sensitivity.sh: the real result's sensitivity to each "
                      "parameter, as a section");
+  report->add_option("--methods-file", options->methods_file,
+                     "Methods file (YAML): titles, colours and line styles of external methods "
+                     "(without it they are listed under their names)");
   report->callback([options] {
     const ReportOutcome outcome = write_report(*options);
     std::cout << "wrote " << options->out_path << " and " << outcome.figures.size()

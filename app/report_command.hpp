@@ -25,6 +25,8 @@ struct ReportOptions {
   std::vector<std::string> sweep_dirs;
   /// The CSV of tools/real_sensitivity.sh (may be empty): the real result's sensitivity section.
   std::string sensitivity_csv;
+  /// A methods file (may be empty): the titles, colours and line styles of external methods.
+  std::string methods_file{};
 };
 
 struct ReportOutcome {

@@ -1,5 +1,7 @@
 #include "app/run_command.hpp"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <filesystem>
 #include <iomanip>
@@ -8,7 +10,9 @@
 
 #include "app/cli.hpp"
 #include "app/eval_command.hpp"
+#include "app/external_method.hpp"
 #include "io/atomic_file.hpp"
+#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/results.hpp"
@@ -35,20 +39,67 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
   if (result.metrics) write_scores(out_dir, *result.metrics, result.nees, dataset_label);
 }
 
+namespace {
+
+/// A folder of msislab's beside the output for an external method's run, removed however the run
+/// ends: the config it is given and its work folder ({out} and its stderr).
+class ExternalWork {
+ public:
+  explicit ExternalWork(const std::string& out_dir) {
+    const fs::path out = fs::absolute(fs::path(out_dir)).lexically_normal();
+    const std::string name = out.has_filename() ? out.filename().string() : "result";
+    root_ = out.parent_path() / ("." + name + ".external-" + std::to_string(::getpid()));
+    std::error_code ec;
+    fs::remove_all(root_, ec);
+    io::create_output_dir(root_.string());
+  }
+  ~ExternalWork() {
+    std::error_code ec;
+    fs::remove_all(root_, ec);
+  }
+  ExternalWork(const ExternalWork&) = delete;
+  ExternalWork& operator=(const ExternalWork&) = delete;
+  fs::path path(const char* name) const { return root_ / name; }
+
+ private:
+  fs::path root_;
+};
+
+MethodResult run_external(const RunOptions& options, const io::RunInputs& in) {
+  const ExternalWork work(options.out_dir);
+  ExternalSetup setup;
+  setup.dataset_dir = options.dataset_dir;
+  setup.config_path = options.config_path;
+  if (setup.config_path.empty()) {
+    setup.config_path = work.path("config.yaml").string();
+    io::write_dead_reckoning_config(setup.config_path, in.config.dead_reckoning);
+  }
+  setup.work_dir = work.path("run").string();
+  return run_method(options.method, in, nullptr, &setup);
+}
+
+}  // namespace
+
 RunOutcome run(const RunOptions& options) {
-  report::method_info(options.method);  // an unknown method fails before anything is read
-  const io::OutputRequest out{
-      options.out_dir, "result", "run", {options.dataset_dir, options.config_path}, options.force};
+  report::load_methods_file(options.methods_file);
+  // An unknown method fails before anything is read.
+  const bool external = report::method_info(options.method).kind == report::MethodKind::kExternal;
+  const io::OutputRequest out{options.out_dir,
+                              "result",
+                              "run",
+                              {options.dataset_dir, options.config_path, options.methods_file},
+                              options.force};
   io::check_output_folder(out);
   const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
-  const MethodResult result = run_method(options.method, in);
+  const MethodResult result = external ? run_external(options, in) : run_method(options.method, in);
   io::StagedFolder staged(out);
-  write_method_result(staged.path(), result, io::absolute_path(options.dataset_dir));
+  // An external method's scans carry no points: no map.
+  write_method_result(staged.path(), result, io::absolute_path(options.dataset_dir), !external);
   staged.commit();
   return {result.trajectory, result.metrics};
 }
 
-void add_run_command(CLI::App& app, CommandLine&) {
+void add_run_command(CLI::App& app, CommandLine& line) {
   auto options = std::make_shared<RunOptions>();
   CLI::App* run_cli = app.add_subcommand(
       "run",
@@ -65,9 +116,22 @@ void add_run_command(CLI::App& app, CommandLine&) {
       ->required();
   run_cli->add_option("--config,-c", options->config_path,
                       "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+  run_cli->add_option("--methods-file", options->methods_file,
+                      "Methods file (YAML) declaring external methods, usable as --method "
+                      "(docs/formats.md)");
   add_force_flag(*run_cli, options->force);
-  run_cli->callback([options] {
-    const RunOutcome outcome = run(*options);
+  run_cli->callback([options, &line] {
+    RunOutcome outcome;
+    try {
+      outcome = run(*options);
+    } catch (const ExternalMethodError& e) {
+      std::cerr << "msislab: method '" << options->method << "' failed: " << e.what() << "\n";
+      if (!e.stderr_tail().empty()) std::cerr << "its last stderr lines:\n";
+      for (const std::string& l : e.stderr_tail()) std::cerr << "  " << l << "\n";
+      std::cerr << std::flush;
+      line.exit_status = 1;
+      return;
+    }
     std::cout << "wrote " << options->out_dir << "/trajectory.tum (" << outcome.trajectory.size()
               << " poses)";
     if (outcome.metrics) {

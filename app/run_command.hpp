@@ -19,8 +19,9 @@ struct RunOptions {
   std::string dataset_dir;
   std::string method;
   std::string out_dir;
-  std::string config_path;  ///< empty: the default SLAM config
-  bool force = false;       ///< replace a folder msislab did not write
+  std::string config_path;     ///< empty: the default SLAM config
+  bool force = false;          ///< replace a folder msislab did not write
+  std::string methods_file{};  ///< external methods (docs/formats.md); empty: none
 };
 
 struct RunOutcome {
@@ -37,7 +38,8 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
 
 /// Checks the output path and reads every input first, then runs and puts the result directory in
 /// place whole (io::StagedFolder). Throws io::InputError on bad input (unknown method, missing or
-/// malformed files or config, an output path msislab may not write).
+/// malformed files or config, an output path msislab may not write), ExternalMethodError when an
+/// external method gave no result (nothing is written then).
 RunOutcome run(const RunOptions& options);
 
 }  // namespace msislab::app

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "app/eval_command.hpp"
+#include "app/external_method.hpp"
 #include "io/input_error.hpp"
 #include "report/methods.hpp"
 #include "slam/dead_reckoning.hpp"
@@ -229,8 +230,13 @@ ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& son
   return setup;
 }
 
-MethodResult run_method(const std::string& name, const io::RunInputs& in, SharedInputs* shared) {
+MethodResult run_method(const std::string& name, const io::RunInputs& in, SharedInputs* shared,
+                        const ExternalSetup* external) {
   const report::MethodInfo& method = report::method_info(name);
+  if (method.kind == report::MethodKind::kExternal) {
+    if (external == nullptr) throw io::InputError(name + ": an external method needs its setup");
+    return run_external_method(method, in, *external);
+  }
   const Estimate e = estimate(method, in, shared);
   MethodResult result;
   result.method = method.name;

@@ -46,10 +46,13 @@ struct SharedInputs {
 /// start, the DVL and sonar mounts, the sonar's beams per revolution.
 ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar);
 
+struct ExternalSetup;  // app/external_method.hpp
+
 /// Runs a method on a dataset read already (from a directory or held in memory), sharing with
-/// the other methods on it through `shared` when given (the results are the same). Throws
-/// io::InputError.
+/// the other methods on it through `shared` when given (the results are the same). An external
+/// method (report::MethodKind::kExternal) runs its program as `external` says (required for it).
+/// Throws io::InputError, or ExternalMethodError for an external method that gave no result.
 MethodResult run_method(const std::string& method, const io::RunInputs& in,
-                        SharedInputs* shared = nullptr);
+                        SharedInputs* shared = nullptr, const ExternalSetup* external = nullptr);
 
 }  // namespace msislab::app

@@ -100,16 +100,23 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   int shard_index = 0, shard_count = 1;
   check_shard_and_jobs(options.shard, options.jobs, shard_index, shard_count);
   const io::Sweep plan = io::read_sweep(options.sweep_path);
+  report::load_methods_file(options.methods_file);
   for (const std::string& m : plan.methods)
     report::method_info(m, options.sweep_path + ": key 'methods'");
   std::vector<io::CellInputs> inputs;
   for (std::size_t c = 0; c < plan.cells.size(); ++c) inputs.push_back(io::cell_inputs(plan, c));
   const std::string sweep_text = io::read_whole_file(options.sweep_path);
 
-  const DirectoryLock lock({options.out_dir, "sweep", "sweep", {options.sweep_path}, false},
-                           "msislab sweep " + options.sweep_path);
+  const DirectoryLock lock(
+      {options.out_dir, "sweep", "sweep", {options.sweep_path, options.methods_file}, false},
+      "msislab sweep " + options.sweep_path);
   check_same_sweep(options.out_dir, sweep_text, options.sweep_path);
   write_text((fs::path(options.out_dir) / "sweep.yaml").string(), sweep_text);
+  // Each cell keeps (and checks) its copy; this one gives the sweep's figures their titles.
+  if (!options.methods_file.empty()) {
+    write_text((fs::path(options.out_dir) / "methods.yaml").string(),
+               io::read_whole_file(options.methods_file));
+  }
 
   SweepOutcome outcome;
   outcome.cells = plan.cells.size();
@@ -125,6 +132,7 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
     }
     mc.runs = plan.runs;
     mc.methods = plan.methods;
+    mc.methods_file = options.methods_file.empty() ? "" : io::absolute_path(options.methods_file);
     mc.jobs = options.jobs;
     mc.shard = options.shard;
     mc.out_dir = (fs::path(options.out_dir) / "cells" / cell_name(c)).string();
@@ -230,6 +238,9 @@ void add_sweep_command(CLI::App& app, CommandLine& line) {
       ->check(CLI::PositiveNumber);
   cli->command->add_option("--shard", cli->options.shard,
                            "i/N: in every cell only the runs r with r % N == i; merge afterwards");
+  cli->command->add_option("--methods-file", cli->options.methods_file,
+                           "Methods file (YAML) declaring external methods for the sweep file's "
+                           "methods; passed to every cell's Monte Carlo (docs/formats.md)");
   cli->command->add_flag("--no-plot", cli->no_plot, "Do not draw the figures at the end");
   cli->command->require_subcommand(0, 1);
   CLI::App* m = cli->command->add_subcommand(

@@ -15,8 +15,9 @@ namespace msislab::app {
 struct SweepOptions {
   std::string sweep_path;
   std::string out_dir;
-  int jobs = 0;       ///< runs at once in each cell; 0: one per hardware thread
-  std::string shard;  ///< "i/N": in every cell only the runs r with r % N == i
+  int jobs = 0;                ///< runs at once in each cell; 0: one per hardware thread
+  std::string shard;           ///< "i/N": in every cell only the runs r with r % N == i
+  std::string methods_file{};  ///< external methods (docs/formats.md); empty: none
 };
 
 struct SweepOutcome {

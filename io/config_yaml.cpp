@@ -9,6 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/config_fields.hpp"
 #include "io/input_error.hpp"
+#include "io/text_lines.hpp"
 
 namespace msislab::io {
 
@@ -307,6 +308,22 @@ SlamConfig read_slam_config(const std::string& path) {
 
 SlamConfig read_slam_config_text(const std::string& text, const std::string& name) {
   return slam_config_from_yaml(load_yaml_text(text, name), name);
+}
+
+void write_dead_reckoning_config(const std::string& path, const DeadReckoningConfig& config) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out << "# msislab SLAM config: the dead-reckoning noise (every other key at its default)\n"
+        << "dead_reckoning:\n"
+        << "  dvl_sigma_mps: " << format_number(config.dvl_sigma_mps) << "\n"
+        << "  heading_sigma_deg: " << format_number(config.heading_sigma_rad / kDegToRad) << "\n"
+        << "  accel_sigma_mps2: " << format_number(config.accel_sigma_mps2) << "\n"
+        << "  yaw_accel_sigma_radps2: " << format_number(config.yaw_accel_sigma_radps2) << "\n"
+        << "  initial_velocity_sigma_mps: " << format_number(config.initial_velocity_sigma_mps)
+        << "\n"
+        << "  initial_yaw_rate_sigma_radps: " << format_number(config.initial_yaw_rate_sigma_radps)
+        << "\n"
+        << "  dvl_gate_chi2: " << format_number(config.dvl_gate_chi2) << "\n";
+  });
 }
 
 }  // namespace msislab::io

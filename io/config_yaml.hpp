@@ -23,4 +23,9 @@ SlamConfig read_slam_config(const std::string& path);
 /// The same from a config's text; `name` stands for the file in errors.
 SlamConfig read_slam_config_text(const std::string& text, const std::string& name);
 
+/// Writes the config's dead_reckoning section (every key; the other sections are left at their
+/// defaults by their absence), atomically: what an external method is given as {config} when no
+/// --config was (docs/formats.md). read_slam_config() reads the same dead-reckoning values back.
+void write_dead_reckoning_config(const std::string& path, const DeadReckoningConfig& config);
+
 }  // namespace msislab::io

@@ -29,6 +29,7 @@ void to_json(Json& json, const MonteCarloManifest& m) {
   json["runs"] = m.runs;
   json["methods"] = m.methods;
   json["config"] = m.has_config ? Json("config.yaml") : Json();
+  json["methods_file"] = m.has_methods_file ? Json("methods.yaml") : Json();
   json["shard"] = std::to_string(m.shard_index) + "/" + std::to_string(m.shard_count);
   json["executable_digest"] = m.executable_digest;
 }
@@ -52,6 +53,7 @@ void from_json(const JsonObject& json, MonteCarloManifest& m) {
     m.methods.push_back(method.get<std::string>());
   }
   m.has_config = json.string_or_null("config").has_value();
+  m.has_methods_file = json.has("methods_file") && json.string_or_null("methods_file").has_value();
   const std::string shard = json.string("shard");
   if (!parse_shard(shard, m.shard_index, m.shard_count)) {
     json.fail("shard", "expected i/N with 0 <= i < N, got '" + shard + "'");
@@ -87,6 +89,7 @@ void to_json(Json& json, const RunFailure& f) {
   json["seed"] = f.seed;
   json["stage"] = f.stage;
   json["reason"] = f.reason;
+  if (!f.stderr_tail.empty()) json["stderr"] = f.stderr_tail;
 }
 
 void write_failure_json(const std::string& path, const RunFailure& f) { write_json_file(path, f); }

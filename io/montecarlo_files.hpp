@@ -17,8 +17,9 @@ struct MonteCarloManifest {
   std::uint64_t first_seed = 0;  ///< the scenario's seed: run r used first_seed + r
   int runs = 0;                  ///< N: runs 0 .. N-1
   std::vector<std::string> methods;
-  bool has_config = false;  ///< config.yaml holds the SLAM config every run used
-  int shard_index = 0;      ///< this directory holds the runs r with r % shard_count == shard_index
+  bool has_config = false;        ///< config.yaml holds the SLAM config every run used
+  bool has_methods_file = false;  ///< methods.yaml: a copy of the --methods-file given
+  int shard_index = 0;  ///< this directory holds the runs r with r % shard_count == shard_index
   int shard_count = 1;
   /// Which msislab executable made the runs (app::executable_digest); empty in directories made
   /// before it was recorded. Runs of two builds are never mixed.
@@ -42,6 +43,8 @@ struct RunFailure {
   std::uint64_t seed = 0;
   std::string stage;   ///< "simulate" or "run"
   std::string reason;  ///< exit status or signal, and the last stderr line
+  /// An external method's last stderr lines (written as "stderr" when there are any).
+  std::vector<std::string> stderr_tail;
 };
 void to_json(Json& json, const RunFailure& failure);
 void write_failure_json(const std::string& path, const RunFailure& failure);

@@ -48,10 +48,14 @@ class ExternalWork {
   explicit ExternalWork(const std::string& out_dir) {
     const fs::path out = fs::absolute(fs::path(out_dir)).lexically_normal();
     const std::string name = out.has_filename() ? out.filename().string() : "result";
-    root_ = out.parent_path() / ("." + name + ".external-" + std::to_string(::getpid()));
-    std::error_code ec;
-    fs::remove_all(root_, ec);
-    io::create_output_dir(root_.string());
+    // A name nothing else has: a folder that is there already (not msislab's) is never touched.
+    const std::string stem = "." + name + ".external-" + std::to_string(::getpid());
+    for (int i = 0;; ++i) {
+      root_ = out.parent_path() / (stem + (i == 0 ? "" : "-" + std::to_string(i)));
+      std::error_code ec;
+      if (fs::create_directory(root_, ec)) break;
+      if (ec || i == 1000) throw io::InputError(root_.string() + ": cannot make a work folder");
+    }
   }
   ~ExternalWork() {
     std::error_code ec;

@@ -93,6 +93,9 @@ void step_args(benchmark::internal::Benchmark* b) {
   for (int n : {25, 50, 100, 200, 400}) {
     b->Args({n, 0, 0})->Args({n, 0, 1})->Args({n, 1, 0});
   }
+  // A long mission (tools/step_time_figure.sh): the default config only, the covariance dense
+  // (2,000 scans: 6,000 x 6,000, 288 MB).
+  for (int n : {1000, 2000}) b->Args({n, 1, 0});
   b->Unit(benchmark::kMillisecond);
 }
 BENCHMARK_TEMPLATE(BM_Step, RoboCentricSlam)->Apply(step_args);

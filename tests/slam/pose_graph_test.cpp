@@ -217,6 +217,48 @@ TEST(PoseGraph, ALoopClosureBringsTheEndBack) {
   EXPECT_LT((closed.pose(8).translation() - truth[8].translation()).norm(), open_m);
 }
 
+TEST(PoseGraph, HeldNodesStayWhereTheyAreUntilFreed) {
+  // The loop of the test above, closed, with its first half held (a windowed online solve): the
+  // held nodes do not move, the free ones still do; freed, the whole graph reaches the solution
+  // of a graph never held (to Ceres' tolerances from another start: 2e-5 here; held, the first
+  // half would stay centimetres off), and the covariances are the whole graph's whatever was held.
+  std::mt19937 rng(2);
+  const std::vector<Pose2> truth = square_loop();
+  PoseGraph held, never_held;
+  odometry_graph(held, truth, rng);
+  rng.seed(2);
+  odometry_graph(never_held, truth, rng);
+  const Eigen::Matrix3d match_cov =
+      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
+  for (PoseGraph* graph : {&held, &never_held}) {
+    graph->add_relative(0, truth.size() - 1, {truth[0].between(truth.back()), match_cov},
+                        Eigen::Matrix3d::Identity(), true);
+  }
+  const std::size_t half = truth.size() / 2;
+  std::vector<Pose2> before;
+  for (std::size_t i = 0; i < truth.size(); ++i) before.push_back(held.pose(i));
+  held.hold_before(half);
+  held.solve();
+  for (std::size_t i = 0; i < half; ++i) {
+    EXPECT_EQ(held.pose(i).vector(), before[i].vector()) << i;
+  }
+  EXPECT_GT((held.pose(truth.size() - 1).translation() - before.back().translation()).norm(), 0.05);
+  held.hold_before(0);
+  held.solve();
+  never_held.solve();
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    EXPECT_LT(pose_difference(held.pose(i), never_held.pose(i)).norm(), 1e-3) << i;
+  }
+  // Covariances free every node first (a node held as fixed would have none), at poses 2e-5 m
+  // from the other graph's.
+  held.hold_before(half);
+  const std::vector<Eigen::Matrix3d> held_cov = held.covariances({1, half + 1});
+  const std::vector<Eigen::Matrix3d> whole_cov = never_held.covariances({1, half + 1});
+  for (std::size_t k = 0; k < 2; ++k) {
+    EXPECT_LT((held_cov[k] - whole_cov[k]).norm(), 1e-2 * whole_cov[k].norm()) << k;
+  }
+}
+
 TEST(PoseGraph, AWrongLoopClosureIsHeldOffByTheRobustLoss) {
   // Two loop closures of the last node, both claimed with a 2 cm covariance: the right one and
   // one 1 m and 6 deg off, the kind of wrong match the front end's gate lets through when the

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -73,10 +74,17 @@ std::string bad_methods(const TempDir& tmp, const std::string& marker) {
 
 /// Whether a process with the marker on its command line runs ("[m]arker": the shell running
 /// pgrep, whose command line holds the pattern, does not match it).
-bool alive(const std::string& marker) {
+/// How many processes have the marker in their command line.
+int alive_count(const std::string& marker) {
   const std::string pattern = "[" + marker.substr(0, 1) + "]" + marker.substr(1);
-  return std::system(("pgrep -f " + shell_quote(pattern) + " >/dev/null").c_str()) == 0;
+  FILE* pgrep = ::popen(("pgrep -c -f " + shell_quote(pattern)).c_str(), "r");
+  int count = 0;
+  if (pgrep == nullptr || std::fscanf(pgrep, "%d", &count) != 1) count = 0;
+  if (pgrep != nullptr) ::pclose(pgrep);
+  return count;
 }
+
+bool alive(const std::string& marker) { return alive_count(marker) > 0; }
 
 io::Json read_json(const fs::path& path) { return io::Json::parse(read_text(path.string())); }
 
@@ -213,9 +221,8 @@ TEST(ExternalMethod, SigtermOfMontecarloLeavesNoProgramAlive) {
   const std::string marker = "msislab_sigterm_marker_" + std::to_string(::getpid());
   const std::string methods =
       write_text(tmp.file("slow.yaml"),
-                 "methods:\n  - name: slow\n    command: [sh, -c, 'sleep 120 & "
-                 "sleep 120; : " +
-                     marker + "']\n    time_limit_s: 600\n");
+                 "methods:\n  - name: slow\n    command: [sh, -c, \"sh -c 'sleep 120; : " + marker +
+                     "' & sleep 120; : " + marker + "\"]\n    time_limit_s: 600\n");
   const std::string mc = tmp.file("mc");
   const std::vector<std::string> args = {MSISLAB_EXE, "montecarlo", kScenario, "--runs",
                                          "1",         "--methods",  "slow",    "--methods-file",
@@ -231,10 +238,11 @@ TEST(ExternalMethod, SigtermOfMontecarloLeavesNoProgramAlive) {
   ASSERT_EQ(posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (!alive(marker) && std::chrono::steady_clock::now() < until) {
+  // The program and the child it left in the background, both carrying the marker.
+  while (alive_count(marker) < 2 && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
-  ASSERT_TRUE(alive(marker)) << "the program never started";
+  ASSERT_GE(alive_count(marker), 2) << "the program and its child never started";
   ::kill(pid, SIGTERM);
   int status = 0;
   ASSERT_EQ(::waitpid(pid, &status, 0), pid);

@@ -231,8 +231,8 @@ PoseGraphSolve PoseGraph::solve(bool count_downweighted) {
   out.final_cost = summary.final_cost;
   // Down-weighted: beyond the gate, a squared whitened norm above c^2.
   for (const ceres::ResidualBlockId id : problem_->robust) {
-    if (!count_downweighted) break;
-    double cost = 0.0;  // without the loss: half the squared norm
+    if (!count_downweighted) break;  // a windowed online solve: counted at the smoothing solve
+    double cost = 0.0;               // without the loss: half the squared norm
     problem_->problem.EvaluateResidualBlock(id, false, &cost, nullptr, nullptr);
     out.edges_downweighted += 2.0 * cost > config_.robust_scale_chi2;
   }

@@ -92,7 +92,7 @@ class PoseGraph {
   Pose2 pose(std::size_t i) const;
   /// The marginal covariances of the given nodes at the current poses (the whole graph's
   /// information J^T J, robust edges at their weight there, factored by sparse Cholesky; held
-  /// nodes are freed first, fixed ones have zero covariance). Throws
+  /// nodes are freed first, and stay free, fixed ones have zero covariance). Throws
   /// std::runtime_error when the graph's information is singular (a node without a path to a
   /// prior or fixed node).
   std::vector<Eigen::Matrix3d> covariances(const std::vector<std::size_t>& nodes);

@@ -10,6 +10,7 @@
 #include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
+#include "io/methods_file.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/ply.hpp"
 #include "io/result_readers.hpp"
@@ -51,6 +52,16 @@ void read_sweep_cells(const std::string& path) {
   for (std::size_t i = 0; i < sweep.cells.size(); ++i) io::cell_inputs(sweep, i);
 }
 
+/// A methods file, with the built-in names reserved as `msislab` reserves them, then each
+/// method's command with its placeholders filled in.
+void read_methods(const std::string& path) {
+  const io::MethodsFile file = io::read_methods_file(
+      path, {"robocentric", "worldcentric", "posegraph", "deadreckoning", "integration"});
+  for (const io::ExternalMethod& method : file.methods) {
+    io::expand_command(method, {"/data", "/out", "/config.yaml", 7});
+  }
+}
+
 void read_truth_segments(const std::string& path) {
   io::DatasetFiles files;
   files.truth_segments = path;
@@ -78,12 +89,13 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"tum", "trajectory.tum", [](const std::string& p) { io::read_tum(p); }},
       {"beam_truth_csv", "beams.csv", [](const std::string& p) { io::read_beam_truth(p); }},
       {"segments_csv", "segments.csv", read_truth_segments},
-      // YAML: scenario, SLAM config, calibration, sweep.
+      // YAML: scenario, SLAM config, calibration, sweep, methods file.
       {"scenario_yaml", "scenario.yaml", [](const std::string& p) { io::read_scenario(p); }},
       {"slam_config_yaml", "config.yaml", [](const std::string& p) { io::read_slam_config(p); }},
       {"calibration_yaml", "calibration.yaml",
        [](const std::string& p) { io::read_calibration(p); }},
       {"sweep_yaml", "sweep.yaml", read_sweep_cells},
+      {"methods_yaml", "methods.yaml", read_methods},
       // Scene meshes and the map a run writes.
       {"obj_mesh", "scene.obj", read_scene_mesh},
       {"ply_mesh", "scene.ply", read_scene_mesh},

@@ -115,7 +115,7 @@ MethodResult run_external_method(const report::MethodInfo& method, const io::Run
   program.stderr_path = (work / "stderr.log").string();
   program.time_limit_s = spec.time_limit_s;
   const ProgramOutcome outcome = run_program(program);
-  std::vector<std::string> tail = last_lines(program.stderr_path, kStderrTailLines);
+  std::vector<std::string> tail = io::last_lines(program.stderr_path, kStderrTailLines);
   const std::string problem = ending_problem(outcome, spec.time_limit_s);
   if (!problem.empty()) throw ExternalMethodError(problem, std::move(tail));
   MethodResult result;

@@ -9,8 +9,6 @@
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <deque>
-#include <fstream>
 
 extern char** environ;
 
@@ -160,18 +158,6 @@ ProgramOutcome run_program(const ProgramSpec& spec) {
   ::pthread_sigmask(SIG_SETMASK, &old_mask, nullptr);
   if (stop != 0) ::raise(stop);
   return outcome;
-}
-
-std::vector<std::string> last_lines(const std::string& path, std::size_t count) {
-  std::ifstream in(path);
-  std::deque<std::string> lines;
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    lines.push_back(line);
-    if (lines.size() > count) lines.pop_front();
-  }
-  return {lines.begin(), lines.end()};
 }
 
 }  // namespace msislab::app

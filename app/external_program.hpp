@@ -33,7 +33,4 @@ struct ProgramOutcome {
 /// handled). Must be the only thread of the process that forks or waits for children.
 ProgramOutcome run_program(const ProgramSpec& spec);
 
-/// The last `count` non-empty lines of a text file (none when it cannot be read).
-std::vector<std::string> last_lines(const std::string& path, std::size_t count);
-
 }  // namespace msislab::app

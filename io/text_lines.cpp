@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <system_error>
@@ -149,14 +150,22 @@ bool LineReader::next(std::string_view& line) {
   }
 }
 
-std::string last_line(const std::string& path) {
+std::vector<std::string> last_lines(const std::string& path, std::size_t count) {
   std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return "";
+  if (count == 0 || !std::filesystem::is_regular_file(path, error)) return {};
   LineReader lines(path);
-  std::string last;
-  for (std::string_view line; lines.next(line);)
-    if (!line.empty()) last = line;
-  return last;
+  std::deque<std::string> last;
+  for (std::string_view line; lines.next(line);) {
+    if (line.empty()) continue;
+    last.emplace_back(line);
+    if (last.size() > count) last.pop_front();
+  }
+  return {last.begin(), last.end()};
+}
+
+std::string last_line(const std::string& path) {
+  const std::vector<std::string> last = last_lines(path, 1);
+  return last.empty() ? "" : last.front();
 }
 
 DataLines::DataLines(std::string path, char comment) : lines_(std::move(path)), comment_(comment) {}

@@ -74,8 +74,10 @@ class LineReader {
   std::size_t line_number_ = 0;
 };
 
-/// The last non-empty line of a text file; empty when the file is missing or has none (for the
-/// scratch notes a worker process leaves, which may not exist).
+/// The last `count` non-empty lines of a text file, in order; none when the file is missing (for
+/// the scratch notes and stderr files of child processes, which may not exist).
+std::vector<std::string> last_lines(const std::string& path, std::size_t count);
+/// The last non-empty line of a text file; empty when the file is missing or has none.
 std::string last_line(const std::string& path);
 
 /// The data lines of a text file: skips blank lines and lines whose first non-blank character is

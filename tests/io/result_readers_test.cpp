@@ -32,6 +32,18 @@ void expect_error(Read read, const std::string& part) {
 constexpr const char* kScansHeader =
     "t_s,x_m,y_m,yaw_rad,cov_xx,cov_xy,cov_xyaw,cov_yy,cov_yyaw,cov_yawyaw,points\n";
 
+TEST(TextLines, LastLinesOfAChildsStderr) {
+  // A child process's stderr: CRLF or LF, blank lines skipped, the last ones in order; nothing
+  // from a file that is not there.
+  const TempDir tmp;
+  const std::string path = write_text(tmp.file("stderr.log"), "one\r\n\ntwo\nthree\n\n");
+  EXPECT_EQ(io::last_lines(path, 2), (std::vector<std::string>{"two", "three"}));
+  EXPECT_EQ(io::last_lines(path, 5), (std::vector<std::string>{"one", "two", "three"}));
+  EXPECT_EQ(io::last_line(path), "three");
+  EXPECT_TRUE(io::last_lines(tmp.file("absent.log"), 3).empty());
+  EXPECT_EQ(io::last_line(tmp.file("absent.log")), "");
+}
+
 TEST(ResultReaders, ScansCsvRowsAndSymmetricCovariance) {
   const TempDir tmp;
   const std::string path = write_text(tmp.file("scans.csv"), std::string(kScansHeader) +

@@ -59,6 +59,14 @@ void odometry_graph(PoseGraph& graph, const std::vector<Pose2>& truth, std::mt19
   }
 }
 
+/// The square loop closed: the last node seen from the first, the truth with a 2 cm match.
+void close_square_loop(PoseGraph& graph, const std::vector<Pose2>& truth) {
+  const Eigen::Matrix3d match_cov =
+      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
+  graph.add_relative(0, truth.size() - 1, {truth[0].between(truth.back()), match_cov},
+                     Eigen::Matrix3d::Identity(), true);
+}
+
 TEST(PoseGraph, ResidualJacobiansMatchCentralDifferences) {
   // Every edge kind, at an arbitrary point; Ceres' own gradient checker compares the analytic
   // Jacobians with numeric ones.
@@ -201,11 +209,7 @@ TEST(PoseGraph, ALoopClosureBringsTheEndBack) {
   odometry_graph(open_loop, truth, rng);
   rng.seed(2);
   odometry_graph(closed, truth, rng);
-  // The last node seen from the first: the truth with a 2 cm match.
-  const Eigen::Matrix3d match_cov =
-      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
-  closed.add_relative(0, truth.size() - 1, {truth[0].between(truth.back()), match_cov},
-                      Eigen::Matrix3d::Identity(), true);
+  close_square_loop(closed, truth);
   const PoseGraphSolve solve = closed.solve();
   EXPECT_TRUE(solve.converged);
   EXPECT_EQ(solve.edges_downweighted, 0);
@@ -228,12 +232,8 @@ TEST(PoseGraph, HeldNodesStayWhereTheyAreUntilFreed) {
   odometry_graph(held, truth, rng);
   rng.seed(2);
   odometry_graph(never_held, truth, rng);
-  const Eigen::Matrix3d match_cov =
-      Eigen::Vector3d(0.02 * 0.02, 0.02 * 0.02, 0.005 * 0.005).asDiagonal();
-  for (PoseGraph* graph : {&held, &never_held}) {
-    graph->add_relative(0, truth.size() - 1, {truth[0].between(truth.back()), match_cov},
-                        Eigen::Matrix3d::Identity(), true);
-  }
+  close_square_loop(held, truth);
+  close_square_loop(never_held, truth);
   const std::size_t half = truth.size() / 2;
   std::vector<Pose2> before;
   for (std::size_t i = 0; i < truth.size(); ++i) before.push_back(held.pose(i));

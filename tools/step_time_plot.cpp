@@ -5,12 +5,10 @@
 // replaced only with --force). Needs an X display; without one it reruns itself under xvfb-run.
 #include <CLI/CLI.hpp>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <map>
-#include <sstream>
-#include <stdexcept>
 
+#include "io/text_lines.hpp"
 #include "plot/chart.hpp"
 #include "plot/display.hpp"
 
@@ -19,9 +17,9 @@ namespace {
 using msislab::plot::ChartSpec;
 using msislab::plot::Series;
 
-/// One line and one set of markers per backend, in order of first appearance; throws
-/// std::runtime_error on a malformed row.
-ChartSpec read_chart(std::istream& in) {
+/// One line and one set of markers per backend, in order of first appearance, from the CSV
+/// (io::for_each_csv_row: a bad header, row or number is an InputError naming the file and line).
+ChartSpec read_chart(const std::string& csv_path) {
   ChartSpec chart;
   chart.title = "SLAM step time against the scans in the state";
   chart.x_label = "scans in the state";
@@ -31,32 +29,28 @@ ChartSpec read_chart(std::istream& in) {
   chart.height_px = 700;
   const std::uint32_t colours[] = {0x1f77b4, 0xd62728, 0x2ca02c, 0xff7f0e, 0x9467bd, 0x8c564b};
   std::map<std::string, std::size_t> index;
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::stringstream row(line);
-    std::string backend, scans, ms;
-    if (!std::getline(row, backend, ',') || !std::getline(row, scans, ',') ||
-        !std::getline(row, ms, ',')) {
-      throw std::runtime_error("bad row '" + line + "'");
-    }
-    auto [it, added] = index.emplace(backend, chart.series.size());
-    if (added) {
-      Series s;
-      s.label = backend;
-      s.rgb = colours[(index.size() - 1) % 6];
-      chart.series.push_back(s);
-      s.label.clear();  // the same colour's markers, not in the legend
-      s.style = msislab::plot::SeriesStyle::kPoints;
-      s.width_px = 8.0f;
-      chart.series.push_back(s);
-    }
-    for (std::size_t k : {it->second, it->second + 1}) {
-      chart.series[k].x.push_back(std::stod(scans));
-      chart.series[k].y.push_back(std::stod(ms));
-    }
-  }
+  msislab::io::for_each_csv_row(
+      csv_path, "backend,scans,ms_per_step", [&](std::string_view line, std::size_t number) {
+        const auto fields = msislab::io::split_csv<3>(line, csv_path, number);
+        const double scans = msislab::io::parse_finite(fields[1], {csv_path, number, 2, "scans"});
+        const double ms =
+            msislab::io::parse_finite(fields[2], {csv_path, number, 3, "ms_per_step"});
+        auto [it, added] = index.emplace(std::string(fields[0]), chart.series.size());
+        if (added) {
+          Series s;
+          s.label = std::string(fields[0]);
+          s.rgb = colours[(index.size() - 1) % 6];
+          chart.series.push_back(s);
+          s.label.clear();  // the same colour's markers, not in the legend
+          s.style = msislab::plot::SeriesStyle::kPoints;
+          s.width_px = 8.0f;
+          chart.series.push_back(s);
+        }
+        for (std::size_t k : {it->second, it->second + 1}) {
+          chart.series[k].x.push_back(scans);
+          chart.series[k].y.push_back(ms);
+        }
+      });
   return chart;
 }
 
@@ -77,12 +71,7 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (!msislab::plot::x_display_available()) msislab::plot::rerun_under_xvfb(argc, argv);
-    std::ifstream in(csv_path);
-    if (!in) {
-      std::cerr << "msislab_step_time_plot: cannot read " << csv_path << "\n";
-      return 2;
-    }
-    const ChartSpec chart = read_chart(in);
+    const ChartSpec chart = read_chart(csv_path);
     msislab::plot::ChartWriter writer;
     writer.write_png(out_path, chart);
     std::cout << "wrote " << out_path << "\n";

@@ -3,7 +3,10 @@
 // renderer's primary rays, on an Embree scene of the same triangles and water surface; beside it
 // the same rays as coherent packets of 8 and 16, the best a tracer could do on them; (b) the full
 // MSIS renderer (rays, bounces, physics, speckle, noise, quantisation), counting every ray it
-// casts. items_per_second is rays/s; vs_bare = (b) / (a).
+// casts. items_per_second is rays/s; vs_bare = (b) / (a). Two rows say where the renderer's time
+// goes: its own tracer (sim::Scene, packets of 16) on the same primary rays, and the renderer
+// with the optional physics off (roughness, footprints, speckle, pulse spread): what the rays,
+// bounces, receive pattern, losses and bins cost without them.
 #include <embree3/rtcore.h>
 
 #include <benchmark/benchmark.h>
@@ -24,6 +27,16 @@ using namespace msislab;
 const std::string kSource = MSISLAB_SOURCE_DIR;
 constexpr std::size_t kBeams = 4000;
 
+/// The replica's sonar with the optional physics switched off.
+sim::Scenario lean(sim::Scenario scenario) {
+  scenario.sonar.roughness_db = 0.0;
+  scenario.sonar.footprint = false;
+  scenario.sonar.speckle = false;
+  scenario.sonar.pulse_length_us = 0.0;
+  scenario.sonar.receiver_time_constant_us = 0.0;
+  return scenario;
+}
+
 struct Fixture {
   sim::Scenario scenario = io::read_scenario(kSource + "/scenarios/stpere_replica.yaml");
   sim::TriangleMesh mesh = io::read_mesh(
@@ -32,6 +45,7 @@ struct Fixture {
   sim::Scene scene{mesh, scenario.scene.surface};
   sim::VehicleTrajectory truth = sim::follow_path(scenario.vehicle);
   sim::MsisModel model{scene, scenario.sonar, scenario.vehicle.depth_m};
+  sim::MsisModel lean_model{scene, lean(scenario).sonar, scenario.vehicle.depth_m};
   std::vector<sim::BeamSlot> slots;
   Fixture() {
     const auto all = sim::beam_schedule(scenario.sonar, truth.start_s(), truth.end_s());
@@ -178,14 +192,34 @@ void BM_BareEmbreePackets16(benchmark::State& state) {
   packet_loop<16, RTCRayHit16>(state, rtcIntersect16);
 }
 
-void BM_MsisRenderer(benchmark::State& state) {
+/// The renderer's own tracer (sim::Scene::intersect, packets of 16, hits with their normals and
+/// materials) on the same primary rays, a beam at a time as the renderer casts them.
+void BM_SceneTracerOnTheRenderersRays(benchmark::State& state) {
+  const Fixture& f = fixture();
+  std::vector<std::vector<sim::Ray>> beams;
+  for (const auto& slot : f.slots) beams.push_back(f.model.primary_rays(slot, f.truth));
+  std::vector<sim::RayHit> hits;
+  float checksum = 0.0f;
+  std::int64_t rays = 0;
+  for (auto _ : state) {
+    for (const auto& beam : beams) {
+      f.scene.intersect(beam, hits);
+      for (const sim::RayHit& hit : hits) checksum += hit.distance_m;
+      rays += static_cast<std::int64_t>(beam.size());
+    }
+  }
+  benchmark::DoNotOptimize(checksum);
+  state.SetItemsProcessed(rays);
+}
+
+void render_loop(benchmark::State& state, const sim::MsisModel& model) {
   const Fixture& f = fixture();
   std::int64_t rays = 0;
   const auto t0 = std::chrono::steady_clock::now();
   for (auto _ : state) {
     for (const auto& slot : f.slots) {
       sim::Rng rng = sim::make_rng(1, sim::RandomStream::kSonarBeam, slot.index);
-      const sim::RenderedBeam beam = f.model.render(slot, f.truth, rng);
+      const sim::RenderedBeam beam = model.render(slot, f.truth, rng);
       rays += beam.rays_cast;
     }
   }
@@ -199,9 +233,16 @@ void BM_MsisRenderer(benchmark::State& state) {
       static_cast<double>(rays) / static_cast<double>(state.iterations() * kBeams);
 }
 
+void BM_MsisRenderer(benchmark::State& state) { render_loop(state, fixture().model); }
+void BM_MsisRendererLeanPhysics(benchmark::State& state) {
+  render_loop(state, fixture().lean_model);
+}
+
 }  // namespace
 
 BENCHMARK(BM_BareEmbreeOnTheRenderersRays)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BareEmbreePackets8)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_BareEmbreePackets16)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_SceneTracerOnTheRenderersRays)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_MsisRenderer)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MsisRendererLeanPhysics)->Unit(benchmark::kMillisecond);

@@ -2,14 +2,14 @@
 # Step time against state size for every SLAM back end, up to a long mission's 2,000 scans:
 # runs msislab_slam_bench's rows (the synthetic basin loop; robocentric and world-centric filters
 # with the default config, compass on, 25..2,000 scans; the pose graph over the whole graph,
-# 100..1,000 scans, and with an online window of 100 scans, 100..2,000), writes their CPU time per
+# 100..2,000 scans, and with an online window of 100 scans, 100..2,000), writes their CPU time per
 # step to DIR/step_time.csv (`backend,scans,ms_per_step`; the bench's own CSVs beside it) and draws
 # DIR/step_time.png with msislab_step_time_plot. Timings are figures, not pass/fail; the machine's
 # other load shows in them. docs/pose_graph.md, "Long missions", quotes the output.
 #
-# How long: about 30 minutes on 2 shared cores (the filters 26, setting up their 2,000-scan states
-# most of it; the pose graph 4); the bench's peak memory about 450 MB (a 6,000 x 6,000 covariance
-# is 288 MB).
+# How long: about 40 minutes on 2 shared cores (the filters 26, setting up their 2,000-scan states
+# most of it; the pose graph 14, its whole graph's 2,000-scan row 9 of them); the bench's peak
+# memory about 450 MB (a 6,000 x 6,000 covariance is 288 MB).
 #
 # Usage: tools/step_time_figure.sh [--out DIR] [--build DIR] [--redraw]
 #   --out DIR    default docs/long_mission. A new directory is created; an existing one is written

@@ -144,7 +144,6 @@ std::vector<Ray> MsisModel::primary_rays(const BeamSlot& slot,
 
 struct MsisModel::Route {
   const RayTemplate* ray = nullptr;
-  Ray last;  ///< the ray that reached the surface
   Eigen::Vector3f first_hit_m = Eigen::Vector3f::Zero();
   /// The ray's cell of the aperture as two edge vectors of its direction; a planar mirror keeps
   /// the cell's shape, so they are mirrored with the ray.
@@ -215,8 +214,7 @@ std::uint32_t MsisModel::trace_routes(const Ping& ping, Workspace& work) const {
   primary_rays(ping, work.rays);
   work.routes.clear();
   for (const RayTemplate& ray : rays_) {
-    work.routes.push_back({&ray, Ray{}, Eigen::Vector3f::Zero(),
-                           rotate_z(ray.cell_azimuth_beam, c, s),
+    work.routes.push_back({&ray, Eigen::Vector3f::Zero(), rotate_z(ray.cell_azimuth_beam, c, s),
                            rotate_z(ray.cell_elevation_beam, c, s), 0.0, ray.weight});
   }
   auto rays_cast = static_cast<std::uint32_t>(work.rays.size());
@@ -228,24 +226,26 @@ std::uint32_t MsisModel::trace_routes(const Ping& ping, Workspace& work) const {
       const RayHit& hit = work.hits[i];
       if (!hit.hit) continue;
       Route& route = work.routes[i];
-      route.last = work.rays[i];
+      const Ray& ray = work.rays[i];  // the ray that reached the surface
       route.path_m += hit.distance_m;
-      const Eigen::Vector3f hit_point = route.last.origin_m + hit.distance_m * route.last.direction;
+      const Eigen::Vector3f hit_point = ray.origin_m + hit.distance_m * ray.direction;
       if (bounce == 0) route.first_hit_m = hit_point;
-      work.echoes.push_back(echo_at(route, hit, bounce));
+      work.echoes.push_back(echo_at(route, ray.direction, hit_point, hit, bounce));
       const float specular = scene_.materials()[hit.material_id].specular;
       if (bounce >= sonar_.multipath_bounces || specular <= 0.0f) continue;
       // Specular route: the echo of the next surface comes back the same way, so the mirror's
       // coefficient counts twice.
+      Ray next;
+      next.t_max_m = static_cast<float>(max_range_m - route.path_m);
+      if (next.t_max_m <= 0.0f) continue;
+      next.direction = mirror(ray.direction, hit.normal);
+      next.origin_m = hit_point + 1e-3f * hit.normal;
       route.route_gain *= static_cast<double>(specular) * specular;
-      route.last.direction = mirror(route.last.direction, hit.normal);
       route.cell_azimuth = mirror(route.cell_azimuth, hit.normal);
       route.cell_elevation = mirror(route.cell_elevation, hit.normal);
-      route.last.origin_m = hit_point + 1e-3f * hit.normal;
-      route.last.t_max_m = static_cast<float>(max_range_m - route.path_m);
-      if (route.last.t_max_m <= 0.0f) continue;
-      work.rays[bouncing] = route.last;  // index <= i: rays[i] was read above
-      work.routes[bouncing++] = route;
+      work.rays[bouncing] = next;  // index <= i: rays[i] is not read again
+      if (bouncing != i) work.routes[bouncing] = route;
+      ++bouncing;
     }
     receiver_.add_echoes(ping, work.echoes, work.profile, work.receiver);
     if (bouncing == 0) return rays_cast;
@@ -255,11 +255,10 @@ std::uint32_t MsisModel::trace_routes(const Ping& ping, Workspace& work) const {
   }
 }
 
-Echo MsisModel::echo_at(const Route& route, const RayHit& hit, int bounce) const {
+Echo MsisModel::echo_at(const Route& route, const Eigen::Vector3f& d,
+                        const Eigen::Vector3f& hit_point_m, const RayHit& hit, int bounce) const {
   const Material& material = scene_.materials()[hit.material_id];
-  const Eigen::Vector3f& d = route.last.direction;
   const double cos_incidence = std::abs(d.dot(hit.normal));
-  const Eigen::Vector3f hit_point = route.last.origin_m + hit.distance_m * d;
   // Backscatter: strength x cos^n(incidence) toward the source (n = 2: Lambert), varied along
   // the surface by its roughness; over the ray's footprint, of area path^2 x cell /
   // cos(incidence).
@@ -272,7 +271,7 @@ Echo MsisModel::echo_at(const Route& route, const RayHit& hit, int bounce) const
       route.route_gain *
       backscatter_per_area(material.backscatter, cos_incidence, material.incidence_exponent) *
       footprint_area(route.path_m, route.ray->cell_sr, cos_incidence);
-  echo.log_gain = roughness_log_gain(hit_point);
+  echo.log_gain = roughness_log_gain(hit_point_m);
   echo.multipath = bounce > 0;
   echo.material_id = hit.material_id;
   return echo;

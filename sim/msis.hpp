@@ -101,8 +101,9 @@ class MsisModel {
   /// traced together), each surface's echo into the profile; returns the rays cast after the
   /// primary ones.
   std::uint32_t trace_routes(const Ping& ping, Workspace& work) const;
-  /// The echo of the surface a route has reached.
-  Echo echo_at(const Route& route, const RayHit& hit, int bounce) const;
+  /// The echo of the surface a route has reached at `hit_point_m`, along direction `d`.
+  Echo echo_at(const Route& route, const Eigen::Vector3f& d, const Eigen::Vector3f& hit_point_m,
+               const RayHit& hit, int bounce) const;
   /// Range extent (m) of the footprint of a ray's cell on the surface it hits; 0 when the
   /// footprint spread is off.
   double footprint_extent(double path_m, const Eigen::Vector3f& direction,

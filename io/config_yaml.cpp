@@ -207,6 +207,8 @@ void read_pose_graph(YamlMap map, PoseGraphSlamConfig& c) {
   read_count(map, "max_iterations", c.graph.max_iterations, 1, 100000);
   read_count(map, "solve_every", c.solve_every, 1, 1000000);
   read_count(map, "online_window_scans", c.online_window_scans, 0, 1000000);
+  read_count(map, "online_old_nodes", c.online_old_nodes, 0, 1000000);
+  read_count(map, "online_old_chain_scans", c.online_old_chain_scans, 0, 1000000);
   map.finish();
 }
 

@@ -36,19 +36,35 @@ struct PoseGraphBelief {
   /// of the node the motion starts from; it becomes the newest. Exact for the marginal: nothing
   /// else touches the new node yet.
   void append_composed(std::size_t node, Eigen::Index previous, const GaussianPose2& motion) {
-    Eigen::Matrix3d J_previous, J_motion;
-    const Pose2 mean = means[previous].compose(motion.mean, &J_previous, &J_motion);
+    append_relative(node, previous, motion);
+    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
+  /// Appends node `node` as `from (+) relative`, the relative pose independent of the belief:
+  /// P_node = J1+ P_from J1+^T + J2+ P_relative J2+^T, its cross-covariances J1+ P_from,*. The
+  /// newest stays the newest.
+  void append_relative(std::size_t node, Eigen::Index from, const GaussianPose2& relative) {
+    Eigen::Matrix3d J_from, J_relative;
+    const Pose2 mean = means[from].compose(relative.mean, &J_from, &J_relative);
     const Eigen::Index n = cov.rows();
     cov.conservativeResize(n + 3, n + 3);
-    cov.bottomRows<3>().leftCols(n) = J_previous * cov.middleRows<3>(3 * previous).leftCols(n);
+    cov.bottomRows<3>().leftCols(n) = J_from * cov.middleRows<3>(3 * from).leftCols(n);
     cov.rightCols<3>().topRows(n) = cov.bottomRows<3>().leftCols(n).transpose();
-    const Eigen::Matrix3d P =
-        J_previous * cov.block<3, 3>(3 * previous, 3 * previous) * J_previous.transpose() +
-        J_motion * motion.cov * J_motion.transpose();
+    const Eigen::Matrix3d P = J_from * cov.block<3, 3>(3 * from, 3 * from) * J_from.transpose() +
+                              J_relative * relative.cov * J_relative.transpose();
     cov.bottomRightCorner<3, 3>() = 0.5 * (P + P.transpose());
     nodes.push_back(node);
     means.push_back(mean);
-    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
+  /// The joint covariance of the nodes at the given indices, in their order (the others
+  /// marginalised: their rows and columns dropped).
+  Eigen::MatrixXd marginal(const std::vector<Eigen::Index>& kept) const {
+    std::vector<Eigen::Index> rows;
+    for (const Eigen::Index i : kept) {
+      for (Eigen::Index r = 0; r < 3; ++r) rows.push_back(3 * i + r);
+    }
+    return cov(rows, rows);
   }
 
   /// Appends a node with its own covariance, uncorrelated with the others.

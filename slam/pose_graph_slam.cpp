@@ -38,15 +38,19 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
 
   // The odometry edge (Eq. 2): the newest node's belief is the previous one's composed with the
   // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
-  // the window.
+  // the kept old nodes and the window.
   PoseGraphBelief belief;
   if (windowed) {
+    for (const std::size_t i : old_nodes_) {
+      belief.nodes.push_back(i);
+      belief.means.push_back(graph_->pose(i));
+    }
     for (std::size_t i = window_first_; i < node; ++i) {
       belief.nodes.push_back(i);
       belief.means.push_back(graph_->pose(i));
     }
     belief.cov = window_cov_;
-    belief.append_composed(node, static_cast<Eigen::Index>(node - 1 - window_first_), motion);
+    belief.append_composed(node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
   } else {
     const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
     const GaussianPose2 newest = compose(previous, motion);
@@ -63,9 +67,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
       scan.compass_sigma_rad > 0.0 &&
       update_compass(scan.compass_yaw_world_rad, scan.compass_sigma_rad, belief)) {
     graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
-    for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
-      graph_->set_pose(belief.nodes[i], belief.means[i]);
-    }
+    write_means(belief);
     stats.compass_accepted = true;
     ++totals_.compass_accepted;
   }
@@ -86,18 +88,13 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     if (!candidates.empty()) {
       std::vector<Eigen::Index> in_belief;
       if (windowed) {
-        in_belief = append_outside_window(belief, candidates);
+        in_belief = append_outside_window(belief, candidates, k);
       } else {
         belief = whole_graph_belief(node, newest_mean, candidates);
         for (Eigen::Index c = 0; c < belief.newest; ++c) in_belief.push_back(c);
       }
       match(k, candidates, in_belief, belief, stats);
-      // The updated means start the next solve; windowed, nodes older than the window stay held.
-      for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
-        if (!windowed || belief.nodes[i] >= window_first_) {
-          graph_->set_pose(belief.nodes[i], belief.means[i]);
-        }
-      }
+      write_means(belief);  // the updated means start the next solve
     }
     totals_.candidates += stats.candidates;
     totals_.matched += stats.matched;
@@ -108,7 +105,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
                              belief.cov.block<3, 3>(3 * t, 3 * t)};
   require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
                  scan.t_s, "compass and match updates");
-  if (windowed) keep_window(belief);
+  if (windowed) keep_window(belief, k);
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
     solve(!windowed);  // windowed, edges_downweighted waits for the smoothing solve
     require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, scan.t_s, "solve");
@@ -195,36 +192,115 @@ void PoseGraphSlam::match(std::size_t k,
 }
 
 std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
-    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates) {
+    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates,
+    std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   std::vector<Eigen::Index> in_belief;
   for (const auto& candidate : candidates) {
     const std::size_t i = candidate.second + 1;
     if (i >= window_first_) {
-      in_belief.push_back(static_cast<Eigen::Index>(i - window_first_));
-    } else {
-      // Its correlation with the window is not kept: the one approximation of the window.
-      in_belief.push_back(static_cast<Eigen::Index>(belief.nodes.size()));
-      belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
-      ++outside_window_matches_;
+      in_belief.push_back(window_at + static_cast<Eigen::Index>(i - window_first_));
+      continue;
     }
+    ++outside_window_matches_;
+    auto at = std::find(belief.nodes.begin(), belief.nodes.end(), i);
+    if (at == belief.nodes.end()) {
+      append_old(belief, i);
+      at = belief.nodes.end() - 1;
+    }
+    const auto index = static_cast<Eigen::Index>(at - belief.nodes.begin());
+    if (index < window_at) old_used_[static_cast<std::size_t>(index)] = k;
+    in_belief.push_back(index);
   }
   return in_belief;
 }
 
-void PoseGraphSlam::keep_window(const PoseGraphBelief& belief) {
-  const auto kept = static_cast<std::size_t>(belief.newest) + 1;  // the window's nodes, in order
-  const std::size_t dropped =
-      kept - std::min(kept, static_cast<std::size_t>(config_.online_window_scans));
-  left_window_cov_.resize(window_first_ + dropped, Eigen::Matrix3d::Zero());
-  for (std::size_t d = 0; d < dropped; ++d) {
-    const auto at = static_cast<Eigen::Index>(3 * d);
-    left_window_cov_[window_first_ + d] = belief.cov.block<3, 3>(at, at);
+void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
+  // The nearest node of the belief along the odometry chain.
+  Eigen::Index from = -1;
+  std::size_t chain = std::numeric_limits<std::size_t>::max();
+  for (std::size_t b = 0; b < belief.nodes.size(); ++b) {
+    const std::size_t n = belief.nodes[b];
+    const std::size_t d = n > i ? n - i : i - n;
+    if (d < chain) {
+      chain = d;
+      from = static_cast<Eigen::Index>(b);
+    }
   }
-  const auto first = static_cast<Eigen::Index>(3 * dropped);
-  const auto size = static_cast<Eigen::Index>(3 * (kept - dropped));
-  window_cov_ = belief.cov.block(first, first, size, size);
-  window_first_ += dropped;
+  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans)) {
+    const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
+    GaussianPose2 relative;  // node j to node i along the odometry: motions_[m] is node m to m + 1
+    for (std::size_t m = std::min(i, j); m < std::max(i, j); ++m) {
+      relative = compose(relative, motions_[m]);
+    }
+    if (j > i) relative = invert(relative);
+    relative.mean = belief.means[static_cast<std::size_t>(from)].between(graph_->pose(i));
+    belief.append_relative(i, from, relative);
+    return;
+  }
+  // Its correlation with the belief is not known: the window's one approximation left.
+  belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
+  ++old_uncorrelated_;
+}
+
+void PoseGraphSlam::write_means(const PoseGraphBelief& belief) {
+  for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
+    graph_->set_pose(belief.nodes[i], belief.means[i]);
+  }
+}
+
+void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
+  const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
+  const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, config_.online_window_scans);
+  const auto block = [&](Eigen::Index b) -> Eigen::Matrix3d {
+    return belief.cov.block<3, 3>(3 * b, 3 * b);
+  };
+  left_window_cov_.resize(window_first_ + static_cast<std::size_t>(dropped),
+                          Eigen::Matrix3d::Zero());
+  for (Eigen::Index d = 0; d < dropped; ++d) {
+    left_window_cov_[window_first_ + static_cast<std::size_t>(d)] = block(window_at + d);
+  }
+  std::vector<Eigen::Index> kept_at = keep_old_nodes(belief, k);
+  for (Eigen::Index b = window_at + dropped; b <= belief.newest; ++b) kept_at.push_back(b);
+  window_cov_ = belief.marginal(kept_at);
+  window_first_ += static_cast<std::size_t>(dropped);
   graph_->hold_before(window_first_);
+}
+
+std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,
+                                                        std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
+  const auto block = [&](Eigen::Index b) -> Eigen::Matrix3d {
+    return belief.cov.block<3, 3>(3 * b, 3 * b);
+  };
+  // The old nodes, most recently used first (this scan's first uses are used now).
+  std::vector<std::pair<std::size_t, Eigen::Index>> old;  // (last used, index in the belief)
+  for (Eigen::Index b = 0; b < window_at; ++b) {
+    old.push_back({old_used_[static_cast<std::size_t>(b)], b});
+  }
+  const auto size = static_cast<Eigen::Index>(belief.nodes.size());
+  for (Eigen::Index b = belief.newest + 1; b < size; ++b) old.push_back({k, b});
+  std::stable_sort(old.begin(), old.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  const std::size_t keep_old =
+      std::min(old.size(), static_cast<std::size_t>(std::max(0, config_.online_old_nodes)));
+  for (std::size_t o = keep_old; o < old.size(); ++o) {
+    left_window_cov_.at(belief.nodes[static_cast<std::size_t>(old[o].second)]) =
+        block(old[o].second);
+  }
+  old.resize(keep_old);
+  std::sort(old.begin(), old.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::vector<Eigen::Index> kept_at;
+  old_nodes_.clear();
+  old_used_.clear();
+  for (const auto& [used, b] : old) {
+    kept_at.push_back(b);
+    old_nodes_.push_back(belief.nodes[static_cast<std::size_t>(b)]);
+    old_used_.push_back(used);
+  }
+  return kept_at;
 }
 
 void PoseGraphSlam::solve(bool count_downweighted) const {

@@ -23,10 +23,14 @@
 // nodes is kept from scan to scan instead of factoring the whole graph's information each scan;
 // each scan composes its node onto it, updates it by its compass and matches and drops the nodes
 // that fall out of the window (marginalising them: their rows and columns go). While a scan's
-// candidates lie in the window this is the same first-order marginal; a candidate older than the
-// window joins with its covariance from when it left, uncorrelated with the window (the one
-// approximation, counted by matches_outside_window). The online solves hold the nodes older than
-// the window; the smoothing solve frees them all.
+// candidates lie in the window this is the same first-order marginal. A candidate older than the
+// window (an old node) joins as the nearest node of the belief composed with the odometry between
+// them when that is at most online_old_chain_scans away, else with its last marginal,
+// uncorrelated with the window (the one approximation left, counted by
+// old_nodes_uncorrelated); the online_old_nodes most recently matched old nodes then stay in the
+// joint, so a later match updates them rather than adding their marginal again. The online solves
+// hold the nodes older than the window (the old nodes in the belief where its updates put them);
+// the smoothing solve frees them all.
 #pragma once
 
 #include <memory>
@@ -47,6 +51,15 @@ struct PoseGraphSlamConfig {
   /// covariance kept by the EKF, older nodes held in the online solves), so that a step's cost
   /// does not grow with the mission (docs/pose_graph.md, "Long missions").
   int online_window_scans = 0;
+  /// Windowed: how many old nodes (older than the window) stay in the window's joint after a
+  /// match, the most recently matched first, so that later matches update their marginal and
+  /// their correlation with the window instead of adding their old marginal again.
+  int online_old_nodes = 30;
+  /// Windowed: an old node that joins the belief within this many scans (along the odometry
+  /// chain) of a node already in it joins as that node composed with the odometry between them,
+  /// correlated with the belief; farther, with its last marginal, uncorrelated. 0: always the
+  /// latter.
+  int online_old_chain_scans = 10;
 };
 
 class PoseGraphSlam : public ScanSlam {
@@ -64,9 +77,11 @@ class PoseGraphSlam : public ScanSlam {
   std::optional<std::vector<GaussianPose2>> online_poses() const override { return online_; }
   /// Matches the robust loss set aside at the last solve (beyond the gate there).
   std::optional<int> matches_downweighted() const override { return downweighted_; }
-  /// Windowed: the candidates so far that were older than the window (matched against their
-  /// covariance from when they left it, uncorrelated with the window).
+  /// Windowed: the candidates so far that were older than the window.
   int matches_outside_window() const { return outside_window_matches_; }
+  /// Windowed: the old nodes that joined the belief uncorrelated with it (no node of the belief
+  /// within online_old_chain_scans of them).
+  int old_nodes_uncorrelated() const { return old_uncorrelated_; }
 
  private:
   /// Solves the graph (const: the smoothed solution is a cache of the same graph, and solving
@@ -86,14 +101,26 @@ class PoseGraphSlam : public ScanSlam {
   /// newest's (newest_mean, with the covariance from the graph's information).
   PoseGraphBelief whole_graph_belief(std::size_t node, const Pose2& newest_mean,
                                      const std::vector<std::pair<double, std::size_t>>& candidates);
-  /// Windowed (online_window_scans > 0): the window's belief with the newest node composed on,
-  /// and the candidates' indices in it (a candidate older than the window appended, uncorrelated,
-  /// with its covariance from when it left the window).
+  /// Windowed (online_window_scans > 0): the candidates' indices in the belief (the kept old
+  /// nodes, the window, the newest node), an old candidate not in it appended (append_old); k,
+  /// the scan, marks the old ones used.
   std::vector<Eigen::Index> append_outside_window(
-      PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates);
-  /// Windowed: keeps the window's part of the belief, dropping (marginalising) the nodes that
-  /// fall out of it, and holds those in the graph's online solves.
-  void keep_window(const PoseGraphBelief& belief);
+      PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates,
+      std::size_t k);
+  /// Windowed: appends old node i to the belief, composed from the nearest node of the belief
+  /// along the odometry (online_old_chain_scans), or with its last marginal, uncorrelated.
+  void append_old(PoseGraphBelief& belief, std::size_t i);
+  /// Windowed: keeps the window's part of the belief and the online_old_nodes most recently used
+  /// old nodes (k, the scan, for this scan's), dropping (marginalising) the others with their
+  /// marginal stored, and holds the nodes older than the window in the graph's online solves.
+  void keep_window(const PoseGraphBelief& belief, std::size_t k);
+  /// Windowed: the belief's indices of the old nodes kept (in the belief's order) and
+  /// old_nodes_, old_used_ set to them; those dropped leave their marginal in left_window_cov_.
+  std::vector<Eigen::Index> keep_old_nodes(const PoseGraphBelief& belief, std::size_t k);
+  /// Writes the belief's means to the graph: the next solve's warm start, and where the old
+  /// nodes of a windowed belief are held in the online solves (as the whole graph's candidates
+  /// start its solves from their updated means).
+  void write_means(const PoseGraphBelief& belief);
 
   TrajectorySlamConfig front_end_;
   PoseGraphSlamConfig config_;
@@ -102,11 +129,15 @@ class PoseGraphSlam : public ScanSlam {
   std::vector<GaussianPose2> motions_;  ///< motions_[i]: scan i from scan i-1 (or the start)
   std::vector<std::vector<ScanPoint>> points_;
   std::vector<GaussianPose2> online_;
-  /// Windowed: the joint covariance of nodes window_first_.. (the newest last), and each node's
-  /// marginal from when it left the window.
+  /// Windowed: the joint covariance of the kept old nodes and nodes window_first_.. (the newest
+  /// last), and each old node's marginal from when it left the window or the kept old nodes.
   std::size_t window_first_ = 0;
   Eigen::MatrixXd window_cov_;
   std::vector<Eigen::Matrix3d> left_window_cov_;
+  /// Windowed: the old nodes kept (first in window_cov_'s order), and the scan that last matched
+  /// each (the scan's index k).
+  std::vector<std::size_t> old_nodes_, old_used_;
+  int old_uncorrelated_ = 0;
   SlamTotals totals_;
   mutable int downweighted_ = 0;
   int outside_window_matches_ = 0;               ///< candidates older than the window (windowed)

@@ -288,6 +288,8 @@ TEST(SlamConfigYaml, PoseGraphKeys) {
   EXPECT_EQ(defaults.pose_graph.graph.robust_loss, RobustLoss::kDynamicCovarianceScaling);
   EXPECT_EQ(defaults.pose_graph.solve_every, 1);
   EXPECT_EQ(defaults.pose_graph.online_window_scans, 0);
+  EXPECT_EQ(defaults.pose_graph.online_old_nodes, 30);
+  EXPECT_EQ(defaults.pose_graph.online_old_chain_scans, 10);
   const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
                                                    "pose_graph:\n"
                                                    "  robust_loss: cauchy\n"
@@ -295,13 +297,20 @@ TEST(SlamConfigYaml, PoseGraphKeys) {
                                                    "  robust_start_factor: 1\n"
                                                    "  max_iterations: 20\n"
                                                    "  solve_every: 5\n"
-                                                   "  online_window_scans: 100\n"));
+                                                   "  online_window_scans: 100\n"
+                                                   "  online_old_nodes: 0\n"
+                                                   "  online_old_chain_scans: 3\n"));
   EXPECT_EQ(c.pose_graph.graph.robust_loss, RobustLoss::kCauchy);
   EXPECT_EQ(c.pose_graph.graph.robust_scale_chi2, 0.0);
   EXPECT_EQ(c.pose_graph.graph.robust_start_factor, 1.0);
   EXPECT_EQ(c.pose_graph.graph.max_iterations, 20);
   EXPECT_EQ(c.pose_graph.solve_every, 5);
   EXPECT_EQ(c.pose_graph.online_window_scans, 100);
+  EXPECT_EQ(c.pose_graph.online_old_nodes, 0);
+  EXPECT_EQ(c.pose_graph.online_old_chain_scans, 3);
+  expect_bad_slam_config("pose_graph:\n  online_old_nodes: -1\n", 2, "pose_graph.online_old_nodes");
+  expect_bad_slam_config("pose_graph:\n  online_old_chain_scans: 1.5\n", 2,
+                         "pose_graph.online_old_chain_scans");
   expect_bad_slam_config("pose_graph:\n  online_window_scans: -1\n", 2,
                          "pose_graph.online_window_scans");
   expect_bad_slam_config("pose_graph:\n  robust_loss: huber\n", 2, "pose_graph.robust_loss");

@@ -15,13 +15,19 @@ seconds="${1:-60}"
 shift || true
 [[ "$seconds" =~ ^[0-9]+$ ]] || { echo "fuzz.sh: SECONDS must be a whole number" >&2; exit 2; }
 jobs="${FUZZ_JOBS:-2}"
+targets=("$@")
+for target in "${targets[@]}"; do
+  if [ ! -d "tests/fuzz/corpus/$target" ]; then
+    echo "fuzz.sh: no target '$target' (targets: $(ls tests/fuzz/corpus | paste -sd ' '))" >&2
+    exit 2
+  fi
+done
 
 tools/install_deps.sh
 cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
 fuzzer="$PWD/build/fuzz/tests/fuzz/msislab_fuzz_readers"
 
-targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
   # tests/fuzz/corpus_test.cpp checks that these folders are exactly the targets.
   mapfile -t targets < <(find tests/fuzz/corpus -mindepth 1 -maxdepth 1 -type d -printf '%f\n' |

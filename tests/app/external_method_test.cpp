@@ -2,8 +2,8 @@
 // the example (examples/external_method, mydr) in a 2-run Monte Carlo of small_basin beside dead
 // reckoning, in the report and on the real St. Pere data; programs that fail in every way one can
 // (non-zero exit, past the time limit, a malformed or empty trajectory, a trajectory written
-// outside {out} and linked in) each recorded as that method's failure; bad methods files; and no
-// program left alive after msislab is stopped.
+// outside {out} and linked in) each recorded as that method's failure; the example in a sweep; bad
+// methods files; and no program left alive after msislab is stopped.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -20,6 +20,7 @@
 
 #include "cli_runner.hpp"
 #include "io/json.hpp"
+#include "io/sweep_files.hpp"
 #include "test_support.hpp"
 
 extern char** environ;
@@ -137,6 +138,46 @@ TEST(ExternalMethod, ExampleInMonteCarloBesideDeadReckoningAndInTheReport) {
   const std::string md = read_text(page);
   EXPECT_NE(md.find("Python dead reckoning"), std::string::npos);
   EXPECT_NE(md.find("Dead reckoning"), std::string::npos);
+}
+
+TEST(ExternalMethod, ExampleInASweepRunsOnEachCellsOwnData) {
+  // Two cells that differ in the MRU's heading noise: the program reads each cell's own logs (its
+  // error differs between them, as the built-in dead reckoning's does), scored per cell.
+  const TempDir tmp;
+  const std::string sweep_file =
+      write_text(tmp.file("sweep.yaml"), "scenario: " + kScenario +
+                                             "\n"
+                                             "runs: 2\n"
+                                             "methods: [deadreckoning, mydr]\n"
+                                             "grid:\n"
+                                             "  scenario.mru.heading_noise_deg: [0.1, 5]\n");
+  const fs::path out = tmp.path() / "sweep";
+  const CliResult r =
+      run_msislab("sweep " + shell_quote(sweep_file) + " --jobs 2 --no-plot --methods-file " +
+                      shell_quote(kExample) + " --out " + shell_quote(out.string()),
+                  tmp);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const io::SweepTable table = io::read_sweep_csv((out / "sweep.csv").string());
+  ASSERT_EQ(table.rows.size(), 4u);  // 2 cells x 2 methods
+  std::vector<double> mydr_m, dr_m;
+  for (const io::SweepRow& row : table.rows) {
+    EXPECT_EQ(row.runs, 2) << row.method;
+    EXPECT_EQ(row.failed, 0) << row.method;
+    ASSERT_TRUE(row.mean_error_m.has_value()) << row.method;
+    (row.method == "mydr" ? mydr_m : dr_m).push_back(*row.mean_error_m);
+    if (row.method == "mydr") {
+      EXPECT_EQ(row.paired_reference, "deadreckoning");
+    }
+  }
+  ASSERT_EQ(mydr_m.size(), 2u);
+  std::printf(
+      "sweep, heading noise 0.1 / 5 deg: mydr %.3f / %.3f m, dead reckoning %.3f / %.3f m\n",
+      mydr_m[0], mydr_m[1], dr_m[0], dr_m[1]);
+  EXPECT_NE(mydr_m[0], mydr_m[1]) << "the program saw the same data in both cells";
+  for (const char* cell : {"cell_000", "cell_001"}) {
+    EXPECT_TRUE(fs::exists(out / "cells" / cell / "runs/mydr/run_0001/trajectory.tum")) << cell;
+    EXPECT_FALSE(fs::exists(out / "cells" / cell / "scratch")) << cell;
+  }
 }
 
 TEST(ExternalMethod, EachFailureIsRecordedForItsMethodAlone) {

@@ -57,6 +57,9 @@ struct PoseGraphBelief {
     means.push_back(mean);
   }
 
+  /// The marginal covariance of the node at index i.
+  Eigen::Matrix3d node_cov(Eigen::Index i) const { return cov.block<3, 3>(3 * i, 3 * i); }
+
   /// The joint covariance of the nodes at the given indices, in their order (the others
   /// marginalised: their rows and columns dropped).
   Eigen::MatrixXd marginal(const std::vector<Eigen::Index>& kept) const {

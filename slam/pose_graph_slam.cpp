@@ -101,8 +101,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     totals_.accepted += stats.accepted;
   }
   const Eigen::Index t = belief.newest;
-  const GaussianPose2 newest{belief.means[static_cast<std::size_t>(t)],
-                             belief.cov.block<3, 3>(3 * t, 3 * t)};
+  const GaussianPose2 newest{belief.means[static_cast<std::size_t>(t)], belief.node_cov(t)};
   require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
                  scan.t_s, "compass and match updates");
   if (windowed) keep_window(belief, k);
@@ -253,13 +252,10 @@ void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
   const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, config_.online_window_scans);
-  const auto block = [&](Eigen::Index b) -> Eigen::Matrix3d {
-    return belief.cov.block<3, 3>(3 * b, 3 * b);
-  };
   left_window_cov_.resize(window_first_ + static_cast<std::size_t>(dropped),
                           Eigen::Matrix3d::Zero());
   for (Eigen::Index d = 0; d < dropped; ++d) {
-    left_window_cov_[window_first_ + static_cast<std::size_t>(d)] = block(window_at + d);
+    left_window_cov_[window_first_ + static_cast<std::size_t>(d)] = belief.node_cov(window_at + d);
   }
   std::vector<Eigen::Index> kept_at = keep_old_nodes(belief, k);
   for (Eigen::Index b = window_at + dropped; b <= belief.newest; ++b) kept_at.push_back(b);
@@ -271,9 +267,6 @@ void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
 std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,
                                                         std::size_t k) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
-  const auto block = [&](Eigen::Index b) -> Eigen::Matrix3d {
-    return belief.cov.block<3, 3>(3 * b, 3 * b);
-  };
   // The old nodes, most recently used first (this scan's first uses are used now).
   std::vector<std::pair<std::size_t, Eigen::Index>> old;  // (last used, index in the belief)
   for (Eigen::Index b = 0; b < window_at; ++b) {
@@ -287,7 +280,7 @@ std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& b
       std::min(old.size(), static_cast<std::size_t>(std::max(0, config_.online_old_nodes)));
   for (std::size_t o = keep_old; o < old.size(); ++o) {
     left_window_cov_.at(belief.nodes[static_cast<std::size_t>(old[o].second)]) =
-        block(old[o].second);
+        belief.node_cov(old[o].second);
   }
   old.resize(keep_old);
   std::sort(old.begin(), old.end(),

@@ -23,6 +23,7 @@ void add_commands(CLI::App& app, CommandLine& line) {
   add_plot_command(app, line);
   add_report_command(app, line);
   add_fidelity_command(app, line);
+  add_check_command(app, line);
 }
 
 void add_force_flag(CLI::App& command, bool& force) {

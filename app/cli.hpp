@@ -30,6 +30,7 @@ void add_segment_command(CLI::App& app, CommandLine& line);
 void add_plot_command(CLI::App& app, CommandLine& line);
 void add_report_command(CLI::App& app, CommandLine& line);
 void add_fidelity_command(CLI::App& app, CommandLine& line);
+void add_check_command(CLI::App& app, CommandLine& line);
 
 /// --force: the output folder may replace a folder that msislab did not write (never an input).
 void add_force_flag(CLI::App& command, bool& force);

@@ -38,6 +38,15 @@ std::string method_list() {
   return methods;
 }
 
+int failed_runs_status(const std::string& command, std::size_t failed, std::size_t runs,
+                       const std::string& failed_json) {
+  if (failed == 0) return 0;
+  std::cerr << command << ": finished, but " << failed << " of " << runs
+            << " runs have a failed method (exit status " << kRunsFailedStatus << "); see "
+            << failed_json << std::endl;
+  return kRunsFailedStatus;
+}
+
 void draw_and_list_figures(const std::string& command, const std::string& dir) {
   const std::string failure = draw_montecarlo_figures(dir);
   if (!failure.empty()) {

@@ -3,6 +3,7 @@
 // (add_*_command), so tools/msislab.cpp only parses and maps errors to exit statuses.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 namespace CLI {
@@ -12,12 +13,24 @@ class App;
 namespace msislab::app {
 
 /// What the callbacks share with main: argv (to rerun a drawing command under xvfb-run) and the
-/// exit status a command sets (128 + the signal when a long command is stopped).
+/// exit status a command sets (kRunsFailedStatus, or 128 + the signal when a long command is
+/// stopped).
 struct CommandLine {
   int argc = 0;
   char** argv = nullptr;
   int exit_status = 0;
 };
+
+/// The exit status of a `montecarlo` or `sweep` (or a merge of either) that finished and wrote its
+/// summary while some runs have a failed method: distinct from 0 so that a script under `set -e`
+/// does not publish a summary with failures as if it were whole (docs/cli.md).
+inline constexpr int kRunsFailedStatus = 3;
+
+/// 0 when `failed` is 0; else prints "COMMAND: finished, but F of N runs have a failed method
+/// (exit status 3); see FAILED_JSON" on stderr and returns kRunsFailedStatus. `failed_json` names
+/// where the failed.json files are (a shell pattern).
+int failed_runs_status(const std::string& command, std::size_t failed, std::size_t runs,
+                       const std::string& failed_json);
 
 void add_run_command(CLI::App& app, CommandLine& line);
 void add_eval_command(CLI::App& app, CommandLine& line);

@@ -193,12 +193,21 @@ void print_montecarlo(const MonteCarloOutcome& outcome, const std::string& dir, 
   std::cout << std::flush;
 }
 
-/// `montecarlo` or `montecarlo merge`; the exit status (128 + the signal when stopped).
+/// Where a Monte Carlo directory's failed.json files are, as a shell pattern.
+std::string failed_json(const std::string& dir) {
+  return (fs::path(dir) / "runs" / "*" / "run_*" / "failed.json").string();
+}
+
+/// `montecarlo` or `montecarlo merge`; the exit status (kRunsFailedStatus when a run has a failed
+/// method, 128 + the signal when stopped).
 int run_montecarlo_cli(const MonteCarloCli& cli) {
   if (cli.command->got_subcommand("merge")) {
-    print_montecarlo(merge_montecarlo(cli.merge), cli.merge.out_dir, true);
+    // Runs no shard has yet (an unfinished shard) are `missing`, not failed: the status stays 0.
+    const MonteCarloOutcome merged = merge_montecarlo(cli.merge);
+    print_montecarlo(merged, cli.merge.out_dir, true);
     if (!cli.no_plot) draw_and_list_figures("montecarlo", cli.merge.out_dir);
-    return 0;
+    return failed_runs_status("montecarlo merge", merged.failed, merged.runs,
+                              failed_json(cli.merge.out_dir));
   }
   check_montecarlo_options(cli);
   const MonteCarloOutcome outcome =
@@ -213,7 +222,8 @@ int run_montecarlo_cli(const MonteCarloCli& cli) {
   if (!cli.no_plot && cli.options.shard.empty()) {
     draw_and_list_figures("montecarlo", cli.options.out_dir);
   }
-  return 0;
+  return failed_runs_status("montecarlo", outcome.failed, outcome.runs,
+                            failed_json(cli.options.out_dir));
 }
 
 }  // namespace

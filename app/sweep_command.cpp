@@ -139,6 +139,7 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
     log.log << "sweep: " << cell_name(c) << " (" << c + 1 << "/" << plan.cells.size()
             << "): " << io::describe_cell(plan.cells[c]) << std::endl;
     const MonteCarloOutcome cell = montecarlo(mc, log);
+    outcome.runs += cell.runs;
     outcome.executed += cell.executed;
     outcome.failed += cell.failed;
     if (cell.interrupted != 0) {
@@ -177,7 +178,9 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
     for (const std::string& shard : shard_dirs) {
       merge.shard_dirs.push_back((fs::path(shard) / "cells" / cell_name(c)).string());
     }
-    outcome.failed += merge_montecarlo(merge).failed;
+    const MonteCarloOutcome cell = merge_montecarlo(merge);
+    outcome.runs += cell.runs;
+    outcome.failed += cell.failed;
   }
   outcome.table = sweep_table(out_dir, plan);
   io::write_sweep_csv((fs::path(out_dir) / "sweep.csv").string(), outcome.table);
@@ -195,7 +198,8 @@ struct SweepCli {
   CLI::App* command = nullptr;
 };
 
-/// Runs `sweep` or `sweep merge`; the exit status.
+/// Runs `sweep` or `sweep merge`; the exit status (kRunsFailedStatus when a run of any cell has a
+/// failed method, 128 + the signal when stopped).
 int run_sweep_cli(const SweepCli& cli) {
   SweepOutcome outcome;
   std::string dir;
@@ -218,7 +222,9 @@ int run_sweep_cli(const SweepCli& cli) {
             << " runs done now, " << outcome.failed << " with a failed method); wrote sweep.csv"
             << std::endl;
   if (!cli.no_plot && cli.options.shard.empty()) draw_and_list_figures("sweep", dir);
-  return 0;
+  return failed_runs_status(
+      cli.command->got_subcommand("merge") ? "sweep merge" : "sweep", outcome.failed, outcome.runs,
+      (fs::path(dir) / "cells" / "*" / "runs" / "*" / "run_*" / "failed.json").string());
 }
 
 }  // namespace

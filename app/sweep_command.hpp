@@ -22,6 +22,7 @@ struct SweepOptions {
 
 struct SweepOutcome {
   std::size_t cells = 0;
+  std::size_t runs = 0;      ///< runs in the cells (of the shard), over every cell
   std::size_t executed = 0;  ///< runs (re)done by this call, over every cell
   std::size_t failed = 0;    ///< runs with a failed method, over every cell
   int interrupted = 0;       ///< the stop request that ended it early, else 0

@@ -1,7 +1,8 @@
 // The msislab command line: parses arguments; each subcommand's options and callback live beside
 // the command in app/ (app/cli.hpp). Exit status 0 on success, 2 on bad input with one line on
 // stderr naming the file, line or key (docs/cli.md), 1 with one line on stderr when a run cannot
-// go on (a non-finite estimate), 128 + the signal when a long command is stopped.
+// go on (a non-finite estimate), 3 when a Monte Carlo or sweep finished with failed runs (set by
+// the command, app/cli.hpp), 128 + the signal when a long command is stopped.
 #include <CLI/CLI.hpp>
 #include <iostream>
 

@@ -6,10 +6,13 @@
 # config/default.yaml as slam.yaml: the 4-task array and the dependent merge; task 3 is cancelled
 # part-way, so the merge must count its runs as missing, and resubmitted with the page's lines.
 # The final merged directory must equal one `msislab montecarlo` of the same runs on one machine
-# (summary.json apart from its runtime_s lines, the CSV files, every run directory).
+# (summary.json apart from its runtime_s lines, the CSV files, every run directory). Last, one run
+# of task 3 is made to fail (MSISLAB_MONTECARLO_FAULTS) and the task and merge resubmitted: both
+# must end FAILED with exit code 3 (the merge still runs), the merge counting the failed run.
 # Prints a PASS or FAIL line per check and the logs of failed jobs; exits 1 on a failure, 2 when
-# it cannot run. About 75 s on 2 cores (2 minutes when they are busy with other work), plus 5-20 s
-# the first time for the packages (apt-get update and install).
+# it cannot run. About 75 s on 2 cores (2 minutes when they are busy with other work), the failed
+# run's stage adding about a tenth, plus 5-30 s the first time for the packages (apt-get update and
+# install).
 # Root only (apt-get, SLURM's daemons run as root). Everything it writes lives in a mktemp -d
 # directory (about 360 MB at its largest), removed at the end once the jobs and daemons it started
 # are stopped (SLURM_CHECK_KEEP=1 keeps the directory); installed packages stay. The daemons
@@ -472,6 +475,42 @@ if cmp -s <(run_files "$merged") <(run_files "$one"); then
 else
   fail "runs/ differs between $merged and one machine"
   diff <(run_files "$merged") <(run_files "$one") | head -20
+fi
+
+# --- a failed run: its task exits 3, the merge still runs and exits 3 -----------------------------
+# Run $again is in shard $again (r % shards); its first method's result removed, then made to fail.
+first_method=${methods%%,*}
+rm -rf "$job/shard_$again/runs/$first_method/$(printf 'run_%04d' "$again")"
+export MSISLAB_MONTECARLO_FAULTS="$again:$first_method:throw"
+submit "$resubmit_lines"
+unset MSISLAB_MONTECARLO_FAULTS
+task=$first_job
+merge3=$merge_job
+wait_for_queue
+stamp "a failed run: task and merge"
+# PASS when job $1 ($2 says what it is) ended FAILED with exit code 3:0 and $3 in its log.
+check_exit_3() {
+  local task state code log
+  read -r task state code log < <(job_states "$1")
+  if [ "${state:-}" = FAILED ] && [ "${code:-}" = 3:0 ] && grep -qF "$3" "$log"; then
+    pass "$2: job $1 ended FAILED, exit code 3:0, its log saying '$3'"
+  else
+    fail "$2: job $1 ended ${state:-?}, exit code ${code:-?}, or its log lacks '$3'"
+    print_file "${log:-none}" "its log ${log:-}"
+  fi
+}
+n=$(($(wc -l <"$job/shard_$again/seeds.csv") - 1))
+check_exit_3 "$task" "task $again with a failed run" \
+  "montecarlo: finished, but 1 of $n runs have a failed method (exit status 3)"
+check_exit_3 "$merge3" "the merge after it" \
+  "montecarlo merge: finished, but 1 of $total runs have a failed method (exit status 3)"
+read -r runs failed missing < <(summary_counts "$merged")
+failed_json=$merged/runs/$first_method/$(printf 'run_%04d' "$again")/failed.json
+if [ "$failed" = 1 ] && [ "$missing" = 0 ] && [ "$runs" = $((total * n_methods - 1)) ] &&
+  grep -q "injected failure" "$failed_json"; then
+  pass "the merge counts the failed run of $first_method (runs $runs, failed 1, missing 0)"
+else
+  fail "the merge after a failed run: runs $runs, failed $failed, missing $missing"
 fi
 
 echo "slurm_check: $((checks - failures)) of $checks checks passed in $((SECONDS - start)) s"

@@ -298,25 +298,36 @@ TEST(MonteCarloCommand, AnotherBuildIsNotResumedOrMerged) {
   }
 }
 
-// Sets MSISLAB_MONTECARLO_FAULTS (the workers' test hook, docs/cli.md) while it lives.
-struct InjectedFaults {
-  explicit InjectedFaults(const char* faults) { ::setenv("MSISLAB_MONTECARLO_FAULTS", faults, 1); }
-  ~InjectedFaults() { ::unsetenv("MSISLAB_MONTECARLO_FAULTS"); }
-};
+// `msislab ARGS` with MSISLAB_MONTECARLO_FAULTS set (the workers' test hook, docs/cli.md).
+testing::CliResult run_with_faults(const std::string& faults, const std::string& args,
+                                   const TempDir& tmp) {
+  return testing::run_msislab(args, tmp, "env MSISLAB_MONTECARLO_FAULTS=" + faults);
+}
 
-TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
+// Failed runs are recorded while the others finish; the command writes the whole summary with the
+// failures counted and exits 3 (finished, with failed runs) after one line naming the count and
+// where the failed.json files are; so does a merge that holds them, but not one whose runs are
+// only missing; resumed without the faults, the failed runs are redone and it exits 0.
+TEST(MonteCarloCli, FailedRunsAreRecordedTheOthersFinishAndTheExitStatusIs3) {
   const TempDir tmp;
   const fs::path dir = tmp.path() / "mc";
-  const MonteCarloOptions options = options_for(dir);
-  std::unique_ptr<Logged> logged;
-  {
-    // worldcentric throws in run 1; the worker of run 2 crashes (SIGSEGV) while simulating.
-    const InjectedFaults faults("1:worldcentric:throw,2:simulate:crash");
-    logged = run_montecarlo(options);
-  }
-  EXPECT_EQ(logged->outcome.failed, 2u);
-  EXPECT_NE(logged->log.str().find("3/3 runs done, 2 failed"), std::string::npos)
-      << logged->log.str();
+  const std::string args = "montecarlo " + testing::shell_quote(kScenario) +
+                           " --runs 3 --methods deadreckoning,worldcentric --jobs 2 --no-plot "
+                           "--out " +
+                           testing::shell_quote(dir.string());
+  // worldcentric throws in run 1; the worker of run 2 crashes (SIGSEGV) while simulating.
+  const testing::CliResult failing =
+      run_with_faults("1:worldcentric:throw,2:simulate:crash", args, tmp);
+  EXPECT_EQ(failing.exit_code, 3) << failing.err;
+  EXPECT_NE(failing.out.find("holds 3 runs (3 run now, 0 already done), 2 with a failed method"),
+            std::string::npos)
+      << failing.out;
+  EXPECT_NE(failing.err.find("3/3 runs done, 2 failed"), std::string::npos) << failing.err;
+  const std::string last_line =
+      "montecarlo: finished, but 2 of 3 runs have a failed method (exit status 3); see " +
+      dir.string() + "/runs/*/run_*/failed.json\n";
+  ASSERT_GE(failing.err.size(), last_line.size());
+  EXPECT_EQ(failing.err.substr(failing.err.size() - last_line.size()), last_line) << failing.err;
 
   const std::string failed_run =
       read_text((fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json").string());
@@ -344,11 +355,45 @@ TEST(MonteCarloCommand, FailedRunsAreRecordedAndTheOthersFinish) {
   EXPECT_EQ(summary.object("worldcentric").number("failed"), 2);
   EXPECT_NE(read_text((dir / "summary.json").string()).find("\"failed_runs\": [1, 2]"),
             std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "nees.csv"));
+
+  // Merged as a shard, the failures come along: exit 3, the merged summary counts them.
+  const fs::path merged = tmp.path() / "merged";
+  const std::string merge = "montecarlo merge " + testing::shell_quote(merged.string()) + " ";
+  const testing::CliResult with_failures =
+      testing::run_msislab(merge + testing::shell_quote(dir.string()) + " --no-plot", tmp);
+  EXPECT_EQ(with_failures.exit_code, 3) << with_failures.err;
+  EXPECT_NE(with_failures.err.find("montecarlo merge: finished, but 2 of 3 runs have a failed "
+                                   "method (exit status 3); see " +
+                                   merged.string() + "/runs/*/run_*/failed.json"),
+            std::string::npos)
+      << with_failures.err;
+  EXPECT_EQ(without_runtimes(read_text((merged / "summary.json").string())),
+            without_runtimes(read_text((dir / "summary.json").string())));
+  // Without the failed run directories the shard is merely unfinished: its runs are missing.
+  const fs::path unfinished = tmp.path() / "unfinished";
+  fs::copy(dir, unfinished, fs::copy_options::recursive);
+  fs::remove_all(run_dir(unfinished.string(), "worldcentric", 1));
+  for (const std::string& method : kMethods)
+    fs::remove_all(run_dir(unfinished.string(), method, 2));
+  const fs::path partial = tmp.path() / "partial";
+  const testing::CliResult missing =
+      testing::run_msislab("montecarlo merge " + testing::shell_quote(partial.string()) + " " +
+                               testing::shell_quote(unfinished.string()) + " --no-plot",
+                           tmp);
+  EXPECT_EQ(missing.exit_code, 0) << missing.err;
+  const io::Json partial_root = io::read_json_file((partial / "summary.json").string());
+  const io::JsonObject partial_summary(partial_root, "summary.json");
+  EXPECT_EQ(partial_summary.object("worldcentric").number("failed"), 0);
+  EXPECT_EQ(partial_summary.object("worldcentric").number("missing"), 2);
 
   // Resumed once the failures stop, the failed runs are redone and the summary is the full one.
-  const auto resumed = run_montecarlo(options);
-  EXPECT_EQ(resumed->outcome.executed, 2u);
-  EXPECT_EQ(resumed->outcome.failed, 0u);
+  const testing::CliResult resumed = testing::run_msislab(args, tmp);
+  EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("(2 run now, 1 already done), 0 with a failed method"),
+            std::string::npos)
+      << resumed.out;
+  EXPECT_EQ(resumed.err.find("finished, but"), std::string::npos) << resumed.err;
   EXPECT_FALSE(fs::exists(fs::path(run_dir(dir.string(), "worldcentric", 1)) / "failed.json"));
   EXPECT_EQ(without_runtimes(read_text((dir / "summary.json").string())),
             without_runtimes(read_text((full_run().dir / "summary.json").string())));

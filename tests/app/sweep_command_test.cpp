@@ -1,6 +1,6 @@
 // `msislab sweep` end to end on small_basin: a 2x2 grid of a scenario key and a SLAM config key
-// (2 runs per cell), sweep.csv, resuming, shards merged into the same bytes, and bad input
-// rejected before anything runs.
+// (2 runs per cell), sweep.csv, resuming, shards merged into the same bytes, a failed run's exit
+// status, and bad input rejected before anything runs.
 #include "app/sweep_command.hpp"
 
 #include <gtest/gtest.h>
@@ -200,6 +200,48 @@ TEST(SweepCli, RunsThroughTheExecutableAndRejectsBadArguments) {
     EXPECT_EQ(std::count(result.err.begin(), result.err.end(), '\n'), 1) << bad << result.err;
     EXPECT_EQ(result.err.rfind("msislab: ", 0), 0u) << result.err;
   }
+}
+
+// A failed run in a cell (the workers' test hook, docs/cli.md): the sweep still writes sweep.csv
+// with the failure counted, and exits 3 after one line naming the count and where the failed.json
+// files are; a merge of it exits 3 too.
+TEST(SweepCli, AFailedRunExits3WithSweepCsvWritten) {
+  const TempDir tmp;
+  const std::string sweep_path =
+      write_text(tmp.file("two.yaml"),
+                 "scenario: " + kScenario +
+                     "\nruns: 2\nmethods: [deadreckoning]\ncells:\n  - {scenario.seed: 3}\n");
+  const std::string out = tmp.file("out");
+  const testing::CliResult failing = testing::run_msislab(
+      "sweep " + testing::shell_quote(sweep_path) + " --no-plot --out " + testing::shell_quote(out),
+      tmp, "env MSISLAB_MONTECARLO_FAULTS=1:deadreckoning:throw");
+  EXPECT_EQ(failing.exit_code, 3) << failing.err;
+  EXPECT_NE(failing.out.find("holds 1 cells (2 runs done now, 1 with a failed method); wrote "
+                             "sweep.csv"),
+            std::string::npos)
+      << failing.out;
+  const std::string last_line =
+      "sweep: finished, but 1 of 2 runs have a failed method (exit status 3); see " + out +
+      "/cells/*/runs/*/run_*/failed.json\n";
+  ASSERT_GE(failing.err.size(), last_line.size());
+  EXPECT_EQ(failing.err.substr(failing.err.size() - last_line.size()), last_line) << failing.err;
+  EXPECT_TRUE(fs::exists(out + "/cells/cell_000/runs/deadreckoning/run_0001/failed.json"));
+  const io::SweepTable table = io::read_sweep_csv(out + "/sweep.csv");
+  ASSERT_EQ(table.rows.size(), 1u);
+  EXPECT_EQ(table.rows[0].runs, 1);
+  EXPECT_EQ(table.rows[0].failed, 1);
+  EXPECT_TRUE(table.rows[0].mean_error_m.has_value());
+
+  const std::string merged = tmp.file("merged");
+  const testing::CliResult merge =
+      testing::run_msislab("sweep merge " + testing::shell_quote(merged) + " " +
+                               testing::shell_quote(out) + " --no-plot",
+                           tmp);
+  EXPECT_EQ(merge.exit_code, 3) << merge.err;
+  EXPECT_NE(merge.err.find("sweep merge: finished, but 1 of 2 runs have a failed method"),
+            std::string::npos)
+      << merge.err;
+  EXPECT_EQ(read_text(merged + "/sweep.csv"), read_text(out + "/sweep.csv"));
 }
 
 TEST(SweepYaml, CellsListAndGridOrder) {

@@ -86,7 +86,7 @@ struct MatchTranslation {
 /// lengthen the motion, below 1 when they shorten it. A match is left out when |d_i| is under
 /// min_displacement_m (its direction is noise) or a time falls outside the truth or between fixes
 /// more than max_fix_gap_s apart. nullopt when no match is left. GPS noise in d makes the figure
-/// read low (about 2 % on the St. Pere replica, docs/simulator.md "Scan-match scale").
+/// read low (docs/simulator.md, "Scan-match scale", has the measured bias).
 std::optional<double> match_translation_scale(const std::vector<MatchTranslation>& matches,
                                               const std::vector<PositionFix>& truth,
                                               double min_displacement_m = 1.0,

@@ -93,8 +93,8 @@ Json parse_json(std::string_view text, const std::string& path) {
   } catch (const Json::parse_error& e) {
     fail_at(path, line_at(text, e.byte == 0 ? 0 : e.byte - 1), parse_error_text(e));
   } catch (const Json::out_of_range& e) {
-    // A number beyond a double's range (found by fuzzing: 1e999 escaped as nlohmann's
-    // out_of_range). nlohmann names the number but not where it is: its first occurrence.
+    // A number beyond a double's range (1e999) is nlohmann's out_of_range, not a parse_error.
+    // nlohmann names the number but not where it is: its first occurrence.
     const std::string what = e.what();
     const std::size_t open = what.find('\'');
     const std::size_t close = what.rfind('\'');

@@ -210,7 +210,7 @@ void ChartWriter::write_png(const std::string& path, const std::vector<ChartSpec
     height_px = std::max(height_px, spec.height_px);
   }
   // A window, a renderer and a context actor holding the charts: no vtkContextView, whose X
-  // interactor (never needed offscreen) crashed now and then in XSync when it was initialised.
+  // interactor (never needed offscreen) can crash in XSync while it is initialised.
   vtkNew<vtkRenderWindow> window;
   window->SetDisplayId(display_);
   window->SetOffScreenRendering(1);

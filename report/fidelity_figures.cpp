@@ -14,8 +14,8 @@ namespace {
 constexpr double kHistogramBin_m = 1.0;
 constexpr double kRingStep_m = 10.0;
 constexpr int kRangePanelWidth_px = 1100;
-// 900 px high like every msislab figure: VTK's text at other sizes left stray marks under the
-// tick labels (seen under Xvfb).
+// 900 px high like every msislab figure: VTK's text at other sizes leaves stray marks under the
+// tick labels (under Xvfb).
 constexpr int kRangePanelHeight_px = 900;
 constexpr int kRevolutionPanel_px = 900;
 

@@ -110,7 +110,7 @@ void table_one(std::ostringstream& md, const ResultFolder& folder, const std::st
 }
 
 /// The figures `msislab plot` draws, in the order the page shows them, with their captions
-/// (the (a)-(d) and the NEES figure); `truth` names the reference.
+/// (the lettered ones (a)-(d) first, then the others); `truth` names the reference.
 std::vector<std::pair<std::string, std::string>> figure_captions(const std::string& truth) {
   return {{"deadreckoning.png",
            "(a) Dead reckoning against the " + truth + ", with the sonar points it places"},

@@ -8,8 +8,8 @@ namespace msislab::report {
 
 namespace {
 
-/// A change above this share of the default's error is a cliff (the issue's "no single +-10 %
-/// change moves the real error by more than 25 % of its value").
+/// A change above this share of the default's error is a cliff, shown in bold (docs/results.md,
+/// "How far the real result can be trusted").
 constexpr double kCliffShare = 0.25;
 
 /// "2.84 (+64 %)", bold when the change is a cliff.

@@ -16,15 +16,17 @@ namespace msislab {
 struct DeadReckoningConfig {
   double dvl_sigma_mps = 0.2;               ///< DVL bottom-velocity white noise per axis, m/s
   double heading_sigma_rad = M_PI / 180.0;  ///< heading white noise, rad (1 deg)
-  /// Surge/sway acceleration noise density, m/s^2/sqrt(Hz). 0.05 makes the mean DVL NIS on the
-  /// St. Pere logs 1.97 (expected 2): the filter follows the velocity without lagging it.
+  /// Surge/sway acceleration noise density, m/s^2/sqrt(Hz). The default brings the mean DVL NIS on
+  /// the St. Pere logs to its expected 2, so the filter follows the velocity without lagging it
+  /// (docs/dead_reckoning.md, "Choosing the noise levels", has the measured NIS).
   double accel_sigma_mps2 = 0.05;
   double yaw_accel_sigma_radps2 = 0.02;       ///< yaw acceleration noise density, rad/s^2/sqrt(Hz)
   double initial_velocity_sigma_mps = 0.3;    ///< prior on u, v at the start, m/s
   double initial_yaw_rate_sigma_radps = 0.1;  ///< prior on r at the start, rad/s
   /// DVL innovation gate on the NIS (e.g. 13.82 = chi-square 2 DOF at 99.9%); <= 0 disables it.
-  /// Off by default: the St. Pere DVL noise is heavy-tailed (a 99.9% gate rejects 2%, not 0.1%),
-  /// so gating throws away real motion (docs/dead_reckoning.md).
+  /// Off by default: the St. Pere DVL noise is heavy-tailed, so a gate rejects far more than its
+  /// tail probability and throws away real motion (docs/dead_reckoning.md, "Choosing the noise
+  /// levels", has the measured rejection rate).
   double dvl_gate_chi2 = 0.0;
 };
 

@@ -255,7 +255,7 @@ using Poses = std::vector<Eigen::Vector3d>;
 /// node's covariance blocks are zero.
 ///
 /// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its
-/// sparse QR (SuiteSparse over BLAS) gave other last bits with another memory layout, against
+/// sparse QR (SuiteSparse over BLAS) gives other last bits with another memory layout, against
 /// "same seed, same bytes" (docs/pose_graph.md). This depends only on the values.
 class Information {
  public:

@@ -46,8 +46,9 @@ struct ScanMatchConfig {
   /// Keep a pair (p_j, a_i) only when p_j is also the current point nearest to a_i (mutual
   /// nearest neighbours). The current scan sees past the end of each wall stretch the reference
   /// saw; those points have no counterpart there and, all paired with the reference's last points,
-  /// pull the estimate back towards a shorter motion (docs/scan_matching.md). On by default: it
-  /// halves the SLAM error on the replica and brings its ANEES from 14 to 2.8.
+  /// pull the estimate back towards a shorter motion. On by default: one-way association turns
+  /// that bias into drift along a canal and an overconfident filter (docs/scan_matching.md,
+  /// "Reciprocal association", has the measured effect).
   bool reciprocal_association = true;
 };
 

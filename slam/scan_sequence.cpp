@@ -74,8 +74,8 @@ std::vector<PlacedScan> build_scans(const std::vector<BeamReadings>& beams,
   std::vector<double> times_s;
   for (auto it = first; it != beams.end(); ++it) times_s.push_back(it->t_s);
   // The scan centres are keys: their motions come from one clone each, exactly (composing the
-  // per-beam increments as independent would be about 100 times overconfident: they share the
-  // EKF's velocity error).
+  // per-beam increments as independent would be overconfident: they share the EKF's velocity
+  // error; docs/scan_matching.md, "Status, measured", has the measured effect).
   const std::size_t per_scan = static_cast<std::size_t>(config.beams_per_scan);
   const std::vector<OdometrySample> odometry =
       odometry_at(navigation, dead_reckoning, p_vehicle_dvl_m, initial, times_s,

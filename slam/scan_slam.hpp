@@ -1,6 +1,6 @@
-// What every scan-based SLAM back end offers the commands (the paper's two filters and the pose
-// graph): scans in, each step's matches and counts out, and the scans' world poses with their
-// covariances. `msislab run` drives any of them the same way (report/methods registers them).
+// What every scan-based SLAM back end offers its caller (the paper's two filters, the pose graph,
+// or a user's own): scans in, each step's matches and counts out, and the scans' world poses with
+// their covariances. run_scan_slam (slam/scan_slam_pipeline) drives any of them the same way.
 #pragma once
 
 #include <Eigen/Core>

@@ -182,7 +182,10 @@ Scene::Scene(const TriangleMesh& mesh, const Material& surface_material, float s
   triangle_material_.resize(triangles.size(), surface_material_id);
 
   Embree& embree = *embree_;
-  embree.device.reset(rtcNewDevice(nullptr));
+  // Embree picks its kernels by the CPU, and its SSE, AVX2 and AVX-512 kernels give hits that
+  // differ in the last bits, so the same seed gave other bytes on another CPU. Capped at AVX2,
+  // every CPU with AVX2 traces the same bits (docs/simulator.md, "Determinism").
+  embree.device.reset(rtcNewDevice("max_isa=avx2"));
   if (!embree.device)
     throw std::runtime_error("Embree error while creating the device (code " +
                              std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")");

@@ -85,8 +85,11 @@ class LegCheck {
       const double t_m = length_m_ * static_cast<double>(j) / static_cast<double>(points_);
       std::optional<ScenarioFinding> error = check_point(a_ + t_m * along_, j, lowest);
       if (!error) continue;
-      // Out of the water beyond a face of the mesh: the face crossed is what went wrong.
-      if (!faces.empty() && faces.front().distance_m <= t_m) {
+      // Out of the water beyond a face of the mesh: the face crossed is what went wrong. A point
+      // on the face itself (within the float hit's precision) is not beyond it: whether a ray
+      // there meets the face depends on the CPU's kernels, not on the scenario.
+      constexpr double kOnFace_m = 1e-3;
+      if (!faces.empty() && faces.front().distance_m < t_m - kOnFace_m) {
         error = ScenarioFinding{
             ScenarioKey::kWaypoint, from_ + 1, true,
             leg() + " crosses the mesh " + face_at(faces.front()) + ", and leaves the water"};

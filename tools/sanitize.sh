@@ -9,6 +9,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install_deps.sh
+# The real dataset, as in tools/test.sh: when its folder exists, checked before the build and then
+# required by the tests that need it (they fail instead of skipping without it).
+stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
+if [ -d "$stpere" ]; then
+  tools/check_stpere.sh "$stpere"
+  MSISLAB_STPERE_DIR=$(cd "$stpere" && pwd)
+  export MSISLAB_STPERE_DIR MSISLAB_REQUIRE_REAL_DATA=1
+fi
 cmake --preset asan
 # The test programs and what they link, not the commands (app/, tools/): nothing here runs them.
 mapfile -t tests < <(cmake --build --preset asan --target help |

@@ -124,14 +124,21 @@ TEST(MonteCarloCommand, SummaryAndRunDirectories) {
     EXPECT_TRUE(m.has("segments"));
   }
   const io::JsonObject dr = summary.object("deadreckoning");
-  // Dead reckoning's scan poses are scored too (the scans it places from the sonar data).
-  EXPECT_GT(dr.number("anees"), 0.3);
-  EXPECT_LT(dr.number("anees"), 30.0);
+  // Dead reckoning's scan poses are scored too (the scans it places from the sonar data). Its
+  // noise model is not the simulator's (white heading noise of 1 deg against 0.04 deg and a bias
+  // random walk, a Gaussian DVL against a heavy-tailed one: docs/dead_reckoning.md), so no
+  // consistency is claimed: a regression guard of a deterministic figure (these seeds give the
+  // same bytes within a build).
+  constexpr double kDeadReckoningAnees = 1.2040760785;
+  EXPECT_NEAR(dr.number("anees"), kDeadReckoningAnees, 1e-6 * kDeadReckoningAnees);
+  // The SLAM filter is expected consistent: 3 runs times the ANEES is chi-square with 3 x 3 DOF
+  // at every scan, and the 6 scans of a run are correlated (their errors accumulate), so the
+  // widest case, all 6 one variable, bounds the ANEES: average_chi2_bounds(3, 3) = [0.90, 6.34]
+  // (measured 1.58).
   const io::JsonObject wc = summary.object("worldcentric");
-  EXPECT_GT(wc.number("anees"), 0.3);
-  EXPECT_LT(wc.number("anees"), 30.0);
-  EXPECT_GE(wc.number("nees_in_bounds_fraction"), 0.0);
-  EXPECT_LE(wc.number("nees_in_bounds_fraction"), 1.0);
+  const auto [lower_3_runs, upper_3_runs] = average_chi2_bounds(3, 3, 0.05);
+  EXPECT_GT(wc.number("anees"), lower_3_runs);
+  EXPECT_LT(wc.number("anees"), upper_3_runs);
   EXPECT_LT(wc.number("mean_error_m"), dr.number("mean_error_m"));
 
   // nees.csv: one row per scan index and method, averaged over the 3 runs (dead reckoning's
@@ -142,9 +149,21 @@ TEST(MonteCarloCommand, SummaryAndRunDirectories) {
   EXPECT_NE(nees.find("\nworldcentric,0,3,"), std::string::npos);
   EXPECT_EQ(static_cast<double>(std::count(nees.begin(), nees.end(), '\n') - 1),
             dr.number("nees_scans") + wc.number("nees_scans"));
-  const auto [lower, upper] = average_chi2_bounds(3, 3, 0.05);
-  EXPECT_NE(nees.find(io::format_number(lower) + "," + io::format_number(upper) + "\n"),
-            std::string::npos);
+  EXPECT_NE(
+      nees.find(io::format_number(lower_3_runs) + "," + io::format_number(upper_3_runs) + "\n"),
+      std::string::npos);
+  // The summary's in-bounds fraction is nees.csv's share of worldcentric rows inside their bounds.
+  int wc_rows = 0, wc_inside = 0;
+  std::istringstream rows(nees);
+  for (std::string line; std::getline(rows, line);) {
+    if (line.rfind("worldcentric,", 0) != 0) continue;
+    const auto f = io::split_csv<6>(line, "nees.csv", 0);
+    const double mean = std::stod(std::string(f[3]));
+    ++wc_rows;
+    wc_inside += mean >= std::stod(std::string(f[4])) && mean <= std::stod(std::string(f[5]));
+  }
+  ASSERT_GT(wc_rows, 0);
+  EXPECT_DOUBLE_EQ(wc.number("nees_in_bounds_fraction"), static_cast<double>(wc_inside) / wc_rows);
 
   // Run directories, the scenario copy and the seeds; no scratch datasets or maps left.
   for (const std::string& method : kMethods) {

@@ -2,9 +2,8 @@
 // config/stpere_replica.yaml): both write the result files per interfaces.md, match scans, and
 // their mean error is below dead reckoning's (well below in the loop area) and below stated bounds,
 // overall and in the canal (the paper's Table I). The two trajectory parameterisations of the same
-// IEKF agree closely: the robocentric one must not be worse. On the real St. Pere dataset (skipped
-// without it): the loop area improves on dead reckoning and the whole run does not regress past a
-// stated bound.
+// IEKF agree to a centimetre, on both datasets. On the real St. Pere dataset (skipped without it):
+// the loop area improves on dead reckoning and the whole run does not regress past a stated bound.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -16,6 +15,7 @@
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "method_summary_lookup.hpp"
+#include "stats/chi_square.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -62,6 +62,16 @@ MatchesCsv read_matches_csv(const fs::path& path) {
   return out;
 }
 
+/// The two parameterisations are one estimate up to linearisation: at today's noise the
+/// linearisation error is 1e-4 of a NEES and single runs agree to a millimetre; over 41 regimes of
+/// noise no mean difference reached 1.2 cm (docs/robocentric.md). So their mean errors on one
+/// dataset differ by under 1 cm, either way: a larger gap is a bug in one of them, not noise.
+void expect_parameterisations_agree(const RunMetrics& robocentric, const RunMetrics& worldcentric) {
+  const double rc_minus_wc_m = robocentric.errors.mean_m - worldcentric.errors.mean_m;
+  std::cout << "robocentric - world-centric mean error: " << rc_minus_wc_m << " m\n";
+  EXPECT_NEAR(rc_minus_wc_m, 0.0, 0.01);
+}
+
 void print(const std::string& data, const RunMetrics& m) {
   std::cout << data << " " << m.method << ": mean " << m.errors.mean_m << " m (loop "
             << segment(m, "loop") << ", canal " << segment(m, "canal") << "), " << m.scans
@@ -106,11 +116,13 @@ TEST(TrajectorySlamRun, ReplicaBothMethodsBeatDeadReckoning) {
     EXPECT_LT(segment(m, "canal"), 0.6 * segment(*dr.metrics, "canal")) << m.method;  // 0.39
     EXPECT_LT(segment(m, "canal"), 3.2) << m.method;                                  // 2.58
     // One run's ANEES over 218 correlated scans: 3.78 (7.69 before the heading history; one-way
-    // association: 14).
+    // association: 14). Below: the chi-square bound of one run (N = 1, 3 DOF: 0.216), the widest
+    // case, every scan's NEES one variable; the filter is expected consistent, so an ANEES under
+    // it means covariances blown up.
     EXPECT_LT(*m.anees, 5.0) << m.method;
+    EXPECT_GT(*m.anees, average_chi2_bounds(1, 3).first) << m.method;
   }
-  // The two parameterisations agree to within a few centimetres (docs/trajectory_slam.md).
-  EXPECT_LT(rc.metrics->errors.mean_m, wc.metrics->errors.mean_m + 0.08);
+  expect_parameterisations_agree(*rc.metrics, *wc.metrics);  // measured 0.0002 m
   for (const char* dir : {"wc", "rc"}) {
     for (const char* file :
          {"trajectory.tum", "scans.csv", "matches.csv", "map.ply", "metrics.json"}) {
@@ -147,6 +159,7 @@ TEST(TrajectorySlamRun, RealStPere) {
   const RunOutcome rc = run({testing::stpere_dir(), "robocentric", tmp.file("rc"), config});
   ASSERT_TRUE(dr.metrics && wc.metrics && rc.metrics);
   for (const RunOutcome* r : {&dr, &wc, &rc}) print("St. Pere", *r->metrics);
+  expect_parameterisations_agree(*rc.metrics, *wc.metrics);  // measured -0.0008 m
   // Measured: robocentric 2.84 m (loop 1.74, canal 4.47), 520 of 601 matches accepted, dead
   // reckoning 3.56 m (3.17, 4.13); the paper: 1.15 m and 2.05 m. The canal is still worse than
   // dead reckoning (docs/trajectory_slam.md). Before the sonar clock offset (0.66 s, estimated

@@ -151,3 +151,9 @@ if [ "$downstream" = 1 ]; then
   } >>docs/fidelity.md
 fi
 echo "docs/fidelity.md and docs/fidelity/ are up to date; review and commit them."
+# The README's fidelity figures (docs/claims.yaml) against out/fidelity/report; the others need
+# tools/results.sh's folders.
+if [ -z "$sim" ] || [ "$sim" = out/fidelity/stpere_replica ]; then
+  echo "== tools/claims.sh: the README's figures (docs/claims.yaml)"
+  tools/claims.sh --partial
+fi

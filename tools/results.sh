@@ -11,7 +11,8 @@
 #     10 % (out/sensitivity/real.csv);
 #  5. msislab report: writes the page from those folders and copies the figures beside it, with
 #     the robocentric study's heading-noise and stress sweeps when tools/robocentric_study.sh
-#     has filled out/study (docs/robocentric.md).
+#     has filled out/study (docs/robocentric.md);
+#  6. tools/claims.sh: the README's figures (docs/claims.yaml) checked against those folders.
 # Usage: tools/results.sh [--runs N] [--jobs J]     (about 6 minutes on 2 cores with 50 runs)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +23,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --runs) runs="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/results.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -67,3 +68,6 @@ for sweep in heading_noise stress; do
 done
 "$msislab" report docs/results.md "${report[@]}"
 echo "docs/results.md and docs/results/ are up to date; review and commit them."
+# The README's figures against these folders (out/fidelity/report: tools/fidelity.sh).
+echo "== tools/claims.sh: the README's figures (docs/claims.yaml)"
+tools/claims.sh --partial

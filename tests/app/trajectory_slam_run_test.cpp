@@ -1,5 +1,7 @@
 // `msislab run --method robocentric|worldcentric` end to end. On the simulated replica (seed 42,
-// config/stpere_replica.yaml): both write the result files per interfaces.md, match scans, and
+// read through its raw profiles, the segments of config/stpere_replica.yaml; the detections path
+// with that config is the README's, held by tests/app/claims_test.cpp and
+// claims_montecarlo_test.cpp): both write the result files per interfaces.md, match scans, and
 // their mean error is below dead reckoning's (well below in the loop area) and below stated bounds,
 // overall and in the canal (the paper's Table I). The two trajectory parameterisations of the same
 // IEKF agree to a centimetre, on both datasets. On the real St. Pere dataset (skipped without it):

@@ -7,6 +7,7 @@
 #include "io/config_yaml.hpp"
 #include "io/dataset.hpp"
 #include "io/detections.hpp"
+#include "io/expectations_yaml.hpp"
 #include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
@@ -89,13 +90,15 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"tum", "trajectory.tum", [](const std::string& p) { io::read_tum(p); }},
       {"beam_truth_csv", "beams.csv", [](const std::string& p) { io::read_beam_truth(p); }},
       {"segments_csv", "segments.csv", read_truth_segments},
-      // YAML: scenario, SLAM config, calibration, sweep, methods file.
+      // YAML: scenario, SLAM config, calibration, sweep, methods file, expectations.
       {"scenario_yaml", "scenario.yaml", [](const std::string& p) { io::read_scenario(p); }},
       {"slam_config_yaml", "config.yaml", [](const std::string& p) { io::read_slam_config(p); }},
       {"calibration_yaml", "calibration.yaml",
        [](const std::string& p) { io::read_calibration(p); }},
       {"sweep_yaml", "sweep.yaml", read_sweep_cells},
       {"methods_yaml", "methods.yaml", read_methods},
+      {"expectations_yaml", "expectations.yaml",
+       [](const std::string& p) { io::read_expectations_yaml(p); }},
       // Scene meshes and the map a run writes.
       {"obj_mesh", "scene.obj", read_scene_mesh},
       {"ply_mesh", "scene.ply", read_scene_mesh},

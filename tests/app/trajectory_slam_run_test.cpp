@@ -65,9 +65,10 @@ MatchesCsv read_matches_csv(const fs::path& path) {
 }
 
 /// The two parameterisations are one estimate up to linearisation: at today's noise the
-/// linearisation error is 1e-4 of a NEES and single runs agree to a millimetre; over 41 regimes of
-/// noise no mean difference reached 1.2 cm (docs/robocentric.md). So their mean errors on one
-/// dataset differ by under 1 cm, either way: a larger gap is a bug in one of them, not noise.
+/// linearisation error is 1e-4 of a NEES and single runs agree to a millimetre; centimetres apart
+/// only at heading noises far beyond today's, within the Monte Carlo noise (docs/robocentric.md).
+/// So their mean errors on one dataset differ by under 1 cm, either way: a larger gap is a bug in
+/// one of them, not noise.
 void expect_parameterisations_agree(const RunMetrics& robocentric, const RunMetrics& worldcentric) {
   const double rc_minus_wc_m = robocentric.errors.mean_m - worldcentric.errors.mean_m;
   std::cout << "robocentric - world-centric mean error: " << rc_minus_wc_m << " m\n";

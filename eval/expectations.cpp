@@ -68,23 +68,24 @@ std::string quoted_text(const Expectation& e) {
   return text;
 }
 
-bool page_quotes(const std::string& page, const std::string& quote) {
-  const auto fold = [](const std::string& text) {
-    std::string folded;
-    bool space = false;
-    for (const char ch : text) {
-      const bool blank = ch == ' ' || ch == '\n' || ch == '\t' || ch == '\r';
-      if (blank) {
-        space = !folded.empty();
-      } else {
-        if (space) folded += ' ';
-        folded += ch;
-        space = false;
-      }
+std::string fold_white_space(const std::string& text) {
+  std::string folded;
+  bool space = false;
+  for (const char ch : text) {
+    const bool blank = ch == ' ' || ch == '\n' || ch == '\t' || ch == '\r';
+    if (blank) {
+      space = !folded.empty();
+    } else {
+      if (space) folded += ' ';
+      folded += ch;
+      space = false;
     }
-    return folded;
-  };
-  return fold(page).find(fold(quote)) != std::string::npos;
+  }
+  return folded;
+}
+
+bool page_quotes(const std::string& page, const std::string& quote) {
+  return fold_white_space(page).find(fold_white_space(quote)) != std::string::npos;
 }
 
 CheckOutcome check_expectation(const Expectation& e, const std::vector<ResultFigures>& results,

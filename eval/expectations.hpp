@@ -63,6 +63,9 @@ CheckOutcome check_expectation(const Expectation& expectation,
 /// The quote of an expectation with equals and a quote: "{}" replaced by equals_text.
 std::string quoted_text(const Expectation& expectation);
 
+/// The text with every run of white space (spaces, tabs, line breaks) one space, none at the ends.
+std::string fold_white_space(const std::string& text);
+
 /// Whether `page` contains `quote` when every run of white space in both counts as one space.
 bool page_quotes(const std::string& page, const std::string& quote);
 

@@ -101,19 +101,9 @@ const std::vector<std::string> kSettings = {
 };
 
 TEST(Claims, EveryFigureOfTheReadmeOverviewIsAClaimOrASetting) {
-  std::string readme = testing::read_text(kSource + "/README.md");
-  readme = readme.substr(0, readme.find("\n## "));  // the overview: before the first section
-  std::string text;
-  bool space = false;
-  for (const char ch : readme) {  // white space folded, as the quotes are matched
-    if (ch == ' ' || ch == '\n') {
-      space = true;
-      continue;
-    }
-    if (space && !text.empty()) text += ' ';
-    text += ch;
-    space = false;
-  }
+  const std::string readme = testing::read_text(kSource + "/README.md");
+  // The overview (before the first section), white space folded as the quotes are matched.
+  const std::string text = fold_white_space(readme.substr(0, readme.find("\n## ")));
   std::vector<std::string> quotes = kSettings;
   for (const Expectation& e : io::read_expectations_yaml(kClaims)) {
     if (!e.quote_text.empty() && e.quote_file == "../README.md") quotes.push_back(quoted_text(e));

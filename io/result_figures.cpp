@@ -43,9 +43,9 @@ Row run_row(const fs::path& dir, std::string& method) {
   const fs::path nees = dir / "nees.csv";
   if (fs::exists(nees)) {
     const std::vector<NeesSample> samples = read_nees_csv(nees.string());
-    const auto [lower, upper] = average_chi2_bounds(1, 3, 0.05);
+    const auto bounds = average_chi2_bounds(1, 3, 0.05);
     const auto inside = std::count_if(samples.begin(), samples.end(), [&](const NeesSample& s) {
-      return s.nees >= lower && s.nees <= upper;
+      return s.nees >= bounds.first && s.nees <= bounds.second;
     });
     if (!samples.empty()) {
       row["nees_in_bounds_fraction"] =

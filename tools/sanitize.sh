@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the asan preset (AddressSanitizer + UndefinedBehaviorSanitizer, no recovery: the first
-# finding ends the process with a report) and runs the unit and library tests under it (the
+# Builds the asan preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, no recovery: the
+# first finding ends the process with a report; the build tools/fuzz.sh fuzzes) and runs the unit and library tests under it (the
 # preset leaves out the end-to-end command tests, tests/app, which tools/test.sh runs).
 # LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) cover leaks inside third-party display
 # libraries only, each entry named and justified there. Extra arguments go to ctest (e.g. -L io,
@@ -17,7 +17,7 @@ if [ -d "$stpere" ]; then
   MSISLAB_STPERE_DIR=$(cd "$stpere" && pwd)
   export MSISLAB_STPERE_DIR MSISLAB_REQUIRE_REAL_DATA=1
 fi
-cmake --preset asan
+tools/asan_configure.sh
 # The test programs and what they link, not the commands (app/, tools/): nothing here runs them.
 mapfile -t tests < <(cmake --build --preset asan --target help |
                        sed -n 's/^\.\.\. \([a-z0-9_]*_test\)$/\1/p')

@@ -207,7 +207,9 @@ std::vector<PosePair> test_pose_pairs() {
 }
 
 TEST(Pose2Jacobians, ComposeJ1PlusAndJ2Plus) {
-  for (const auto& [x_ab, x_bc] : test_pose_pairs()) {
+  for (const auto& pair : test_pose_pairs()) {
+    const Pose2& x_ab = pair.first;
+    const Pose2& x_bc = pair.second;
     Eigen::Matrix3d J_out_ab;
     Eigen::Matrix3d J_out_bc;
     x_ab.compose(x_bc, &J_out_ab, &J_out_bc);
@@ -249,7 +251,9 @@ TEST(Pose2Jacobians, InverseJMinus) {
 }
 
 TEST(Pose2Jacobians, BetweenBothArguments) {
-  for (const auto& [x_ab, x_ac] : test_pose_pairs()) {
+  for (const auto& pair : test_pose_pairs()) {
+    const Pose2& x_ab = pair.first;
+    const Pose2& x_ac = pair.second;
     Eigen::Matrix3d J_out_ab;
     Eigen::Matrix3d J_out_ac;
     x_ab.between(x_ac, &J_out_ab, &J_out_ac);
@@ -321,7 +325,9 @@ TEST(Pose2Jacobians, ClosedFormsAtKnownPose) {
 TEST(Pose2Jacobians, BetweenClosedFormOfDocs) {
   // docs/pose_algebra.md: with c, s of yaw_ab and x_bc = between(x_ab, x_ac),
   // J_out_ab = [-c -s y_bc; s -c -x_bc; 0 0 -1], J_out_ac = [c s 0; -s c 0; 0 0 1].
-  for (const auto& [x_ab, x_ac] : test_pose_pairs()) {
+  for (const auto& pair : test_pose_pairs()) {
+    const Pose2& x_ab = pair.first;
+    const Pose2& x_ac = pair.second;
     Eigen::Matrix3d J_out_ab;
     Eigen::Matrix3d J_out_ac;
     const Pose2 x_bc = x_ab.between(x_ac, &J_out_ab, &J_out_ac);

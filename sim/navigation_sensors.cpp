@@ -83,7 +83,7 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
                                     s.sway_mps + s.yaw_rate_radps * dvl.mount.x_m);
     // A fixed number of draws per sample, whatever the outcome.
     const double u_dropout = u01(rng), u_outlier = u01(rng), u_state = u01(rng);
-    const Eigen::Vector2d noise(n01(rng), n01(rng));
+    const Eigen::Vector2d noise = draw_y_then_x([&] { return n01(rng); });
     const double p_dropout = degraded ? dvl.degraded_dropout_probability : dvl.dropout_probability;
     const double sigma_mps =
         u_outlier < dvl.outlier_probability ? dvl.outlier_sigma_mps : dvl.noise_sigma_mps;
@@ -133,7 +133,7 @@ std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig
   // Gauss-Markov error e' = phi e + sigma sqrt(1 - phi^2) n, phi = exp(-dt / tau), stationary.
   const double phi =
       gps.correlated_sigma_m > 0.0 ? std::exp(-1.0 / (gps.rate_hz * gps.correlation_time_s)) : 0.0;
-  Eigen::Vector2d e_m = gps.correlated_sigma_m * Eigen::Vector2d(n01(rng), n01(rng));
+  Eigen::Vector2d e_m = gps.correlated_sigma_m * draw_y_then_x([&] { return n01(rng); });
   // The buoy starts above the vehicle and is dragged through every truth sample.
   const std::vector<VehicleState>& states = truth.samples();
   Eigen::Vector2d p_buoy_m = states.front().pose.translation();
@@ -143,9 +143,9 @@ std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig
       p_buoy_m = drag_buoy(p_buoy_m, states[next].pose.translation(), gps.tether_length_m);
     }
     p_buoy_m = drag_buoy(p_buoy_m, truth.at(t_s).pose.translation(), gps.tether_length_m);
-    const Eigen::Vector2d white(n01(rng), n01(rng));
+    const Eigen::Vector2d white = draw_y_then_x([&] { return n01(rng); });
     fixes.push_back({t_s, p_buoy_m + e_m + gps.noise_sigma_m * white});
-    const Eigen::Vector2d n(n01(rng), n01(rng));
+    const Eigen::Vector2d n = draw_y_then_x([&] { return n01(rng); });
     e_m = phi * e_m + gps.correlated_sigma_m * std::sqrt(1.0 - phi * phi) * n;
   }
   return fixes;

@@ -3,6 +3,7 @@
 // generator, derived from (seed, stream, index) by splitmix64.
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -78,6 +79,17 @@ class ExponentialTable {
 /// An independent generator for one (stream, index) of a seeded run.
 inline Rng make_rng(std::uint64_t seed, RandomStream stream, std::uint64_t index) {
   return Rng(splitmix64(splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(stream)) ^ index));
+}
+
+/// Two draws as a vector, the y coordinate drawn before x: the order in which g++ evaluates the
+/// arguments of Eigen::Vector2d(draw(), draw()), which C++ leaves unspecified (clang goes left to
+/// right). Written out so that a dataset does not depend on the compiler that built msislab, and
+/// is the one g++ builds have always made.
+template <class Draw>
+Eigen::Vector2d draw_y_then_x(Draw&& draw) {
+  const double y = draw();
+  const double x = draw();
+  return {x, y};
 }
 
 }  // namespace msislab::sim

@@ -160,9 +160,9 @@ std::vector<Eigen::Vector2d> open_area_pilings(const OpenArea& geometry) {
   std::vector<Eigen::Vector2d> centres_m;
   for (int dart = 0; dart < 100000 && static_cast<int>(centres_m.size()) < geometry.pilings;
        ++dart) {
-    const Eigen::Vector2d c_m =
-        geometry.field_min_m +
-        Eigen::Vector2d(unit_interval(rng()) * size_m.x(), unit_interval(rng()) * size_m.y());
+    const Eigen::Vector2d c_m = geometry.field_min_m + draw_y_then_x([&] {
+                                                         return unit_interval(rng());
+                                                       }).cwiseProduct(size_m);
     const bool clear = std::none_of(centres_m.begin(), centres_m.end(), [&](const auto& other) {
       return (other - c_m).norm() < geometry.min_spacing_m;
     });

@@ -184,13 +184,16 @@ void PoseGraph::hold_before(std::size_t first_free) {
 }
 
 void PoseGraph::add_prior(std::size_t i, const GaussianPose2& z_world) {
+  double* pose = poses_.at(i).data();
   problem_->problem.AddResidualBlock(new PriorCost(z_world.mean, whitening(z_world.cov)), nullptr,
-                                     poses_.at(i).data());
+                                     pose);
 }
 
 void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
                              const Eigen::MatrixXd& observed, bool robust) {
   const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
+  double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
+  const Eigen::MatrixXd W = whitening(S) * observed;
   ceres::LossFunction* loss = nullptr;
   if (robust && config_.robust_scale_chi2 > 0.0) {
     if (config_.robust_loss == RobustLoss::kCauchy) {
@@ -200,15 +203,14 @@ void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& 
     }
   }
   const ceres::ResidualBlockId id =
-      problem_->problem.AddResidualBlock(new RelativeCost(z.mean, whitening(S) * observed), loss,
-                                         poses_.at(i).data(), poses_.at(j).data());
+      problem_->problem.AddResidualBlock(new RelativeCost(z.mean, W), loss, pose_i, pose_j);
   if (loss) problem_->robust.push_back(id);
 }
 
 void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_rad) {
   if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
-  problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr,
-                                     poses_.at(i).data());
+  double* pose = poses_.at(i).data();
+  problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr, pose);
 }
 
 PoseGraphSolve PoseGraph::solve(bool count_downweighted) {

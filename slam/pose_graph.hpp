@@ -75,6 +75,9 @@ class PoseGraph {
   /// Holds the nodes before `first_free` where they are in the following solves (a windowed
   /// online solve); 0 frees them all again. Fixed nodes stay fixed.
   void hold_before(std::size_t first_free);
+  /// The add_* below throw std::out_of_range for a node that does not exist and
+  /// std::invalid_argument for a covariance that is not positive definite, before anything is
+  /// allocated or added (a refused input leaks nothing).
   /// z ~ x_i with covariance cov (positive definite).
   void add_prior(std::size_t i, const GaussianPose2& z_world);
   /// z ~ A ((-)x_i (+) x_j): the pose of node j seen from node i, in the directions whose

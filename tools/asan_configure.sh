@@ -1,8 +1,7 @@
 #!/usr/bin/env bash
-# Configures the asan preset's build (build/asan), the one tools/sanitize.sh and tools/fuzz.sh
-# share. A build/asan configured by an earlier msislab with g++ (the preset was g++ then) cannot
-# switch compilers in place: its CMake cache (CMakeCache.txt, CMakeFiles/), which msislab's own
-# configure wrote, is removed first, and the fuzzer's corpus and findings beside it are kept.
+# Configures the asan preset's build (build/asan) for tools/sanitize.sh. A build/asan configured by
+# an earlier msislab with g++ (the preset was g++ then) cannot switch compilers in place: its CMake
+# cache (CMakeCache.txt, CMakeFiles/), which msislab's own configure wrote, is removed first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cache=build/asan/CMakeCache.txt

@@ -1,14 +1,13 @@
 #!/usr/bin/env bash
 # Fuzzes every reader of outside input (tests/fuzz/reader_targets.cpp) with libFuzzer: builds the
-# fuzz executable in the asan preset's build (clang, AddressSanitizer + UndefinedBehaviorSanitizer:
-# the build tools/sanitize.sh tests, so the libraries compile once for both) and runs each target
-# for SECONDS (default 60), two at a time (FUZZ_JOBS). Seeds: tests/fuzz/corpus/<target> and
-# tests/fuzz/findings/<target> (read only); what the fuzzer adds goes to
-# build/asan/fuzz/corpus/<target>, kept between runs. A finding (a crash, a sanitizer report, an
-# exception other than io::InputError, a timeout of 10 s, more than 2 GB) is saved to
-# build/asan/fuzz/findings/<target>/ and makes the script exit 1; fix it and keep the input as
-# tests/fuzz/findings/<target>/bad_<what>. Prints per target the executions, executions per second
-# and coverage (libFuzzer's cov: edges, ft: features).
+# fuzz preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, -O1) and runs each target for
+# SECONDS (default 60), two at a time (FUZZ_JOBS). Seeds: tests/fuzz/corpus/<target> and
+# tests/fuzz/findings/<target> (read only); what the fuzzer adds goes to build/fuzz/corpus/<target>,
+# kept between runs. A finding (a crash, a sanitizer report, an exception other than
+# io::InputError, a timeout of 10 s, more than 2 GB) is saved to build/fuzz/findings/<target>/
+# and makes the script exit 1; fix it and keep the input as tests/fuzz/findings/<target>/bad_<what>.
+# Prints per target the executions, executions per second and coverage (libFuzzer's cov: edges,
+# ft: features).
 # Usage: tools/fuzz.sh [SECONDS] [TARGET...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,9 +24,9 @@ for target in "${targets[@]}"; do
 done
 
 tools/install_deps.sh
-tools/asan_configure.sh >/dev/null
+cmake --preset fuzz >/dev/null
 cmake --build --preset fuzz
-fuzzer="$PWD/build/asan/tests/fuzz/msislab_fuzz_readers"
+fuzzer="$PWD/build/fuzz/tests/fuzz/msislab_fuzz_readers"
 
 if [ ${#targets[@]} -eq 0 ]; then
   # tests/fuzz/corpus_test.cpp checks that these folders are exactly the targets.
@@ -37,18 +36,18 @@ fi
 
 export ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
-logs="build/asan/fuzz/logs"
+logs="build/fuzz/logs"
 mkdir -p "$logs"
 
 fuzz_one() {
   local target="$1"
-  mkdir -p "build/asan/fuzz/corpus/$target" "build/asan/fuzz/findings/$target"
+  mkdir -p "build/fuzz/corpus/$target" "build/fuzz/findings/$target"
   local seeds=("tests/fuzz/corpus/$target")
   [ -d "tests/fuzz/findings/$target" ] && seeds+=("tests/fuzz/findings/$target")
   local status=0
   MSISLAB_FUZZ_TARGET="$target" "$fuzzer" -max_total_time="$seconds" -timeout=10 \
-    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="build/asan/fuzz/findings/$target/" \
-    "build/asan/fuzz/corpus/$target" "${seeds[@]}" >"$logs/$target.log" 2>&1 || status=$?
+    -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="build/fuzz/findings/$target/" \
+    "build/fuzz/corpus/$target" "${seeds[@]}" >"$logs/$target.log" 2>&1 || status=$?
   echo "$status" >"$logs/$target.status"
 }
 
@@ -82,7 +81,7 @@ for target in "${targets[@]}"; do
   corp=$(grep -oP 'corp: \K[0-9]+' <<<"$last" || echo "?")
   result="ok"
   if printf '%s\n' "${failed[@]}" | grep -qx "$target"; then
-    result="FINDING: $(ls -t "build/asan/fuzz/findings/$target" | head -1), see $log"
+    result="FINDING: $(ls -t "build/fuzz/findings/$target" | head -1), see $log"
   fi
   printf '%-22s %10s %8s %7s %7s %7s  %s\n' "$target" "$runs" "$rate" "$cov" "$ft" "$corp" \
     "$result"

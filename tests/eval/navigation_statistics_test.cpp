@@ -9,6 +9,7 @@
 #include <random>
 
 #include "geometry/se2.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -67,7 +68,10 @@ TEST(DvlNoise, RecoversSigmaRateAndSkipsGaps) {
     if (i % 50 == 7) continue;  // a dropout: the difference across it is not used
     // The surge steps by 1 m/s at each dropout: a difference taken across one would show it.
     const double surge = 0.2 + ((i + 43) / 50 % 2 ? 1.0 : 0.0);
-    dvl.push_back({i / 1.5, Eigen::Vector2d(surge + 0.1 * n01(rng), 0.15 * n01(rng))});
+    dvl.push_back(
+        {i / 1.5, Eigen::Vector2d(surge, 0.0) + draws_last_first<2>([&] {
+                                                  return n01(rng);
+                                                }).cwiseProduct(Eigen::Vector2d(0.1, 0.15))});
   }
   const DvlNoiseStatistics s = dvl_noise_statistics(dvl);
   EXPECT_NEAR(s.rate_hz, 1.5, 1e-9);
@@ -171,7 +175,7 @@ TEST(GpsStatistics, RecoversAKnownLagTetherAndWhiteNoise) {
   std::vector<PositionFix> late, towed;
   const std::vector<PositionFix> buoy = towed_buoy(run.truth, 3.0);
   for (std::size_t i = 100; i < run.truth.size(); i += 10) {
-    const Eigen::Vector2d noise(0.05 * n01(rng), 0.05 * n01(rng));
+    const Eigen::Vector2d noise = 0.05 * draws_last_first<2>([&] { return n01(rng); });
     late.push_back({run.truth[i].t_s, run.truth[i - 100].p_world_m + noise});
     towed.push_back({run.truth[i].t_s, buoy[i].p_world_m + noise});
   }
@@ -193,11 +197,12 @@ TEST(GpsStatistics, StructureFunctionOfAGaussMarkovError) {
   std::mt19937 rng(13);
   std::normal_distribution<double> n01(0.0, 1.0);
   const double sigma = 1.0, tau_s = 60.0, phi = std::exp(-1.0 / tau_s);
-  Eigen::Vector2d e(sigma * n01(rng), sigma * n01(rng));
+  Eigen::Vector2d e = sigma * draws_last_first<2>([&] { return n01(rng); });
   std::vector<PositionFix> gps;
   for (std::size_t i = 0; i < run.truth.size(); i += 10) {
     gps.push_back({run.truth[i].t_s, run.truth[i].p_world_m + e});
-    e = phi * e + sigma * std::sqrt(1.0 - phi * phi) * Eigen::Vector2d(n01(rng), n01(rng));
+    e = phi * e +
+        sigma * std::sqrt(1.0 - phi * phi) * draws_last_first<2>([&] { return n01(rng); });
   }
   const GpsOptions options;
   const GpsStatistics s = gps_statistics(run.log, gps, Eigen::Vector2d::Zero(), options);

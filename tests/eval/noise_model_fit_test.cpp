@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -18,7 +19,7 @@ std::vector<Eigen::Vector2d> contaminated_differences(double core, double fracti
   std::vector<Eigen::Vector2d> e, d;
   for (int i = 0; i < n; ++i) {
     const double sigma = is_outlier(rng) ? outlier : core;
-    e.emplace_back(sigma * n01(rng), sigma * n01(rng));
+    e.push_back(sigma * draws_last_first<2>([&] { return n01(rng); }));
     if (i > 0) d.push_back(e[i] - e[i - 1]);
   }
   return d;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <random>
 #include <vector>
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -39,7 +40,8 @@ GaussianPose2 random_gaussian_pose(std::mt19937& rng) {
   std::uniform_real_distribution<double> xy_m(-10.0, 10.0);
   std::uniform_real_distribution<double> yaw_rad(-kPi, kPi);
   GaussianPose2 p;
-  p.mean = Pose2(xy_m(rng), xy_m(rng), yaw_rad(rng));
+  const double yaw = yaw_rad(rng), y = xy_m(rng), x = xy_m(rng);  // tests/draws.hpp's order
+  p.mean = Pose2(x, y, yaw);
   p.cov = random_covariance(rng, 0.5, 0.2);
   return p;
 }
@@ -234,7 +236,7 @@ class PoseSampler {
   explicit PoseSampler(const GaussianPose2& p)
       : mean_(p.mean.vector()), L_(p.cov.llt().matrixL()) {}
   Pose2 operator()(std::mt19937& rng) {
-    const Eigen::Vector3d z(normal_(rng), normal_(rng), normal_(rng));
+    const Eigen::Vector3d z = draws_last_first<3>([&] { return normal_(rng); });
     return Pose2(mean_ + L_ * z);
   }
 

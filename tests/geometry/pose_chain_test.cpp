@@ -22,7 +22,10 @@ TEST(PoseChain, JacobiansMatchFiniteDifferences) {
   for (int trial = 0; trial < 60; ++trial) {
     const std::size_t n = 1 + static_cast<std::size_t>(trial % 12);
     std::vector<Pose2> chain;
-    for (std::size_t j = 0; j < n; ++j) chain.emplace_back(xy(rng), xy(rng), yaw(rng));
+    for (std::size_t j = 0; j < n; ++j) {
+      const double yaw_rad = yaw(rng), y_m = xy(rng), x_m = xy(rng);  // tests/draws.hpp's order
+      chain.emplace_back(x_m, y_m, yaw_rad);
+    }
     if (trial % 5 == 0) chain[0] = Pose2(1.0, 2.0, M_PI - 1e-9);  // at the wrap
     std::vector<Eigen::Matrix3d> J;
     const Pose2 T = compose_chain(chain, &J);

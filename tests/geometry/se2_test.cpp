@@ -12,6 +12,7 @@
 #include <limits>
 #include <random>
 #include <vector>
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -150,7 +151,10 @@ std::vector<Pose2> test_poses() {
   std::mt19937 rng(20240601);
   std::uniform_real_distribution<double> xy_m(-10.0, 10.0);
   std::uniform_real_distribution<double> yaw_rad(-kPi, kPi);
-  for (int i = 0; i < 200; ++i) poses.emplace_back(xy_m(rng), xy_m(rng), yaw_rad(rng));
+  for (int i = 0; i < 200; ++i) {
+    const double yaw = yaw_rad(rng), y = xy_m(rng), x = xy_m(rng);  // tests/draws.hpp's order
+    poses.emplace_back(x, y, yaw);
+  }
   return poses;
 }
 
@@ -278,7 +282,7 @@ TEST(Pose2Jacobians, TransformPoseAndPoint) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> coord_m(-20.0, 20.0);
   for (const Pose2& x_ab : test_poses()) {
-    const Eigen::Vector2d p_b(coord_m(rng), coord_m(rng));
+    const Eigen::Vector2d p_b = draws_last_first<2>([&] { return coord_m(rng); });
     Matrix23d J_out_pose;
     Eigen::Matrix2d J_out_point;
     x_ab.transform(p_b, &J_out_pose, &J_out_point);
@@ -405,7 +409,7 @@ TEST(Pose2Identities, TransformEqualsComposeWithZeroYawPose) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> coord_m(-20.0, 20.0);
   for (const Pose2& x_ab : test_poses()) {
-    const Eigen::Vector2d p_b(coord_m(rng), coord_m(rng));
+    const Eigen::Vector2d p_b = draws_last_first<2>([&] { return coord_m(rng); });
     const Eigen::Vector2d p_a = x_ab.transform(p_b);
     const Pose2 x_ap = x_ab.compose(Pose2(p_b.x(), p_b.y(), 0.0));
     EXPECT_LT((p_a - x_ap.translation()).cwiseAbs().maxCoeff(), kIdentityTol);

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "eval/evaluation.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -41,15 +42,15 @@ Simulation simulate(const DeadReckoningConfig& c, double duration_s, unsigned se
     const Eigen::Vector2d v_world = Pose2(0, 0, yaw).rotation() * s.velocity.head<2>();
     s.pose = Pose2(s.pose.x() + v_world.x() * dt, s.pose.y() + v_world.y() * dt,
                    yaw + s.velocity.z() * dt);
-    s.velocity.head<2>() +=
-        noise_scale * c.accel_sigma_mps2 * std::sqrt(dt) * Eigen::Vector2d(n01(rng), n01(rng));
+    s.velocity.head<2>() += noise_scale * c.accel_sigma_mps2 * std::sqrt(dt) *
+                            draws_last_first<2>([&] { return n01(rng); });
     s.velocity.z() += noise_scale * c.yaw_accel_sigma_radps2 * std::sqrt(dt) * n01(rng);
     s.t_s += dt;
     if (s.t_s >= next_dvl_s) {
       const Eigen::Vector2d v_dvl(s.velocity.x() - s.velocity.z() * p_vehicle_dvl_m.y(),
                                   s.velocity.y() + s.velocity.z() * p_vehicle_dvl_m.x());
-      sim.log.dvl.push_back(
-          {s.t_s, v_dvl + noise_scale * c.dvl_sigma_mps * Eigen::Vector2d(n01(rng), n01(rng))});
+      sim.log.dvl.push_back({s.t_s, v_dvl + noise_scale * c.dvl_sigma_mps *
+                                                draws_last_first<2>([&] { return n01(rng); })});
       next_dvl_s += 1.0 / 1.5;
     }
     if (s.t_s >= next_heading_s) {

@@ -18,6 +18,7 @@
 #include "geometry/gaussian_pose.hpp"
 #include "slam/scan_matching.hpp"
 #include "stats/chi_square.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -52,7 +53,7 @@ void odometry_graph(PoseGraph& graph, const std::vector<Pose2>& truth, std::mt19
   graph.add_node(truth[0]);
   graph.fix_node(0);
   for (std::size_t k = 1; k < truth.size(); ++k) {
-    const Eigen::Vector3d noise = L * Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    const Eigen::Vector3d noise = L * draws_last_first<3>([&] { return n01(rng); });
     const Pose2 z(truth[k - 1].between(truth[k]).vector() + noise);
     dead_reckoning = dead_reckoning.compose(z);
     graph.add_node(dead_reckoning);
@@ -323,7 +324,7 @@ TEST(PoseGraph, CovariancesAreConsistentWithTheTruth) {
   for (int g = 0; g < graphs; ++g) {
     PoseGraph graph;
     odometry_graph(graph, truth, rng);
-    const Eigen::Vector3d noise = L_match * Eigen::Vector3d(n01(rng), n01(rng), n01(rng));
+    const Eigen::Vector3d noise = L_match * draws_last_first<3>([&] { return n01(rng); });
     graph.add_relative(0, 16, {Pose2(truth[0].between(truth[16]).vector() + noise), match_cov},
                        Eigen::Matrix3d::Identity(), true);
     for (std::size_t k = 4; k < truth.size(); k += 4) {

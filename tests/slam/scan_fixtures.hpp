@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "slam/scan_builder.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab::testing_scans {
 
@@ -26,7 +27,7 @@ inline std::vector<ScanPoint> noisy(const std::vector<Eigen::Vector2d>& points, 
   std::vector<ScanPoint> out;
   for (const auto& p : points) {
     ScanPoint sp;
-    sp.p_m = p + Eigen::Vector2d(n(rng), n(rng));
+    sp.p_m = p + draws_last_first<2>([&] { return n(rng); });
     sp.cov = sigma_m * sigma_m * Eigen::Matrix2d::Identity();
     sp.cov_reading = sp.cov;  // all of it is the point's own noise
     out.push_back(sp);

@@ -12,6 +12,7 @@
 #include <random>
 
 #include "scan_fixtures.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
@@ -33,8 +34,9 @@ TEST(ScanMatching, RecoversAKnownPoseFromPerturbedGuesses) {
     const auto current = noisy(seen_from_current, 0.05, rng);
     GaussianPose2 guess;
     guess.cov = Eigen::Vector3d(0.4 * 0.4, 0.4 * 0.4, 0.08 * 0.08).asDiagonal();
-    guess.mean = Pose2(q_true.x() + 0.4 * guess_noise(rng), q_true.y() + 0.4 * guess_noise(rng),
-                       q_true.yaw() + 0.08 * guess_noise(rng));
+    const Eigen::Vector3d g = draws_last_first<3>([&] { return guess_noise(rng); });
+    guess.mean =
+        Pose2(q_true.x() + 0.4 * g.x(), q_true.y() + 0.4 * g.y(), q_true.yaw() + 0.08 * g.z());
     const ScanMatchResult r = match_scans(reference, current, guess, ScanMatchConfig{});
     ASSERT_TRUE(r.valid) << "trial " << t;
     EXPECT_TRUE(r.converged) << "trial " << t;
@@ -212,7 +214,7 @@ TEST(ScanMatching, CrossCovarianceOfTwoMatchesSharingTheCurrentScanMatchesMonteC
     const Eigen::Vector3d xi[2] = {{n01(rng), n01(rng), n01(rng)}, {n01(rng), n01(rng), n01(rng)}};
     std::vector<ScanPoint> current = current_true;
     for (ScanPoint& p : current) {
-      p.p_m += sigma_m * Eigen::Vector2d(n01(rng), n01(rng)) + p.distortion * xi[p.side];
+      p.p_m += sigma_m * draws_last_first<2>([&] { return n01(rng); }) + p.distortion * xi[p.side];
     }
     const ScanMatchResult a = match_scans(noisy(world, sigma_m, rng), current, guess_a, {});
     const ScanMatchResult b = match_scans(noisy(world_in_b, sigma_m, rng), current, guess_b, {});

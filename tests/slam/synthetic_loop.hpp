@@ -8,6 +8,7 @@
 
 #include "geometry/se2.hpp"
 #include "slam/scan_builder.hpp"
+#include "tests/draws.hpp"
 
 namespace msislab {
 
@@ -55,7 +56,7 @@ inline Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0)
     Scan scan;
     scan.t_s = static_cast<double>(k);
     const Pose2 true_motion = k == 0 ? truth[0] : truth[k - 1].between(truth[k]);
-    const Eigen::Vector3d noise(sigma.x() * n01(rng), sigma.y() * n01(rng), sigma.z() * n01(rng));
+    const Eigen::Vector3d noise = sigma.cwiseProduct(draws_last_first<3>([&] { return n01(rng); }));
     scan.motion.mean = k == 0 ? true_motion : Pose2(true_motion.vector() + noise);
     scan.motion.cov = k == 0 ? Eigen::Matrix3d::Identity() * 1e-9
                              : Eigen::Matrix3d(sigma.cwiseProduct(sigma).asDiagonal());
@@ -64,7 +65,7 @@ inline Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0)
       const Eigen::Vector2d p = truth[k].inverse().transform(p_world);
       if (blind || p.norm() > 25.0) continue;
       ScanPoint point;
-      point.p_m = p + sigma_point_m * Eigen::Vector2d(n01(rng), n01(rng));
+      point.p_m = p + sigma_point_m * draws_last_first<2>([&] { return n01(rng); });
       point.cov = sigma_point_m * sigma_point_m * Eigen::Matrix2d::Identity();
       point.cov_reading = point.cov;
       point.p_vehicle_m = point.p_m;

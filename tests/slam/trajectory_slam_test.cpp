@@ -13,6 +13,7 @@
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 #include "stats/chi_square.hpp"
+#include "tests/draws.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
 namespace msislab {
@@ -157,7 +158,8 @@ TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   std::normal_distribution<double> n01(0.0, 1.0);
   for (int k = 0; k < 5; ++k) {
     Scan blind;  // no points: the step only predicts
-    blind.motion.mean = Pose2(4.0 + 0.3 * n01(rng), 0.5 * n01(rng), 0.3 * n01(rng));
+    const Eigen::Vector3d n = draws_last_first<3>([&] { return n01(rng); });
+    blind.motion.mean = Pose2(4.0 + 0.3 * n.x(), 0.5 * n.y(), 0.3 * n.z());
     blind.motion.cov = Eigen::Vector3d(0.04, 0.09, 0.0).asDiagonal();
     blind.motion.cov(0, 1) = blind.motion.cov(1, 0) = 0.01;
     sequential->add_scan(blind);
@@ -168,8 +170,12 @@ TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   std::vector<Eigen::Matrix3d> R;
   for (const std::size_t a : {std::size_t{0}, std::size_t{2}}) {
     const Pose2 h = sequential->relative_pose(a, b, nullptr);
-    z.push_back({a, Pose2(h.vector() + Eigen::Vector3d(0.5 * n01(rng), 0.5 * n01(rng), 0.01)),
-                 Eigen::MatrixXd::Identity(3, 3)});
+    z.push_back(
+        {a,
+         Pose2(h.vector() +
+               (Eigen::Vector3d() << 0.5 * draws_last_first<2>([&] { return n01(rng); }), 0.01)
+                   .finished()),
+         Eigen::MatrixXd::Identity(3, 3)});
     Eigen::Matrix3d cov = Eigen::Vector3d(0.02, 0.03, 1e-4).asDiagonal();
     cov(0, 2) = cov(2, 0) = 5e-4;
     R.push_back(cov);
@@ -207,7 +213,8 @@ TEST_P(BothMethods, CorrelatedMatchesMoveTheStateLessThanIndependentOnes) {
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<Scan> blind(4);
   for (Scan& scan : blind) {
-    scan.motion.mean = Pose2(3.0 + 0.3 * n01(rng), 0.4 * n01(rng), 0.05 * n01(rng));
+    const Eigen::Vector3d n = draws_last_first<3>([&] { return n01(rng); });
+    scan.motion.mean = Pose2(3.0 + 0.3 * n.x(), 0.4 * n.y(), 0.05 * n.z());
     scan.motion.cov = Eigen::Vector3d(0.04, 0.09, 1e-3).asDiagonal();
   }
   const Eigen::Matrix3d C = Eigen::Vector3d(0.05, 0.05, 4e-4).asDiagonal();

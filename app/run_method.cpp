@@ -104,6 +104,11 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstim
       diagnostics.emplace_back(name, *scale);
     }
   }
+  // The calibration the back end estimated, with its standard deviation.
+  for (const CalibrationEstimate& c : slam.calibration) {
+    diagnostics.emplace_back(c.name, c.value);
+    diagnostics.emplace_back(c.name + "_sigma", c.sigma);
+  }
   // The measured linearisation error (trajectory_slam.linearisation_samples > 0).
   for (const auto& [name, tally] :
        {std::pair{"linearisation_observation", &slam.totals.linearisation_observation},

@@ -169,6 +169,15 @@ void read_validation(YamlMap map, MatchValidationConfig& c) {
   map.finish();
 }
 
+void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
+  map.boolean("range_scale", c.range_scale);
+  map.number("range_scale_prior", c.range_scale_prior);
+  require_positive(map, "range_scale_prior", c.range_scale_prior);
+  map.number("range_scale_sigma", c.range_scale_sigma);
+  require_positive(map, "range_scale_sigma", c.range_scale_sigma);
+  map.finish();
+}
+
 void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   map.number("association_distance_m", c.association_distance_m);
   require_positive(map, "association_distance_m", c.association_distance_m);
@@ -186,6 +195,7 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   read_count(map, "linearisation_samples", c.linearisation_samples, 0, 1000000);
   read_matching(map.map("matching"), c.matching);
   read_validation(map.map("validation"), c.validation);
+  read_calibration_states(map.map("calibration"), c.calibration);
   map.finish();
 }
 

@@ -13,7 +13,7 @@ void RoboCentricSlam::predict(const GaussianPose2& motion) {
 void RoboCentricSlam::finish_step() {
   // Eq. 11-13: e_k <- (-)e_k; P <- J P J^T, J = diag(I, ..., I, J-): only row and column block k.
   measure_inversion_linearisation();
-  const Eigen::Index k = static_cast<Eigen::Index>(3 * (elements_.size() - 1));
+  const Eigen::Index k = element_row(elements_.size() - 1);
   Eigen::Matrix3d J_inverse;
   elements_.back() = elements_.back().inverse(&J_inverse);
   P_.middleRows<3>(k) = J_inverse * P_.middleRows<3>(k);

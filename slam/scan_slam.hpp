@@ -50,6 +50,8 @@ class ScanSlam {
   /// Matches a robust back end set aside (beyond its gate at its last solution); nullopt for
   /// the filters, whose gate rejects before the update.
   virtual std::optional<int> matches_downweighted() const { return std::nullopt; }
+  /// The calibration parameters the back end estimates (none by default).
+  virtual std::vector<CalibrationEstimate> calibration() const { return {}; }
 };
 
 }  // namespace msislab

@@ -54,6 +54,7 @@ ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigatio
   }
   out.totals = backend.totals();
   out.matches_downweighted = backend.matches_downweighted();
+  out.calibration = backend.calibration();
   // The trajectory between scans follows dead reckoning from the latest corrected scan pose.
   const std::optional<std::vector<GaussianPose2>> online = backend.online_poses();
   out.online_poses = online ? *online : out.final_poses;

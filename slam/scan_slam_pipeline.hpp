@@ -53,7 +53,8 @@ struct ScanSlamEstimate {
   std::optional<std::vector<StampedPose>> smoothed_trajectory;
   std::vector<MatchRecord> matches;  ///< every candidate match of every step, in order
   SlamTotals totals;
-  std::optional<int> matches_downweighted;  ///< ScanSlam::matches_downweighted
+  std::optional<int> matches_downweighted;       ///< ScanSlam::matches_downweighted
+  std::vector<CalibrationEstimate> calibration;  ///< ScanSlam::calibration after the last scan
 };
 
 /// The sonar's revolutions as motion-compensated scans placed by dead reckoning (Sec. II; the

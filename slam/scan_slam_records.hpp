@@ -7,6 +7,7 @@
 #include <array>
 #include <cstddef>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "geometry/gaussian_pose.hpp"
@@ -65,6 +66,14 @@ struct SlamStepStats {
 };
 
 /// The totals over a run.
+/// A calibration parameter a back end estimates with the trajectory: its name (as in
+/// metrics.json's diagnostics), its estimate and standard deviation after the last scan.
+struct CalibrationEstimate {
+  std::string name;
+  double value = 0.0;
+  double sigma = 0.0;
+};
+
 struct SlamTotals {
   int scans = 0;
   int skipped = 0;

@@ -66,10 +66,24 @@ void MatchRejectionCounts::count(const ValidatedMatch& match) {
 }
 
 TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
-    : config_(config), start_world_(start_world) {}
+    : config_(config), start_world_(start_world) {
+  if (config_.calibration.range_scale) {
+    const double sigma = config_.calibration.range_scale_sigma;
+    calibration_ = Eigen::VectorXd::Constant(1, config_.calibration.range_scale_prior);
+    P_ = Eigen::MatrixXd::Constant(1, 1, sigma * sigma);
+  }
+}
+
+std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
+  std::vector<CalibrationEstimate> out;
+  if (config_.calibration.range_scale) {
+    out.push_back({"range_scale", calibration_(0), std::sqrt(P_(0, 0))});
+  }
+  return out;
+}
 
 void TrajectorySlam::predict(const GaussianPose2& motion) {
-  const Eigen::Index n = static_cast<Eigen::Index>(3 * elements_.size());
+  const Eigen::Index n = P_.rows();
   elements_.push_back(motion.mean);
   P_.conservativeResize(n + 3, n + 3);
   P_.rightCols<3>().setZero();
@@ -78,9 +92,21 @@ void TrajectorySlam::predict(const GaussianPose2& motion) {
 }
 
 Eigen::Matrix3d TrajectorySlam::propagate(std::size_t first, const Eigen::MatrixXd& J) const {
-  const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
+  const Eigen::Index f = element_row(first);
   return J * P_.block(f, f, J.cols(), J.cols()) * J.transpose();
 }
+
+namespace {
+
+/// The rows of P for the calibration (the first c) and the elements from row f on, m of them.
+std::vector<Eigen::Index> calibration_and_rows(Eigen::Index c, Eigen::Index f, Eigen::Index m) {
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < c; ++i) rows.push_back(i);
+  for (Eigen::Index i = 0; i < m; ++i) rows.push_back(f + i);
+  return rows;
+}
+
+}  // namespace
 
 bool TrajectorySlam::state_finite() const {
   for (const Pose2& element : elements_) {
@@ -161,14 +187,16 @@ void TrajectorySlam::measure_pose_linearisation() {
     elements_ = saved;
     return pose_difference(pose, pose_hat);
   };
-  totals_.linearisation_pose.add(linearisation_error(
-      deviation, x_hat, P_, H, propagate(0, H), config_.linearisation_samples, linearisation_rng_));
+  const Eigen::MatrixXd P_elements = P_.bottomRightCorner(x_hat.size(), x_hat.size());
+  totals_.linearisation_pose.add(linearisation_error(deviation, x_hat, P_elements, H,
+                                                     propagate(0, H), config_.linearisation_samples,
+                                                     linearisation_rng_));
 }
 
 void TrajectorySlam::measure_inversion_linearisation() {
   if (config_.linearisation_samples < 1) return;
   const Pose2 e_hat = elements_.back();
-  const Eigen::Index k = static_cast<Eigen::Index>(3 * (elements_.size() - 1));
+  const Eigen::Index k = element_row(elements_.size() - 1);
   Eigen::Matrix3d J;
   const Pose2 inverse_hat = e_hat.inverse(&J);
   const Eigen::Matrix3d P_e = P_.block<3, 3>(k, k);
@@ -186,22 +214,26 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
                                                   const Eigen::MatrixXd& R, double gate_chi2,
                                                   bool measure_linearisation) {
   // The window: from the start of the group holding the first involved element to b (the newest
-  // element), which takes in every element correlated with the ones h depends on.
-  const std::size_t first = config_.update_whole_state ? 0 : group_start_[first_involved];
+  // element), which takes in every element correlated with the ones h depends on. Calibration
+  // states correlate with every element: the window is then the whole state, the calibration
+  // first (P's first c rows).
+  const Eigen::Index c = calibration_.size();
+  const std::size_t first = config_.update_whole_state || c > 0 ? 0 : group_start_[first_involved];
   const std::size_t count = b + 1 - first;
-  const Eigen::Index m = static_cast<Eigen::Index>(3 * count);
-  const Eigen::Index f = static_cast<Eigen::Index>(3 * first);
-  const Eigen::Index h_col = static_cast<Eigen::Index>(3 * (first_involved - first));
+  const Eigen::Index m = c + static_cast<Eigen::Index>(3 * count);
+  const Eigen::Index f = static_cast<Eigen::Index>(3 * first);  // 0 whenever c > 0
+  const Eigen::Index h_col = c + static_cast<Eigen::Index>(3 * (first_involved - first));
   const Eigen::Index d = R.rows();
   const auto P_window = P_.block(f, f, m, m);
 
   // Iterated EKF (paper Eq. 9-10, slam/iterated_ekf.hpp) on the window, h's Jacobian placed at
-  // the involved elements' columns.
+  // the calibration's and the involved elements' columns.
   Eigen::MatrixXd H_involved, K, PHt;
   const auto residual_window = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     const Eigen::VectorXd z_minus_h = residual(&H_involved);
     H->setZero(d, m);
-    H->middleCols(h_col, H_involved.cols()) = H_involved;
+    H->leftCols(c) = H_involved.leftCols(c);
+    H->middleCols(h_col, H_involved.cols() - c) = H_involved.rightCols(H_involved.cols() - c);
     return z_minus_h;
   };
   const auto at_first = [&](const Eigen::VectorXd& x_prior, const Eigen::VectorXd& z_minus_h,
@@ -223,14 +255,15 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
         std::copy(saved.begin(), saved.end(), elements_.begin() + first_involved);
         return z_minus_h - r;
       };
-      totals_.linearisation_observation.add(
-          linearisation_error(deviation, x_prior.tail(n), P_window.bottomRightCorner(n, n),
-                              H_involved, S, config_.linearisation_samples, linearisation_rng_));
+      totals_.linearisation_observation.add(linearisation_error(
+          deviation, x_prior.tail(n), P_window.bottomRightCorner(n, n), H_involved.rightCols(n), S,
+          config_.linearisation_samples, linearisation_rng_));
     }
     return true;
   };
-  if (!iterated_ekf_update(elements_.begin() + static_cast<long>(first), count, P_window,
-                           residual_window, R, config_.iekf_iterations, at_first, K, PHt)) {
+  if (!iterated_ekf_update(calibration_, elements_.begin() + static_cast<long>(first), count,
+                           P_window, residual_window, R, config_.iekf_iterations, at_first, K,
+                           PHt)) {
     return std::nullopt;
   }
   // P = (I - K H) P on the window, as the symmetric rank-d downdate P - K (P H^T)^T; the rest of
@@ -242,8 +275,15 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
 
 ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2& predicted) const {
   Eigen::MatrixXd H;
-  predicted.mean = relative_pose(j, k, &H);
-  predicted.cov = propagate(j + 1, H);
+  predicted.mean = observed_relative_pose(j, k, &H);
+  const Eigen::Index c = calibration_.size();
+  if (c == 0) {
+    predicted.cov = propagate(j + 1, H);
+  } else {
+    const std::vector<Eigen::Index> rows =
+        calibration_and_rows(c, element_row(j + 1), H.cols() - c);
+    predicted.cov = H * P_(rows, rows) * H.transpose();
+  }
   return match_and_validate(points_[j], points_[k], predicted, config_.matching,
                             config_.validation);
 }
@@ -274,26 +314,50 @@ void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::s
 
 // update_jointly, the same matches in one update (paper Eq. 8): slam/joint_update.cpp.
 
+Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
+                                             Eigen::MatrixXd* H) const {
+  Eigen::MatrixXd H_pose;
+  const Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
+  if (!config_.calibration.range_scale) {
+    if (H) *H = std::move(H_pose);
+    return h;
+  }
+  // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
+  // dh_s/ds = (t, 0) and dh_s/dX = diag(s, s, 1) dh/dX.
+  const double s = calibration_(0);
+  if (H) {
+    const Eigen::Index c = calibration_.size();
+    H->setZero(3, c + H_pose.cols());
+    H->block<2, 1>(0, 0) = h.translation();
+    H->rightCols(H_pose.cols()) = H_pose;
+    H->rightCols(H_pose.cols()).topRows<2>() *= s;
+  }
+  return Pose2(s * h.x(), s * h.y(), h.yaw());
+}
+
 Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
                                                  const std::vector<RelativePoseObservation>& z,
                                                  Eigen::MatrixXd* H) const {
   const std::size_t first = first_involved(b, z);
+  const Eigen::Index c = calibration_.size();
   Eigen::Index rows = 0;
   for (const RelativePoseObservation& o : z) rows += o.observed.rows();
   Eigen::VectorXd r(rows);
-  if (H) H->setZero(rows, static_cast<Eigen::Index>(3 * (b + 1 - first)));
+  if (H) H->setZero(rows, c + static_cast<Eigen::Index>(3 * (b + 1 - first)));
   Eigen::Index row = 0;
   for (const RelativePoseObservation& o : z) {
     // z observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the directions A = observed:
-    // A (z - h(X)) with Jacobian A H on the elements a+1..b.
+    // A (z - h(X)) with Jacobian A H on the calibration and the elements a+1..b.
     Eigen::MatrixXd H_o;
     const Eigen::Vector3d r_o =
-        pose_difference(o.z, relative_pose(o.reference, b, H ? &H_o : nullptr));
+        pose_difference(o.z, observed_relative_pose(o.reference, b, H ? &H_o : nullptr));
     const Eigen::Index d = o.observed.rows();
     r.segment(row, d) = o.observed * r_o;
     if (H) {
-      H->block(row, static_cast<Eigen::Index>(3 * (o.reference + 1 - first)), d, H_o.cols()) =
-          o.observed * H_o;
+      const Eigen::Index n = H_o.cols() - c;
+      H->block(row, 0, d, c) = o.observed * H_o.leftCols(c);
+      H->block(row, c + static_cast<Eigen::Index>(3 * (o.reference + 1 - first)), d, n) =
+          o.observed * H_o.rightCols(n);
     }
     row += d;
   }
@@ -304,8 +368,15 @@ double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativeP
                                       const Eigen::MatrixXd& R) const {
   Eigen::MatrixXd H;
   const Eigen::VectorXd r = stacked_residual(b, z, &H);
-  const Eigen::Index first = static_cast<Eigen::Index>(3 * first_involved(b, z));
-  const Eigen::MatrixXd S = H * P_.block(first, first, H.cols(), H.cols()) * H.transpose() + R;
+  const Eigen::Index c = calibration_.size();
+  const Eigen::Index first = element_row(first_involved(b, z));
+  Eigen::MatrixXd S;
+  if (c == 0) {
+    S = H * P_.block(first, first, H.cols(), H.cols()) * H.transpose() + R;
+  } else {
+    const std::vector<Eigen::Index> rows = calibration_and_rows(c, first, H.cols() - c);
+    S = H * P_(rows, rows) * H.transpose() + R;
+  }
   return r.dot(S.ldlt().solve(r));
 }
 
@@ -326,7 +397,9 @@ std::optional<std::size_t> TrajectorySlam::update_compass(std::size_t b, double 
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     Eigen::MatrixXd H_pose;
     const Pose2 pose = pose_in_start_frame(b, &H_pose);
-    *H = H_pose.row(2);
+    const Eigen::Index c = calibration_.size();
+    H->setZero(1, c + H_pose.cols());  // the heading does not depend on the calibration
+    H->rightCols(H_pose.cols()) = H_pose.row(2);
     return Eigen::VectorXd::Constant(
         1, normalize_angle(yaw_world_rad - start_world_.mean.yaw() - pose.yaw()));
   };

@@ -35,6 +35,17 @@
 
 namespace msislab {
 
+/// Calibration the filter estimates with the trajectory (docs/trajectory_slam.md, "Calibration
+/// states"): each switched on leads the state as an additive parameter with a Gaussian prior.
+struct CalibrationStatesConfig {
+  /// The sonar's range scale s: the scans' geometry is s times the true one (a sound speed s
+  /// times the water's, or echoes placed nearer than the surfaces by a fixed fraction), so a match
+  /// observes s times the true translation between two scans and the true rotation.
+  bool range_scale = false;
+  double range_scale_prior = 1.0;
+  double range_scale_sigma = 0.05;  ///< the prior's standard deviation
+};
+
 struct TrajectorySlamConfig {
   double association_distance_m = 10.0;  ///< gamma: match past scans closer than this (m)
   int max_matches_per_scan = 3;          ///< the nearest candidates first
@@ -61,6 +72,7 @@ struct TrajectorySlamConfig {
   int linearisation_samples = 0;
   ScanMatchConfig matching;
   MatchValidationConfig validation;  ///< checks a match passes before the update (Sec. below)
+  CalibrationStatesConfig calibration;
 };
 
 /// A candidate match's record before the distance is set: scan k against scan j, as validated,
@@ -95,12 +107,19 @@ class TrajectorySlam : public ScanSlam {
 
   std::size_t scans() const override { return elements_.size(); }
   const SlamTotals& totals() const override { return totals_; }
+  /// The calibration states switched on (range_scale), with their standard deviations.
+  std::vector<CalibrationEstimate> calibration() const override;
 
   /// The world pose of scan i with its covariance.
   GaussianPose2 scan_pose_world(std::size_t i) const override = 0;
   /// h(X) for scans a < b: the pose of scan b in scan a's frame; with H, its Jacobian with
   /// respect to the state elements a+1..b (3 x 3(b-a)).
   virtual Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const = 0;
+
+  /// h(X) of an observation of scan b in scan a's frame: the relative pose, its translation times
+  /// the range scale when that is estimated; with H, the Jacobian with respect to the calibration
+  /// (its first columns) and the elements a+1..b.
+  Pose2 observed_relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const;
 
   /// The pose of scan b in the start frame (h(X) of an absolute measurement); with H, its
   /// Jacobian with respect to the elements 0..b (3 x 3(b+1)).
@@ -117,9 +136,11 @@ class TrajectorySlam : public ScanSlam {
                                                    const std::vector<RelativePoseObservation>& z,
                                                    const Eigen::MatrixXd& R);
 
-  /// The state elements as stored (see the derived classes) and their covariance.
+  /// The state elements as stored (see the derived classes); the covariance of the whole state,
+  /// the calibration parameters first (calibration_parameters()), then the elements.
   const std::vector<Pose2>& elements() const { return elements_; }
   const Eigen::MatrixXd& covariance() const { return P_; }
+  const Eigen::VectorXd& calibration_parameters() const { return calibration_; }
 
  protected:
   /// Appends the new motion as the state stores it during the update of its step.
@@ -131,14 +152,19 @@ class TrajectorySlam : public ScanSlam {
 
   /// The covariance of a function of elements [first, first + m) with Jacobian J (3 x 3m).
   Eigen::Matrix3d propagate(std::size_t first, const Eigen::MatrixXd& J) const;
+  /// The row (and column) of element i's first coordinate in P_, after the calibration.
+  Eigen::Index element_row(std::size_t i) const {
+    return calibration_.size() + static_cast<Eigen::Index>(3 * i);
+  }
   /// With linearisation_samples > 0: tallies epsilon of inverting the newest element (the
   /// robocentric inversion, Eq. 11-13), before it is inverted.
   void measure_inversion_linearisation();
 
   TrajectorySlamConfig config_;
   GaussianPose2 start_world_;
+  Eigen::VectorXd calibration_;  ///< [range scale] when switched on; empty otherwise
   std::vector<Pose2> elements_;
-  Eigen::MatrixXd P_;
+  Eigen::MatrixXd P_;  ///< covariance of [calibration_; elements_]
 
  private:
   /// An observation: the wrapped residual z - h(X) and, with H, its Jacobian with respect to the
@@ -164,7 +190,8 @@ class TrajectorySlam : public ScanSlam {
   /// prediction (h(X), H P H^T) in `predicted`.
   ValidatedMatch match(std::size_t j, std::size_t k, GaussianPose2& predicted) const;
   /// The stacked A_i (z_i - h_i(X)) of observations of scan b and, with H, its Jacobian with
-  /// respect to the elements first..b, first = the smallest reference + 1.
+  /// respect to the calibration (its first columns) and the elements first..b, first = the
+  /// smallest reference + 1.
   Eigen::VectorXd stacked_residual(std::size_t b, const std::vector<RelativePoseObservation>& z,
                                    Eigen::MatrixXd* H) const;
   /// The NIS of observations of scan b against the state: r^T (H P H^T + R)^-1 r.

@@ -282,6 +282,28 @@ TEST(SlamConfigYaml, InitialGuessTermKey) {
                          "trajectory_slam.validation.initial_guess_term");
 }
 
+TEST(SlamConfigYaml, CalibrationStateKeys) {
+  const TempDir dir;
+  const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
+  EXPECT_FALSE(defaults.trajectory_slam.calibration.range_scale);
+  EXPECT_EQ(defaults.trajectory_slam.calibration.range_scale_prior, 1.0);
+  EXPECT_EQ(defaults.trajectory_slam.calibration.range_scale_sigma, 0.05);
+  const SlamConfig c =
+      read_slam_config(write_text(dir.file("slam.yaml"),
+                                  "trajectory_slam:\n"
+                                  "  calibration: {range_scale: true, range_scale_prior: 0.97,\n"
+                                  "                range_scale_sigma: 0.02}\n"));
+  EXPECT_TRUE(c.trajectory_slam.calibration.range_scale);
+  EXPECT_EQ(c.trajectory_slam.calibration.range_scale_prior, 0.97);
+  EXPECT_EQ(c.trajectory_slam.calibration.range_scale_sigma, 0.02);
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_sigma: 0}\n", 2,
+                         "trajectory_slam.calibration.range_scale_sigma");
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_prior: -1}\n", 2,
+                         "trajectory_slam.calibration.range_scale_prior");
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {sound_speed: 1}\n", 2,
+                         "trajectory_slam.calibration.sound_speed");
+}
+
 TEST(SlamConfigYaml, PoseGraphKeys) {
   const TempDir dir;
   const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));

@@ -13,17 +13,6 @@
 
 namespace msislab {
 
-namespace {
-
-/// The first state element observations of scan b involve: the smallest reference + 1.
-std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservation>& z) {
-  std::size_t first = b;
-  for (const RelativePoseObservation& o : z) first = std::min(first, o.reference + 1);
-  return first;
-}
-
-}  // namespace
-
 MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
                       const GaussianPose2& predicted, double nis) {
   MatchRecord record;
@@ -74,14 +63,6 @@ TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const Gaussia
   }
 }
 
-std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
-  std::vector<CalibrationEstimate> out;
-  if (config_.calibration.range_scale) {
-    out.push_back({"range_scale", calibration_(0), std::sqrt(P_(0, 0))});
-  }
-  return out;
-}
-
 void TrajectorySlam::predict(const GaussianPose2& motion) {
   const Eigen::Index n = P_.rows();
   elements_.push_back(motion.mean);
@@ -95,18 +76,6 @@ Eigen::Matrix3d TrajectorySlam::propagate(std::size_t first, const Eigen::Matrix
   const Eigen::Index f = element_row(first);
   return J * P_.block(f, f, J.cols(), J.cols()) * J.transpose();
 }
-
-namespace {
-
-/// The rows of P for the calibration (the first c) and the elements from row f on, m of them.
-std::vector<Eigen::Index> calibration_and_rows(Eigen::Index c, Eigen::Index f, Eigen::Index m) {
-  std::vector<Eigen::Index> rows;
-  for (Eigen::Index i = 0; i < c; ++i) rows.push_back(i);
-  for (Eigen::Index i = 0; i < m; ++i) rows.push_back(f + i);
-  return rows;
-}
-
-}  // namespace
 
 bool TrajectorySlam::state_finite() const {
   for (const Pose2& element : elements_) {
@@ -273,21 +242,6 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
   return count;
 }
 
-ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2& predicted) const {
-  Eigen::MatrixXd H;
-  predicted.mean = observed_relative_pose(j, k, &H);
-  const Eigen::Index c = calibration_.size();
-  if (c == 0) {
-    predicted.cov = propagate(j + 1, H);
-  } else {
-    const std::vector<Eigen::Index> rows =
-        calibration_and_rows(c, element_row(j + 1), H.cols() - c);
-    predicted.cov = H * P_(rows, rows) * H.transpose();
-  }
-  return match_and_validate(points_[j], points_[k], predicted, config_.matching,
-                            config_.validation);
-}
-
 void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::size_t>& candidates,
                                          SlamStepStats& stats) {
   for (const std::size_t j : candidates) {
@@ -312,73 +266,8 @@ void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::s
   }
 }
 
-// update_jointly, the same matches in one update (paper Eq. 8): slam/joint_update.cpp.
-
-Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
-                                             Eigen::MatrixXd* H) const {
-  Eigen::MatrixXd H_pose;
-  const Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
-  if (!config_.calibration.range_scale) {
-    if (H) *H = std::move(H_pose);
-    return h;
-  }
-  // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
-  // dh_s/ds = (t, 0) and dh_s/dX = diag(s, s, 1) dh/dX.
-  const double s = calibration_(0);
-  if (H) {
-    const Eigen::Index c = calibration_.size();
-    H->setZero(3, c + H_pose.cols());
-    H->block<2, 1>(0, 0) = h.translation();
-    H->rightCols(H_pose.cols()) = H_pose;
-    H->rightCols(H_pose.cols()).topRows<2>() *= s;
-  }
-  return Pose2(s * h.x(), s * h.y(), h.yaw());
-}
-
-Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
-                                                 const std::vector<RelativePoseObservation>& z,
-                                                 Eigen::MatrixXd* H) const {
-  const std::size_t first = first_involved(b, z);
-  const Eigen::Index c = calibration_.size();
-  Eigen::Index rows = 0;
-  for (const RelativePoseObservation& o : z) rows += o.observed.rows();
-  Eigen::VectorXd r(rows);
-  if (H) H->setZero(rows, c + static_cast<Eigen::Index>(3 * (b + 1 - first)));
-  Eigen::Index row = 0;
-  for (const RelativePoseObservation& o : z) {
-    // z observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the directions A = observed:
-    // A (z - h(X)) with Jacobian A H on the calibration and the elements a+1..b.
-    Eigen::MatrixXd H_o;
-    const Eigen::Vector3d r_o =
-        pose_difference(o.z, observed_relative_pose(o.reference, b, H ? &H_o : nullptr));
-    const Eigen::Index d = o.observed.rows();
-    r.segment(row, d) = o.observed * r_o;
-    if (H) {
-      const Eigen::Index n = H_o.cols() - c;
-      H->block(row, 0, d, c) = o.observed * H_o.leftCols(c);
-      H->block(row, c + static_cast<Eigen::Index>(3 * (o.reference + 1 - first)), d, n) =
-          o.observed * H_o.rightCols(n);
-    }
-    row += d;
-  }
-  return r;
-}
-
-double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
-                                      const Eigen::MatrixXd& R) const {
-  Eigen::MatrixXd H;
-  const Eigen::VectorXd r = stacked_residual(b, z, &H);
-  const Eigen::Index c = calibration_.size();
-  const Eigen::Index first = element_row(first_involved(b, z));
-  Eigen::MatrixXd S;
-  if (c == 0) {
-    S = H * P_.block(first, first, H.cols(), H.cols()) * H.transpose() + R;
-  } else {
-    const std::vector<Eigen::Index> rows = calibration_and_rows(c, first, H.cols() - c);
-    S = H * P_(rows, rows) * H.transpose() + R;
-  }
-  return r.dot(S.ldlt().solve(r));
-}
+// match and the observation model: slam/trajectory_observations.cpp; update_jointly, the same
+// matches in one update (paper Eq. 8): slam/joint_update.cpp.
 
 std::optional<std::size_t> TrajectorySlam::update_relative_poses(
     std::size_t b, const std::vector<RelativePoseObservation>& z, const Eigen::MatrixXd& R) {

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <limits>
 #include <optional>
@@ -94,6 +95,13 @@ struct RelativePoseObservation {
   Pose2 z;
   Eigen::MatrixXd observed = Eigen::MatrixXd::Identity(3, 3);
 };
+
+/// The first state element observations of scan b involve: the smallest reference + 1.
+inline std::size_t first_involved(std::size_t b, const std::vector<RelativePoseObservation>& z) {
+  std::size_t first = b;
+  for (const RelativePoseObservation& o : z) first = std::min(first, o.reference + 1);
+  return first;
+}
 
 class TrajectorySlam : public ScanSlam {
  public:

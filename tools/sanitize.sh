@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the asan preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, no recovery: the
-# first finding ends the process with a report; the build tools/fuzz.sh fuzzes) and runs the unit and library tests under it (the
+# first finding ends the process with a report) and runs the unit and library tests under it (the
 # preset leaves out the end-to-end command tests, tests/app, which tools/test.sh runs).
 # LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) cover leaks inside third-party display
 # libraries only, each entry named and justified there. Extra arguments go to ctest (e.g. -L io,

@@ -25,6 +25,10 @@ void read_sonar_mount(YamlMap& map,
 void read_local_frame(YamlMap& map,
                       LocalFrame& frame);  ///< origin_latitude_deg, origin_longitude_deg
 
+/// calibration.yaml's sections (mru, dvl, sonar, frame) of `root` into c; absent keys keep their
+/// values. Calls finish() on each section, not on root.
+void read_calibration_sections(YamlMap& root, Calibration& c);
+
 /// `name: [begin_s, end_s]` entries in file order; calls finish() on the mapping.
 std::vector<TimeSegment> read_segments(YamlMap map);
 

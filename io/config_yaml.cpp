@@ -175,6 +175,11 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
   require_positive(map, "range_scale_prior", c.range_scale_prior);
   map.number("range_scale_sigma", c.range_scale_sigma);
   require_positive(map, "range_scale_sigma", c.range_scale_sigma);
+  map.boolean("dvl_scale", c.dvl_scale);
+  map.number("dvl_scale_prior", c.dvl_scale_prior);
+  require_positive(map, "dvl_scale_prior", c.dvl_scale_prior);
+  map.number("dvl_scale_sigma", c.dvl_scale_sigma);
+  require_positive(map, "dvl_scale_sigma", c.dvl_scale_sigma);
   map.finish();
 }
 
@@ -242,10 +247,7 @@ std::vector<TimeSegment> read_segments(YamlMap map) {
   return segments;
 }
 
-namespace {
-Calibration calibration_from_yaml(const YAML::Node& node, const std::string& name) {
-  YamlMap root(node, name, "");
-  Calibration c;
+void read_calibration_sections(YamlMap& root, Calibration& c) {
   YamlMap mru = root.map("mru");
   read_mru_mount(mru, c.mru);
   // The compass deviation is calibration, not mount: a scenario sets its MRU's own.
@@ -264,6 +266,13 @@ Calibration calibration_from_yaml(const YAML::Node& node, const std::string& nam
   YamlMap frame = root.map("frame");
   read_local_frame(frame, c.frame);
   frame.finish();
+}
+
+namespace {
+Calibration calibration_from_yaml(const YAML::Node& node, const std::string& name) {
+  YamlMap root(node, name, "");
+  Calibration c;
+  read_calibration_sections(root, c);
   root.finish();
   return c;
 }

@@ -137,6 +137,12 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
     map.number(key, *value);
     require_positive(map, key, *value);
   }
+  if (double water_mps = 0.0; map.number("water_sound_speed_mps", water_mps)) {
+    if (!(water_mps >= 1300.0 && water_mps <= 1700.0)) {
+      map.fail("water_sound_speed_mps", "must be within [1300, 1700] m/s");
+    }
+    s.water_sound_speed_mps = water_mps;
+  }
   if (double stop_s = 0.0; map.number("stop_s", stop_s)) {
     require_positive(map, "stop_s", stop_s);
     s.stop_s = stop_s;
@@ -207,6 +213,10 @@ void read_dvl(YamlMap map, sim::DvlConfig& d) {
   if (map.numbers("bias_mps", bias)) {
     if (bias.size() != 2) map.fail("bias_mps", "expected [x, y] in the DVL frame");
     d.bias_mps = {bias[0], bias[1]};
+  }
+  map.number("scale_factor", d.scale_factor);
+  if (!(d.scale_factor >= 0.5 && d.scale_factor <= 2.0)) {
+    map.fail("scale_factor", "must be within [0.5, 2]");
   }
   read_probability(map, "dropout_probability", d.dropout_probability);
   read_probability(map, "degraded_dropout_probability", d.degraded_dropout_probability);
@@ -291,6 +301,14 @@ sim::Scenario scenario_from_yaml(const YAML::Node& node, const std::string& path
   read_mru(root.map("mru"), s.mru);
   read_gps(root.map("gps"), s.gps);
   read_detections(root.map("detections"), s.detections);
+  if (root.has("stated_calibration")) {
+    // What the dataset's calibration.yaml says: the sensors' own values, these keys changed.
+    Calibration stated = sim::true_calibration(s);
+    YamlMap stated_map = root.map("stated_calibration");
+    read_calibration_sections(stated_map, stated);
+    stated_map.finish();
+    s.stated_calibration = stated;
+  }
   root.finish();
   return s;
 }

@@ -131,7 +131,7 @@ void MsisModel::primary_rays(const Ping& ping, std::vector<Ray>& rays) const {
   for (std::size_t i = 0; i < rays_.size(); ++i) {
     rays[i].origin_m = ping.tx.position_m;
     rays[i].direction = rotate_z(rays_[i].direction_beam, c, s);
-    rays[i].t_max_m = static_cast<float>(sonar_.bins * sonar_.bin_m);
+    rays[i].t_max_m = static_cast<float>(max_physical_range_m(sonar_));
   }
 }
 
@@ -209,7 +209,7 @@ RenderedBeam receive_beam(const MsisReceiver& receiver, const BeamEchoes& echoes
 }
 
 std::uint32_t MsisModel::trace_routes(const Ping& ping, Workspace& work) const {
-  const double max_range_m = sonar_.bins * sonar_.bin_m;
+  const double max_range_m = max_physical_range_m(sonar_);
   const float c = static_cast<float>(ping.tx.axis.x()), s = static_cast<float>(ping.tx.axis.y());
   primary_rays(ping, work.rays);
   work.routes.clear();
@@ -285,7 +285,7 @@ BeamTruth MsisModel::truth_of(const Ping& ping, const EchoProfile& echoes,
   Ray axis;
   axis.origin_m = ping.tx.position_m;
   axis.direction = direction(ping.tx.axis_azimuth_rad, -sonar_.tilt_deg * kDegToRad);
-  axis.t_max_m = static_cast<float>(sonar_.bins * sonar_.bin_m);
+  axis.t_max_m = static_cast<float>(max_physical_range_m(sonar_));
   const RayHit hit = scene_.intersect(axis);
   if (hit.hit) truth.first_hit_range_m = hit.distance_m;
   // The strongest echo as displayed (after TVG), before speckle and noise.

@@ -18,7 +18,9 @@ MsisReceiver::MsisReceiver(const SonarConfig& sonar, double pattern_norm)
       pattern_norm_(pattern_norm),
       gaussian_pattern_(sonar.beam_pattern == BeamPattern::kGaussian),
       absorption_per_m_(two_way_absorption_per_m(sonar.absorption_db_per_m)),
-      noise_power_(std::pow(10.0, sonar.noise_level_db / 10.0)) {
+      noise_power_(std::pow(10.0, sonar.noise_level_db / 10.0)),
+      range_scale_(range_scale(sonar)),
+      water_sound_speed_mps_(sonar.water_sound_speed_mps.value_or(sonar.sound_speed_mps)) {
   // pattern_1d's Gaussian exp(-ln2 u^2 / 2) with u = 2 angle / width.
   const double h_width = sonar.horizontal_beamwidth_deg * kDegToRad;
   const double v_width = sonar.vertical_beamwidth_deg * kDegToRad;
@@ -42,10 +44,10 @@ MsisReceiver::MsisReceiver(const SonarConfig& sonar, double pattern_norm)
 
 void MsisReceiver::receive_geometry(const Ping& ping, const Echo& echo, ReceiverScratch& scratch,
                                     std::size_t i) const {
-  // Received at t + 2 path / c: the last leg of the return runs from the first surface on the
-  // route to where the head is then, and the receive pattern is taken there.
+  // Received at t + 2 path / c (c the water's): the last leg of the return runs from the first
+  // surface on the route to where the head is then, and the receive pattern is taken there.
   const double w =
-      std::clamp(2.0 * echo.path_m / sonar_.sound_speed_mps / ping.rx_window_s, 0.0, 1.0);
+      std::clamp(2.0 * echo.path_m / water_sound_speed_mps_ / ping.rx_window_s, 0.0, 1.0);
   const Eigen::Vector3f rx_m =
       ping.tx.position_m + static_cast<float>(w) * (ping.rx_last.position_m - ping.tx.position_m);
   const Eigen::Vector2d rx_axis =
@@ -95,16 +97,19 @@ void MsisReceiver::add_echoes(const Ping& ping, const std::vector<Echo>& echoes,
   for (std::size_t i = 0; i < n; ++i) {
     const double received =
         echoes[i].power / pattern_norm_ * scratch.received[i] / two_way_spreading(echoes[i].path_m);
-    lay_over_bins(echoes[i], scratch.range_m[i], received, profile);
+    // The sonar turns the echo's time into range with its own sound speed: range and extent
+    // as it reports them.
+    lay_over_bins(echoes[i], range_scale_ * scratch.range_m[i], range_scale_ * echoes[i].extent_m,
+                  received, profile);
   }
 }
 
-void MsisReceiver::lay_over_bins(const Echo& echo, double range_m, double received,
+void MsisReceiver::lay_over_bins(const Echo& echo, double range_m, double extent_m, double received,
                                  EchoProfile& profile) const {
   // Bin j holds ranges [(j + 1/2) bin, (j + 3/2) bin); the echo covers [range -+ extent / 2] at a
   // uniform density, shared among the bins by overlap (all in one bin when the extent is 0).
-  const double lo_m = std::max(range_m - 0.5 * echo.extent_m, sonar_.min_range_m);
-  const double hi_m = range_m + 0.5 * echo.extent_m;
+  const double lo_m = std::max(range_m - 0.5 * extent_m, sonar_.min_range_m);
+  const double hi_m = range_m + 0.5 * extent_m;
   const double bins_m = sonar_.bins * sonar_.bin_m;
   if (hi_m < sonar_.min_range_m || lo_m >= bins_m + 0.5 * sonar_.bin_m) return;
   const auto bin_of = [&](double r) {
@@ -114,13 +119,13 @@ void MsisReceiver::lay_over_bins(const Echo& echo, double range_m, double receiv
   };
   const long first = bin_of(lo_m), last = bin_of(hi_m);
   EchoProfile::Contribution c{first, last, 0.0, 0.0, 0.0, echo.material_id};
-  if (echo.extent_m <= 0.0) {
+  if (extent_m <= 0.0) {
     c.first = c.last = bin_of(range_m);
     c.at_first = c.at_last = received;
   } else {
     // Partial first and last bins directly, the whole bins between as one step up and down;
     // what lies under the minimum range or beyond the last bin is lost.
-    const double per_m = received / echo.extent_m;
+    const double per_m = received / extent_m;
     const double end_m = std::min(hi_m, bins_m + 0.5 * sonar_.bin_m);
     const double first_edge_m = (static_cast<double>(first) + 1.5) * sonar_.bin_m;
     const double last_edge_m = (static_cast<double>(last) + 0.5) * sonar_.bin_m;

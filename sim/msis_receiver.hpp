@@ -47,8 +47,10 @@ class MsisReceiver {
   /// The return's geometry and the received power's exponent, before the angles' functions.
   void receive_geometry(const Ping& ping, const Echo& echo, ReceiverScratch& scratch,
                         std::size_t i) const;
-  /// Lays an echo of `received` power at `range_m` over the bins.
-  void lay_over_bins(const Echo& echo, double range_m, double received, EchoProfile& profile) const;
+  /// Lays an echo of `received` power reported at range_m with extent_m (the sonar's ranges)
+  /// over the bins.
+  void lay_over_bins(const Echo& echo, double range_m, double extent_m, double received,
+                     EchoProfile& profile) const;
 
   SonarConfig sonar_;
   double pattern_norm_;
@@ -58,6 +60,8 @@ class MsisReceiver {
   double log_pattern_elevation_per_rad2_ = 0.0;
   double absorption_per_m_;  ///< exp(-this x path) is the absorption of both ways
   double noise_power_;
+  double range_scale_;                ///< range_scale(sonar): reported range per true range
+  double water_sound_speed_mps_;      ///< the speed the echoes travel at
   std::vector<double> tvg_linear_;    ///< gain + TVG per bin as a power ratio
   std::vector<double> pulse_kernel_;  ///< echo spread over later bins by pulse and receiver
   /// Quantisation: intensity k is shown for levels from step k - 1/2 to k + 1/2 of the display

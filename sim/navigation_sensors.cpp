@@ -89,7 +89,8 @@ std::vector<DvlSample> simulate_dvl(const VehicleTrajectory& truth, const DvlCon
         u_outlier < dvl.outlier_probability ? dvl.outlier_sigma_mps : dvl.noise_sigma_mps;
     sample.bottom_lock = u_dropout >= p_dropout && sample.altitude_m > 0.0;
     if (sample.bottom_lock) {
-      sample.v_dvl_mps = R_dvl_vehicle * v_vehicle + dvl.bias_mps + sigma_mps * noise;
+      sample.v_dvl_mps =
+          dvl.scale_factor * (R_dvl_vehicle * v_vehicle) + dvl.bias_mps + sigma_mps * noise;
     }
     degraded = degraded ? u_state >= leave_degraded : u_state < enter_degraded;
     samples.push_back(sample);

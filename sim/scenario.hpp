@@ -75,7 +75,11 @@ struct SonarConfig {
   double receiver_time_constant_us = 1200.0;  ///< one-pole receiver filter: exponential tail
   double roughness_db = 10.0;                 ///< sd of the surfaces' backscatter variation, dB
   double roughness_length_m = 10.0;           ///< its correlation length along a surface
+  /// The sound speed the sonar converts echo time to range with, m/s.
   double sound_speed_mps = 1500.0;
+  /// The sound speed in the water, m/s (absent: sound_speed_mps). The sonar reports a surface at
+  /// range r as r sound_speed_mps / water_sound_speed_mps: a range scale its user must find.
+  std::optional<double> water_sound_speed_mps;
   double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
   double gain_db = 36.2;                ///< receiver gain added to the level
   double tvg_db_per_decade = 40.0;      ///< time-varying gain, dB per decade of range
@@ -98,6 +102,8 @@ struct DvlConfig {
   double outlier_probability = 0.25;                   ///< chance of the wide noise per sample
   double outlier_sigma_mps = 0.37;                     ///< wide noise per axis, m/s
   Eigen::Vector2d bias_mps = Eigen::Vector2d::Zero();  ///< constant, DVL frame
+  /// The DVL measures scale_factor times the true velocity (a transducer or sound speed error).
+  double scale_factor = 1.0;
   /// Bottom lock is lost independently per sample with dropout_probability in the clear state and
   /// degraded_dropout_probability in the degraded state; the state switches as a Markov chain
   /// spending degraded_fraction of the time degraded, in periods of degraded_duration_s on
@@ -150,9 +156,18 @@ struct Scenario {
   /// dataset's were made (sim/detection_model).
   DetectionModelConfig detections;
   std::vector<TimeSegment> segments;
+  /// What the dataset's calibration.yaml states, where it is not what the sensors do (the
+  /// scenario's `stated_calibration`): an error left for the estimators to find. Absent: the
+  /// file states the sensors' own mounts, deviation and clock offset.
+  std::optional<Calibration> stated_calibration;
 };
 
-/// The calibration a dataset from this scenario carries (its mounts and frame).
+/// The calibration the sensors of this scenario have (their mounts, deviation, clock offset and
+/// frame): what a perfect calibration would state.
+Calibration true_calibration(const Scenario& scenario);
+
+/// The calibration a dataset from this scenario carries: stated_calibration when the scenario
+/// has one, else true_calibration.
 Calibration calibration_of(const Scenario& scenario);
 
 }  // namespace msislab::sim

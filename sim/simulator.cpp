@@ -10,7 +10,7 @@
 
 namespace msislab::sim {
 
-Calibration calibration_of(const Scenario& scenario) {
+Calibration true_calibration(const Scenario& scenario) {
   Calibration calibration;
   calibration.mru = scenario.mru.mount;
   // The compass deviation the simulated MRU has is the dataset's calibration, as the sonar's clock
@@ -21,6 +21,10 @@ Calibration calibration_of(const Scenario& scenario) {
   calibration.sonar = scenario.sonar.mount;
   calibration.frame = scenario.gps.frame;
   return calibration;
+}
+
+Calibration calibration_of(const Scenario& scenario) {
+  return scenario.stated_calibration ? *scenario.stated_calibration : true_calibration(scenario);
 }
 
 namespace {

@@ -9,6 +9,14 @@
 
 namespace msislab::sim {
 
+double range_scale(const SonarConfig& sonar) {
+  return sonar.water_sound_speed_mps ? sonar.sound_speed_mps / *sonar.water_sound_speed_mps : 1.0;
+}
+
+double max_physical_range_m(const SonarConfig& sonar) {
+  return sonar.bins * sonar.bin_m / range_scale(sonar);
+}
+
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 constexpr double kLn2 = 0.69314718055994530942;

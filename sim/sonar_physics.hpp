@@ -10,6 +10,13 @@
 
 namespace msislab::sim {
 
+/// The scale the sonar's ranges carry: a surface at range r is reported at r times this,
+/// sound_speed_mps / water_sound_speed_mps (exactly 1 when the water's speed is not given).
+double range_scale(const SonarConfig& sonar);
+/// The farthest surface whose echo returns within the sonar's listening window, m:
+/// bins x bin_m / range_scale.
+double max_physical_range_m(const SonarConfig& sonar);
+
 /// Two-way transmission loss, linear power ratio: spherical spreading 1/r^4 and absorption
 /// 2 alpha r dB (Urick), exp(-two_way_absorption_per_m(alpha) r) / two_way_spreading(r). Falls
 /// strictly with range. The receiver applies the same two factors.

@@ -24,8 +24,13 @@ std::vector<Eigen::Index> calibration_and_rows(Eigen::Index c, Eigen::Index f, E
 
 std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
   std::vector<CalibrationEstimate> out;
-  if (config_.calibration.range_scale) {
-    out.push_back({"range_scale", calibration_(0), std::sqrt(P_(0, 0))});
+  if (range_scale_row_ >= 0) {
+    const Eigen::Index r = range_scale_row_;
+    out.push_back({"range_scale", calibration_(r), std::sqrt(P_(r, r))});
+  }
+  if (dvl_scale_row_ >= 0) {
+    const Eigen::Index r = dvl_scale_row_;
+    out.push_back({"dvl_scale", calibration_(r), std::sqrt(P_(r, r))});
   }
   return out;
 }
@@ -49,17 +54,20 @@ Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
                                              Eigen::MatrixXd* H) const {
   Eigen::MatrixXd H_pose;
   const Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
-  if (!config_.calibration.range_scale) {
-    if (H) *H = std::move(H_pose);
+  const Eigen::Index c = calibration_.size();
+  if (range_scale_row_ < 0) {
+    if (H) {
+      H->setZero(3, c + H_pose.cols());
+      H->rightCols(H_pose.cols()) = H_pose;
+    }
     return h;
   }
   // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
   // dh_s/ds = (t, 0) and dh_s/dX = diag(s, s, 1) dh/dX.
-  const double s = calibration_(0);
+  const double s = calibration_(range_scale_row_);
   if (H) {
-    const Eigen::Index c = calibration_.size();
     H->setZero(3, c + H_pose.cols());
-    H->block<2, 1>(0, 0) = h.translation();
+    H->block<2, 1>(0, range_scale_row_) = h.translation();
     H->rightCols(H_pose.cols()) = H_pose;
     H->rightCols(H_pose.cols()).topRows<2>() *= s;
   }

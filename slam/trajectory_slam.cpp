@@ -56,20 +56,49 @@ void MatchRejectionCounts::count(const ValidatedMatch& match) {
 
 TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
     : config_(config), start_world_(start_world) {
-  if (config_.calibration.range_scale) {
-    const double sigma = config_.calibration.range_scale_sigma;
-    calibration_ = Eigen::VectorXd::Constant(1, config_.calibration.range_scale_prior);
-    P_ = Eigen::MatrixXd::Constant(1, 1, sigma * sigma);
+  const CalibrationStatesConfig& c = config_.calibration;
+  std::vector<std::pair<double, double>> priors;  // (mean, sd) in row order
+  if (c.range_scale) {
+    range_scale_row_ = static_cast<Eigen::Index>(priors.size());
+    priors.emplace_back(c.range_scale_prior, c.range_scale_sigma);
+  }
+  if (c.dvl_scale) {
+    dvl_scale_row_ = static_cast<Eigen::Index>(priors.size());
+    priors.emplace_back(c.dvl_scale_prior, c.dvl_scale_sigma);
+  }
+  const auto count = static_cast<Eigen::Index>(priors.size());
+  calibration_.resize(count);
+  P_ = Eigen::MatrixXd::Zero(count, count);
+  for (Eigen::Index i = 0; i < count; ++i) {
+    calibration_(i) = priors[static_cast<std::size_t>(i)].first;
+    P_(i, i) =
+        priors[static_cast<std::size_t>(i)].second * priors[static_cast<std::size_t>(i)].second;
   }
 }
 
 void TrajectorySlam::predict(const GaussianPose2& motion) {
   const Eigen::Index n = P_.rows();
-  elements_.push_back(motion.mean);
   P_.conservativeResize(n + 3, n + 3);
   P_.rightCols<3>().setZero();
   P_.bottomRows<3>().setZero();
-  P_.bottomRightCorner<3, 3>() = motion.cov;
+  if (dvl_scale_row_ < 0) {
+    elements_.push_back(motion.mean);
+    P_.bottomRightCorner<3, 3>() = motion.cov;
+    return;
+  }
+  // The DVL measured k times the true velocity: x = g(k, m) = (t_m / k, yaw_m), with
+  // dg/dm = diag(1/k, 1/k, 1) and dg/dk = (-t_m / k^2, 0); appended correlated with k through
+  // P_xX = dg/dk P_kX.
+  const Eigen::Index r = dvl_scale_row_;
+  const double k = calibration_(r);
+  const Eigen::Vector3d J_m(1.0 / k, 1.0 / k, 1.0);
+  const Eigen::Vector3d J_k(-motion.mean.x() / (k * k), -motion.mean.y() / (k * k), 0.0);
+  elements_.push_back(Pose2(motion.mean.x() / k, motion.mean.y() / k, motion.mean.yaw()));
+  const Eigen::RowVectorXd P_k = P_.row(r).head(n);
+  P_.bottomLeftCorner(3, n) = J_k * P_k;
+  P_.topRightCorner(n, 3) = P_.bottomLeftCorner(3, n).transpose();
+  P_.bottomRightCorner<3, 3>() =
+      J_m.asDiagonal() * motion.cov * J_m.asDiagonal() + J_k * P_(r, r) * J_k.transpose();
 }
 
 Eigen::Matrix3d TrajectorySlam::propagate(std::size_t first, const Eigen::MatrixXd& J) const {

@@ -45,6 +45,12 @@ struct CalibrationStatesConfig {
   bool range_scale = false;
   double range_scale_prior = 1.0;
   double range_scale_sigma = 0.05;  ///< the prior's standard deviation
+  /// The DVL's scale factor k: the DVL measures k times the true velocity, so a dead-reckoning
+  /// motion's translation is k times the true one; the filter takes in (t / k, yaw). With
+  /// range_scale also on, only their ratio is observable from matches: the priors split it.
+  bool dvl_scale = false;
+  double dvl_scale_prior = 1.0;
+  double dvl_scale_sigma = 0.02;  ///< the prior's standard deviation
 };
 
 struct TrajectorySlamConfig {
@@ -115,7 +121,7 @@ class TrajectorySlam : public ScanSlam {
 
   std::size_t scans() const override { return elements_.size(); }
   const SlamTotals& totals() const override { return totals_; }
-  /// The calibration states switched on (range_scale), with their standard deviations.
+  /// The calibration states switched on (range_scale, dvl_scale), with their standard deviations.
   std::vector<CalibrationEstimate> calibration() const override;
 
   /// The world pose of scan i with its covariance.
@@ -151,7 +157,9 @@ class TrajectorySlam : public ScanSlam {
   const Eigen::VectorXd& calibration_parameters() const { return calibration_; }
 
  protected:
-  /// Appends the new motion as the state stores it during the update of its step.
+  /// Appends the new motion as the state stores it during the update of its step: the
+  /// dead-reckoning motion, its translation divided by the DVL scale when that is estimated
+  /// (then correlated with it).
   virtual void predict(const GaussianPose2& motion);
   /// After all updates of a step (the robocentric inversion).
   virtual void finish_step() {}
@@ -170,7 +178,9 @@ class TrajectorySlam : public ScanSlam {
 
   TrajectorySlamConfig config_;
   GaussianPose2 start_world_;
-  Eigen::VectorXd calibration_;  ///< [range scale] when switched on; empty otherwise
+  Eigen::VectorXd calibration_;  ///< the parameters switched on, in the rows below; else empty
+  Eigen::Index range_scale_row_ = -1;  ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index dvl_scale_row_ = -1;    ///< its row in calibration_ and P_; -1: not estimated
   std::vector<Pose2> elements_;
   Eigen::MatrixXd P_;  ///< covariance of [calibration_; elements_]
 

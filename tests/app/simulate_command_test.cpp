@@ -445,6 +445,53 @@ TEST(SimulateCommand, SonarStopsAtStopSAndNavigationRunsOn) {
   EXPECT_EQ(times.back().t_log_s, all_times[times.size() - 1].t_log_s);
 }
 
+TEST(SimulateCommand, StatedCalibrationIsWrittenWhileTheSensorsKeepTheirOwn) {
+  // stated_calibration: calibration.yaml says the sonar's clock has no offset and the compass no
+  // deviation, while the sonar still logs 0.66 s behind and the MRU deviates (errors left for
+  // the estimators). The DVL's scale factor and the water's sound speed are not calibration:
+  // they change the logs, not calibration.yaml.
+  const BoxDataset& box = box_dataset();
+  const TempDir tmp;
+  const std::string scenario =
+      write_box_scenario(tmp.path(),
+                         "sonar: {stop_s: 10, water_sound_speed_mps: 1440}\n"
+                         "dvl: {scale_factor: 1.01}\n"
+                         "mru: {deviation_cos_deg: 0.62, deviation_sin_deg: -3.39}\n"
+                         "stated_calibration:\n"
+                         "  mru: {deviation_cos_deg: 0, deviation_sin_deg: 0}\n"
+                         "  sonar: {time_offset_s: 0}\n");
+  simulate(options_for(scenario, tmp.path() / "stated"));
+  const fs::path dir = tmp.path() / "stated";
+  const Calibration c = io::read_calibration((dir / "calibration.yaml").string());
+  EXPECT_EQ(c.sonar.time_offset_s, 0.0);
+  EXPECT_EQ(c.mru.deviation_cos_deg, 0.0);
+  EXPECT_EQ(c.mru.deviation_sin_deg, 0.0);
+  const Calibration plain = io::read_calibration((box.dir / "calibration.yaml").string());
+  EXPECT_EQ(c.mru.yaw_offset_deg, plain.mru.yaw_offset_deg);
+  EXPECT_EQ(c.dvl.yaw_deg, plain.dvl.yaw_deg);
+  // The log still runs the true 0.66 s behind the truth's beam times.
+  const auto beams = io::read_is_log((dir / "box_IS.log").string());
+  const std::vector<BeamRow> rows = read_beams_csv((dir / "truth" / "beams.csv").string());
+  ASSERT_EQ(rows.size(), beams.size());
+  ASSERT_FALSE(rows.empty());
+  EXPECT_NEAR(rows.front().t_s - beams.front().t_log_s, 0.66, 1e-6);
+  // The DVL reads 1 % more than the box's plain run, sample for sample where both have lock.
+  const auto dvl = io::read_dvl_log((dir / "box_DVL.log").string());
+  const auto plain_dvl = io::read_dvl_log((box.dir / "box_DVL.log").string());
+  ASSERT_EQ(dvl.size(), plain_dvl.size());
+  // The same noise draws: the difference is 0.01 times the true velocity, 0.5 cm/s at 0.5 m/s.
+  std::vector<double> differences_cm_s;
+  for (std::size_t i = 0; i < dvl.size(); ++i) {
+    if (dvl[i].bottom_vel_status != 1.0 || plain_dvl[i].bottom_vel_status != 1.0) continue;
+    differences_cm_s.push_back(
+        std::hypot(dvl[i].bottom_vel_cm_s[0] - plain_dvl[i].bottom_vel_cm_s[0],
+                   dvl[i].bottom_vel_cm_s[1] - plain_dvl[i].bottom_vel_cm_s[1]));
+  }
+  ASSERT_GT(differences_cm_s.size(), 50u);
+  std::sort(differences_cm_s.begin(), differences_cm_s.end());
+  EXPECT_NEAR(differences_cm_s[differences_cm_s.size() / 2], 0.5, 0.05);
+}
+
 TEST(SimulateCommand, DeadReckoningRunsOnTheSimulatedDataset) {
   const BoxDataset& box = box_dataset();
   const TempDir tmp;

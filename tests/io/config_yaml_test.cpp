@@ -288,14 +288,23 @@ TEST(SlamConfigYaml, CalibrationStateKeys) {
   EXPECT_FALSE(defaults.trajectory_slam.calibration.range_scale);
   EXPECT_EQ(defaults.trajectory_slam.calibration.range_scale_prior, 1.0);
   EXPECT_EQ(defaults.trajectory_slam.calibration.range_scale_sigma, 0.05);
-  const SlamConfig c =
-      read_slam_config(write_text(dir.file("slam.yaml"),
-                                  "trajectory_slam:\n"
-                                  "  calibration: {range_scale: true, range_scale_prior: 0.97,\n"
-                                  "                range_scale_sigma: 0.02}\n"));
+  EXPECT_FALSE(defaults.trajectory_slam.calibration.dvl_scale);
+  EXPECT_EQ(defaults.trajectory_slam.calibration.dvl_scale_prior, 1.0);
+  EXPECT_EQ(defaults.trajectory_slam.calibration.dvl_scale_sigma, 0.02);
+  const SlamConfig c = read_slam_config(
+      write_text(dir.file("slam.yaml"),
+                 "trajectory_slam:\n"
+                 "  calibration: {range_scale: true, range_scale_prior: 0.97,\n"
+                 "                range_scale_sigma: 0.02, dvl_scale: true,\n"
+                 "                dvl_scale_prior: 1.01, dvl_scale_sigma: 0.005}\n"));
   EXPECT_TRUE(c.trajectory_slam.calibration.range_scale);
   EXPECT_EQ(c.trajectory_slam.calibration.range_scale_prior, 0.97);
   EXPECT_EQ(c.trajectory_slam.calibration.range_scale_sigma, 0.02);
+  EXPECT_TRUE(c.trajectory_slam.calibration.dvl_scale);
+  EXPECT_EQ(c.trajectory_slam.calibration.dvl_scale_prior, 1.01);
+  EXPECT_EQ(c.trajectory_slam.calibration.dvl_scale_sigma, 0.005);
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {dvl_scale_sigma: -0.1}\n", 2,
+                         "trajectory_slam.calibration.dvl_scale_sigma");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_sigma: 0}\n", 2,
                          "trajectory_slam.calibration.range_scale_sigma");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_prior: -1}\n", 2,

@@ -594,6 +594,44 @@ TEST(ScenarioYaml, BadValues) {
   expect_bad(std::string(kMinimal) + "segments: {loop: [30, 10]}\n", 8, "segments.loop");
   expect_bad(std::string(kMinimal) + "sonar: {mount: {bearing_sign: 0.5}}\n", 8,
              "sonar.mount.bearing_sign");
+  expect_bad(std::string(kMinimal) + "sonar:\n  water_sound_speed_mps: 150\n", 9,
+             "sonar.water_sound_speed_mps");
+  expect_bad(std::string(kMinimal) + "dvl:\n  scale_factor: 0\n", 9, "dvl.scale_factor");
+  expect_bad(std::string(kMinimal) + "stated_calibration:\n  sonar: {time_offset_s: 90}\n", 9,
+             "stated_calibration.sonar.time_offset_s");
+  expect_bad(std::string(kMinimal) + "stated_calibration:\n  dvl: {scale: 1}\n", 9,
+             "stated_calibration.dvl.scale");
+}
+
+// Errors the estimators are to find: a sound speed the sonar does not know, a DVL scale factor,
+// and a calibration.yaml that states other values than the sensors have (every other key of it
+// keeps the sensors' own value).
+TEST(ScenarioYaml, InjectedCalibrationErrors) {
+  const TempDir dir;
+  const sim::Scenario plain = read_scenario(write_text(dir.file("p.yaml"), kMinimal));
+  EXPECT_FALSE(plain.sonar.water_sound_speed_mps);
+  EXPECT_EQ(plain.dvl.scale_factor, 1.0);
+  EXPECT_FALSE(plain.stated_calibration);
+  const sim::Scenario s = read_scenario(write_text(
+      dir.file("s.yaml"), std::string(kMinimal) +
+                              "sonar: {water_sound_speed_mps: 1440, mount: {time_offset_s: 0.66}}\n"
+                              "dvl: {scale_factor: 1.01}\n"
+                              "mru: {deviation_cos_deg: 0.62, deviation_sin_deg: -3.39}\n"
+                              "stated_calibration:\n"
+                              "  mru: {deviation_cos_deg: 0, deviation_sin_deg: 0}\n"
+                              "  sonar: {time_offset_s: 0}\n"));
+  EXPECT_EQ(*s.sonar.water_sound_speed_mps, 1440.0);
+  EXPECT_EQ(s.dvl.scale_factor, 1.01);
+  const Calibration truth = sim::true_calibration(s), stated = sim::calibration_of(s);
+  EXPECT_EQ(truth.mru.deviation_cos_deg, 0.62);
+  EXPECT_EQ(truth.sonar.time_offset_s, 0.66);
+  EXPECT_EQ(stated.mru.deviation_cos_deg, 0.0);
+  EXPECT_EQ(stated.mru.deviation_sin_deg, 0.0);
+  EXPECT_EQ(stated.sonar.time_offset_s, 0.0);
+  EXPECT_EQ(stated.mru.yaw_offset_deg, truth.mru.yaw_offset_deg);
+  EXPECT_EQ(stated.dvl.yaw_deg, truth.dvl.yaw_deg);
+  EXPECT_EQ(stated.sonar.x_m, truth.sonar.x_m);
+  EXPECT_EQ(stated.frame.origin_latitude_deg, truth.frame.origin_latitude_deg);
 }
 
 TEST(ScenarioYaml, BadPaths) {

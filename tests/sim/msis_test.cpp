@@ -147,6 +147,41 @@ TEST(Msis, MotionInsideAPingShortensTheRange) {
   EXPECT_NEAR(*beam.truth.strongest_range_m, 20.0 * (1.0 - v / sonar.sound_speed_mps), 0.11);
 }
 
+// A sonar that converts time to range with 1500 m/s in water where sound travels at 1440 m/s
+// reports a wall at 20 m at 20 x 1500 / 1440 = 20.83 m: its ranges carry a scale of 1.042 (the
+// range scale a SLAM back end can estimate, docs/trajectory_slam.md). The truth keeps the true
+// distance; a wall beyond the shortened listening range (49.9 x 1440 / 1500 = 47.9 m) is unheard.
+TEST(Msis, AWrongSoundSpeedScalesTheRanges) {
+  const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
+  SonarConfig sonar = forward_sonar();
+  sonar.vertical_beamwidth_deg = 10.0;
+  sonar.horizontal_beamwidth_deg = 0.5;
+  const double true_range_m = [&] {
+    Rng rng(1);
+    return *MsisModel(scene, sonar, 10.0)
+                .render({0, 0.0, 0.0}, straight(0.0), rng)
+                .truth.strongest_range_m;
+  }();
+  sonar.water_sound_speed_mps = 1440.0;
+  EXPECT_NEAR(range_scale(sonar), 1500.0 / 1440.0, 1e-15);
+  Rng rng(1);
+  const RenderedBeam beam = MsisModel(scene, sonar, 10.0).render({0, 0.0, 0.0}, straight(0.0), rng);
+  EXPECT_NEAR(*beam.truth.first_hit_range_m, 20.0, 1e-4);
+  EXPECT_NEAR(*beam.truth.strongest_range_m, true_range_m * 1500.0 / 1440.0, 0.11);
+  EXPECT_GT(*beam.truth.strongest_range_m, true_range_m + 0.7);
+
+  const Scene far(wall_mesh(48.5f), Material{"surface", 0.001f, 0.9f});
+  Rng far_rng(1);
+  const RenderedBeam unheard =
+      MsisModel(far, sonar, 10.0).render({0, 0.0, 0.0}, straight(0.0), far_rng);
+  EXPECT_EQ(*std::max_element(unheard.intensity.begin(), unheard.intensity.end()), 0);
+  sonar.water_sound_speed_mps.reset();
+  Rng near_rng(1);
+  const RenderedBeam heard =
+      MsisModel(far, sonar, 10.0).render({0, 0.0, 0.0}, straight(0.0), near_rng);
+  EXPECT_GT(*std::max_element(heard.intensity.begin(), heard.intensity.end()), 0);
+}
+
 TEST(Msis, EachBeamOfARevolutionHasItsOwnPose) {
   const Scene scene(wall_mesh(30.0f), Material{"surface", 0.001f, 0.9f});
   const SonarConfig sonar = forward_sonar();

@@ -125,6 +125,25 @@ TEST(DvlModel, NoBottomInRangeIsADropout) {
   }
 }
 
+// A DVL with a scale factor measures that many times the mount point's velocity (noise and
+// dropouts off: exactly, within rounding), in the DVL frame.
+TEST(DvlModel, ScaleFactorScalesTheVelocity) {
+  const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
+  DvlConfig dvl;
+  dvl.noise_sigma_mps = dvl.outlier_sigma_mps = 0.0;
+  dvl.dropout_probability = dvl.degraded_dropout_probability = 0.0;
+  const std::vector<DvlSample> exact = simulate_dvl(circling(100.0), dvl, scene, 1.5, 9);
+  dvl.scale_factor = 1.01;
+  const std::vector<DvlSample> scaled = simulate_dvl(circling(100.0), dvl, scene, 1.5, 9);
+  ASSERT_EQ(exact.size(), scaled.size());
+  ASSERT_GT(exact.size(), 100u);
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    ASSERT_TRUE(scaled[i].bottom_lock);
+    EXPECT_NEAR(exact[i].v_dvl_mps.norm(), 0.2, 1e-9);
+    EXPECT_LT((scaled[i].v_dvl_mps - 1.01 * exact[i].v_dvl_mps).norm(), 1e-12) << i;
+  }
+}
+
 TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
   const VehicleTrajectory truth = circling(20000.0);
   MruConfig mru;

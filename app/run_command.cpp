@@ -36,6 +36,9 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
     if (write_map) io::write_points_ply((out / "map.ply").string(), world_points(*result.scans));
   }
   if (result.matches) io::write_matches_csv((out / "matches.csv").string(), *result.matches);
+  if (!result.calibration_history.empty()) {
+    io::write_calibration_csv((out / "calibration.csv").string(), result.calibration_history);
+  }
   if (result.metrics) write_scores(out_dir, *result.metrics, result.nees, dataset_label);
 }
 

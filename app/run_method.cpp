@@ -251,6 +251,7 @@ MethodResult run_method(const std::string& name, const io::RunInputs& in, Shared
   if (e.has_scans()) result.scans = e.scans();
   if (e.slam) result.matches = match_rows(*e.slam, in.truth);
   if (e.slam) result.smoothed_trajectory = e.slam->smoothed_trajectory;
+  if (e.slam) result.calibration_history = e.slam->calibration_history;
   return result;
 }
 

@@ -28,6 +28,8 @@ struct MethodResult {
   double t_first_truth_s = 0.0;
   std::optional<std::vector<PlacedScan>> scans;      ///< with sonar data
   std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
+  /// A SLAM back end estimating calibration: its estimates after every scan (calibration.csv).
+  std::vector<CalibrationSnapshot> calibration_history;
   /// A back end with an online estimate (the pose graph): the smoothed trajectory, written as
   /// trajectory_smoothed.tum and scored as metrics.json's smoothed_* diagnostics.
   std::optional<std::vector<StampedPose>> smoothed_trajectory;

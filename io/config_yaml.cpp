@@ -180,6 +180,15 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
   require_positive(map, "dvl_scale_prior", c.dvl_scale_prior);
   map.number("dvl_scale_sigma", c.dvl_scale_sigma);
   require_positive(map, "dvl_scale_sigma", c.dvl_scale_sigma);
+  map.boolean("compass_deviation", c.compass_deviation);
+  for (auto [key, value] :
+       {std::pair<const char*, double*>{"compass_deviation_cos_prior_deg",
+                                        &c.compass_deviation_cos_prior_deg},
+        {"compass_deviation_sin_prior_deg", &c.compass_deviation_sin_prior_deg}}) {
+    if (map.number(key, *value) && std::abs(*value) >= 45.0) map.fail(key, "must be under 45 deg");
+  }
+  map.number("compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
+  require_positive(map, "compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
   map.finish();
 }
 

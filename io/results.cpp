@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 #include "io/atomic_file.hpp"
 #include "io/eval_scores_json.hpp"
@@ -68,6 +69,34 @@ void write_scans_csv(const std::string& path, const std::vector<PlacedScan>& sca
         text += ',';
       }
       text += std::to_string(s.scan.points.size()) + "\n";
+    }
+    out << text;
+  });
+}
+
+void write_calibration_csv(const std::string& path,
+                           const std::vector<CalibrationSnapshot>& snapshots) {
+  if (snapshots.empty()) throw std::invalid_argument("write_calibration_csv: no snapshot");
+  const std::vector<CalibrationEstimate>& first = snapshots.front().estimates;
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = "t_s";
+    for (const CalibrationEstimate& c : first) text += ',' + c.name + ',' + c.name + "_sigma";
+    text += '\n';
+    for (const CalibrationSnapshot& s : snapshots) {
+      if (s.estimates.size() != first.size()) {
+        throw std::invalid_argument("write_calibration_csv: the parameters changed");
+      }
+      append_number(text, s.t_s);
+      for (std::size_t i = 0; i < first.size(); ++i) {
+        if (s.estimates[i].name != first[i].name) {
+          throw std::invalid_argument("write_calibration_csv: the parameters changed");
+        }
+        text += ',';
+        append_number(text, s.estimates[i].value);
+        text += ',';
+        append_number(text, s.estimates[i].sigma);
+      }
+      text += '\n';
     }
     out << text;
   });

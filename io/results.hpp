@@ -1,5 +1,5 @@
 // The files of a result directory (docs/formats.md): trajectory.tum, metrics.json, scans.csv,
-// matches.csv, nees.csv and map.ply.
+// matches.csv, nees.csv, calibration.csv and map.ply.
 #pragma once
 
 #include <string>
@@ -56,6 +56,12 @@ struct MatchRow {
 /// true_x_m,true_y_m,true_yaw_rad,nees"; outcome is "accepted" or the rejection's name; a value
 /// that does not exist (nis when the gate was not reached, truth) is an empty field.
 void write_matches_csv(const std::string& path, const std::vector<MatchRow>& rows);
+
+/// calibration.csv: the calibration a back end estimated, after every scan: "t_s" then, per
+/// parameter, its name and name_sigma (the names of the first snapshot; every snapshot must have
+/// them in that order), atomically.
+void write_calibration_csv(const std::string& path,
+                           const std::vector<CalibrationSnapshot>& snapshots);
 
 /// One row of nees.csv: the NEES of scan `scan` (0-based) at time t_s.
 struct NeesSample {

@@ -44,6 +44,10 @@ ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigatio
   // The back end, scan by scan (Sec. III-IV).
   for (const PlacedScan& placed : out.scans) {
     SlamStepStats step = backend.add_scan(placed.scan);
+    std::vector<CalibrationEstimate> calibration = backend.calibration();
+    if (!calibration.empty()) {
+      out.calibration_history.push_back({placed.scan.t_s, std::move(calibration)});
+    }
     out.matches.insert(out.matches.end(), std::make_move_iterator(step.matches.begin()),
                        std::make_move_iterator(step.matches.end()));
   }

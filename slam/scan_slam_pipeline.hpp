@@ -55,6 +55,8 @@ struct ScanSlamEstimate {
   SlamTotals totals;
   std::optional<int> matches_downweighted;       ///< ScanSlam::matches_downweighted
   std::vector<CalibrationEstimate> calibration;  ///< ScanSlam::calibration after the last scan
+  /// ScanSlam::calibration after every scan; empty when the back end estimates none.
+  std::vector<CalibrationSnapshot> calibration_history;
 };
 
 /// The sonar's revolutions as motion-compensated scans placed by dead reckoning (Sec. II; the

@@ -74,6 +74,13 @@ struct CalibrationEstimate {
   double sigma = 0.0;
 };
 
+/// The calibration a back end estimates, as it stood after the scan at t_s (the estimates over
+/// time, calibration.csv).
+struct CalibrationSnapshot {
+  double t_s = 0.0;
+  std::vector<CalibrationEstimate> estimates;
+};
+
 struct SlamTotals {
   int scans = 0;
   int skipped = 0;

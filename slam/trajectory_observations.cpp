@@ -32,6 +32,14 @@ std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
     const Eigen::Index r = dvl_scale_row_;
     out.push_back({"dvl_scale", calibration_(r), std::sqrt(P_(r, r))});
   }
+  if (deviation_row_ >= 0) {
+    constexpr double kRadToDeg = 180.0 / M_PI;
+    const Eigen::Index r = deviation_row_;
+    out.push_back({"compass_deviation_cos_deg", calibration_(r) * kRadToDeg,
+                   std::sqrt(P_(r, r)) * kRadToDeg});
+    out.push_back({"compass_deviation_sin_deg", calibration_(r + 1) * kRadToDeg,
+                   std::sqrt(P_(r + 1, r + 1)) * kRadToDeg});
+  }
   return out;
 }
 

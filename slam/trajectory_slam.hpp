@@ -51,6 +51,13 @@ struct CalibrationStatesConfig {
   bool dvl_scale = false;
   double dvl_scale_prior = 1.0;
   double dvl_scale_sigma = 0.02;  ///< the prior's standard deviation
+  /// The compass's one-cycle deviation left after the dataset's calibration, d(psi) = a cos(psi)
+  /// + b sin(psi): the MRU reads psi + d(psi). It enters the compass update (h = yaw + d(yaw))
+  /// and the dead-reckoning motions, whose heading change carries d(psi_k) - d(psi_k-1).
+  bool compass_deviation = false;
+  double compass_deviation_cos_prior_deg = 0.0;  ///< a's prior mean, deg
+  double compass_deviation_sin_prior_deg = 0.0;  ///< b's prior mean, deg
+  double compass_deviation_sigma_deg = 3.0;      ///< the prior's standard deviation of each, deg
 };
 
 struct TrajectorySlamConfig {
@@ -172,6 +179,10 @@ class TrajectorySlam : public ScanSlam {
   Eigen::Index element_row(std::size_t i) const {
     return calibration_.size() + static_cast<Eigen::Index>(3 * i);
   }
+  /// The compass residual z - h(X) of scan b's heading reading (h = its world yaw psi, plus
+  /// d(psi) with the deviation estimated); with H, its Jacobian with respect to the calibration
+  /// (its first columns) and the elements 0..b.
+  Eigen::VectorXd compass_residual(std::size_t b, double yaw_world_rad, Eigen::MatrixXd* H) const;
   /// With linearisation_samples > 0: tallies epsilon of inverting the newest element (the
   /// robocentric inversion, Eq. 11-13), before it is inverted.
   void measure_inversion_linearisation();
@@ -181,6 +192,11 @@ class TrajectorySlam : public ScanSlam {
   Eigen::VectorXd calibration_;  ///< the parameters switched on, in the rows below; else empty
   Eigen::Index range_scale_row_ = -1;  ///< its row in calibration_ and P_; -1: not estimated
   Eigen::Index dvl_scale_row_ = -1;    ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index deviation_row_ = -1;    ///< a's row (b's the next, both rad); -1: not estimated
+  /// For the motion predict() appends: (cos psi_k - cos psi_k-1, sin psi_k - sin psi_k-1) of the
+  /// compass headings at its two scans (zero when either has none), which the deviation's change
+  /// over the motion is linear in.
+  Eigen::Vector2d deviation_change_ = Eigen::Vector2d::Zero();
   std::vector<Pose2> elements_;
   Eigen::MatrixXd P_;  ///< covariance of [calibration_; elements_]
 
@@ -218,7 +234,16 @@ class TrajectorySlam : public ScanSlam {
   /// The MRU heading as an observation of scan b's yaw; as update().
   std::optional<std::size_t> update_compass(std::size_t b, double yaw_world_rad, double sigma_rad);
 
+  /// Sets deviation_change_ for the motion to a scan with this compass reading (NaN: none).
+  void note_deviation_change(double compass_yaw_world_rad);
+  /// The motion as the state takes it in, x = g(c, m), with its Jacobians dg/dm (3 x 3) and dg/dc
+  /// (3 x c): the DVL scale divides the translation, the deviation's change turns it.
+  Pose2 calibrated_motion(const Pose2& m, Eigen::Matrix3d& J_m, Eigen::MatrixXd& J_c) const;
+
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
+  /// (cos psi, sin psi) of the previous scan's heading (the start's, first); none after a scan
+  /// without a compass reading.
+  std::optional<Eigen::Vector2d> previous_deviation_basis_;
   std::vector<std::vector<ScanPoint>> points_;
   SlamTotals totals_;
   std::mt19937_64 linearisation_rng_{0x6c696e656172ULL};  ///< fixed: the same run, the same bytes

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <stdexcept>
+
 #include "io/input_error.hpp"
 #include "io/montecarlo_files.hpp"
 #include "io/results.hpp"
@@ -133,6 +136,29 @@ TEST(ResultReaders, MetricsJsonWithoutMethodIsAnError) {
   expect_error([&] { read_metrics_json(tmp.file("metrics.json")); }, "key 'method'");
   write_text(tmp.file("metrics.json"), "{\"method\": \"a\",\n\"truth\": [\n");
   expect_error([&] { read_metrics_json(tmp.file("metrics.json")); }, "metrics.json:3: ");
+}
+
+// calibration.csv: "t_s" then each parameter's name and name_sigma, a row per snapshot, numbers
+// read back exactly; no snapshot, or snapshots whose parameters differ, are refused (nothing
+// written).
+TEST(ResultFiles, CalibrationCsv) {
+  const TempDir dir;
+  const std::string path = dir.file("calibration.csv");
+  std::vector<CalibrationSnapshot> s = {
+      {10.5, {{"range_scale", 0.98, 0.05}, {"dvl_scale", 1.0, 0.02}}},
+      {24.3, {{"range_scale", 0.1 + 0.2, 0.0123456789012345}, {"dvl_scale", 1.01, 0.019}}}};
+  write_calibration_csv(path, s);
+  EXPECT_EQ(testing::read_text(path),
+            "t_s,range_scale,range_scale_sigma,dvl_scale,dvl_scale_sigma\n"
+            "10.5,0.98,0.05,1,0.02\n"
+            "24.3,0.30000000000000004,0.0123456789012345,1.01,0.019\n");
+  const std::string other = dir.file("other.csv");
+  EXPECT_THROW(write_calibration_csv(other, {}), std::invalid_argument);
+  s[1].estimates[1].name = "compass_deviation_cos_deg";
+  EXPECT_THROW(write_calibration_csv(other, s), std::invalid_argument);
+  s[1].estimates.pop_back();
+  EXPECT_THROW(write_calibration_csv(other, s), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(other));
 }
 
 TEST(ResultReaders, NeesCsv) {

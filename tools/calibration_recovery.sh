@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Calibration recovery on simulation (docs/trajectory_slam.md, "Calibration states"): the St. Pere
+# replica with a calibration error injected into its sensors, N Monte Carlo runs each (default 20,
+# seeds 42..), robocentric SLAM read through the detections with config/stpere_replica.yaml plus
+# the state that estimates the error. Cases: the sonar's range scale 0.96 and 1.03 (a water sound
+# speed of 1500 / 0.96 and 1500 / 1.03 m/s against the sonar's 1500), the DVL's scale factor 1.01
+# and the compass deviation (a, b) = (0.62, -3.39) deg that the dataset's calibration.yaml does not
+# state (stated_calibration). Prints a Markdown table, a row per estimated value: the runs whose
+# estimate lies within two of its standard deviations of the injected value, the estimates' range
+# and mean, their mean standard deviation, the mean error, ANEES and the steps in bounds of the
+# Monte Carlo NEES test. Writes under out/calibration_recovery/.
+# Usage: tools/calibration_recovery.sh [--runs N] [--msislab EXE]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+msislab=build/release/tools/msislab
+runs=20
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
+    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
+    *) echo "tools/calibration_recovery.sh: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
+       exit 2 ;;
+  esac
+done
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "tools/calibration_recovery.sh: --runs '$runs' is not a count" >&2; exit 2; }
+[ -x "$msislab" ] || { echo "tools/calibration_recovery.sh: no $msislab (build first)" >&2; exit 2; }
+
+out=out/calibration_recovery
+# Scenarios and configs are written beside the results: only into a folder this script made.
+if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.calibration_recovery" ]; then
+  echo "tools/calibration_recovery.sh: $out exists and was not written by this script; refusing" >&2
+  exit 2
+fi
+mkdir -p "$out"
+touch "$out/.calibration_recovery"
+
+# CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)
+cases=(
+  "range_scale_0.96 range_scale range_scale=0.96 sonar.water_sound_speed_mps=1562.5"
+  "range_scale_1.03 range_scale range_scale=1.03 sonar.water_sound_speed_mps=1456.3106796116506"
+  "dvl_scale_1.01 dvl_scale dvl_scale=1.01 dvl.scale_factor=1.01"
+  "deviation compass_deviation compass_deviation_cos_deg=0.62,compass_deviation_sin_deg=-3.39 mru.deviation_cos_deg=0.62,mru.deviation_sin_deg=-3.39,stated_calibration.mru.deviation_cos_deg=0,stated_calibration.mru.deviation_sin_deg=0"
+)
+for c in "${cases[@]}"; do
+  read -r name state truth keys <<<"$c"
+  # The replica's scenario with the keys set, its relative paths made absolute.
+  python3 - scenarios/stpere_replica.yaml "$out/$name.scenario.yaml" "$keys" <<'EOF'
+import os, sys, yaml
+src, dst, keys = sys.argv[1:]
+s = yaml.safe_load(open(src))
+base = os.path.dirname(os.path.abspath(src))
+s["scene"]["mesh"] = os.path.join(base, s["scene"]["mesh"])
+s["vehicle"]["heading_csv"] = os.path.join(base, s["vehicle"]["heading_csv"])
+for key in keys.split(","):
+    path, value = key.split("=")
+    *sections, field = path.split(".")
+    node = s
+    for section in sections:
+        if not node.get(section):
+            node[section] = {}
+        node = node[section]
+    node[field] = float(value)
+with open(dst, "w") as f:
+    f.write("# scenarios/stpere_replica.yaml with " + keys + " (tools/calibration_recovery.sh)\n")
+    yaml.safe_dump(s, f, sort_keys=False)
+EOF
+  { cat config/stpere_replica.yaml; printf 'trajectory_slam:\n  calibration:\n    %s: true\n' "$state"; } \
+    >"$out/$name.config.yaml"
+  "$msislab" montecarlo "$out/$name.scenario.yaml" --runs "$runs" --out "$out/$name" \
+    --methods robocentric --config "$out/$name.config.yaml" --no-plot >/dev/null
+done
+
+python3 - "$out" "${cases[@]}" <<'EOF'
+import glob, json, os, sys
+out = sys.argv[1]
+print("| injected | state | estimate | runs within 2 sd | estimates (mean) | sd (mean) | mean error | ANEES | steps in bounds |")
+print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
+for case in sys.argv[2:]:
+    name, state, truths, keys = case.split(" ")
+    summary = json.load(open(os.path.join(out, name, "summary.json")))["robocentric"]
+    runs = [json.load(open(p)).get("diagnostics", {}) for p in sorted(
+        glob.glob(os.path.join(out, name, "runs", "robocentric", "run_*", "metrics.json")))]
+    for item in truths.split(","):
+        estimate, truth = item.split("=")
+        truth = float(truth)
+        values = [d[estimate] for d in runs]
+        sigmas = [d[estimate + "_sigma"] for d in runs]
+        within = sum(abs(v - truth) < 2 * s for v, s in zip(values, sigmas))
+        print(f"| {keys.replace(',', ', ')} | {state} | {estimate} {truth:g} | "
+              f"{within} of {len(values)} | "
+              f"{min(values):.3f} to {max(values):.3f} ({sum(values) / len(values):.3f}) | "
+              f"{sum(sigmas) / len(sigmas):.3f} | {summary['mean_error_m']:.2f} m | "
+              f"{summary['anees']:.2f} | {100 * summary['nees_in_bounds_fraction']:.1f} % |")
+EOF

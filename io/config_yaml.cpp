@@ -180,6 +180,13 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
   require_positive(map, "dvl_scale_prior", c.dvl_scale_prior);
   map.number("dvl_scale_sigma", c.dvl_scale_sigma);
   require_positive(map, "dvl_scale_sigma", c.dvl_scale_sigma);
+  map.boolean("clock_offset", c.clock_offset);
+  map.number("clock_offset_prior_s", c.clock_offset_prior_s);
+  if (std::abs(c.clock_offset_prior_s) > 60.0) {
+    map.fail("clock_offset_prior_s", "must be within [-60, 60] s");
+  }
+  map.number("clock_offset_sigma_s", c.clock_offset_sigma_s);
+  require_positive(map, "clock_offset_sigma_s", c.clock_offset_sigma_s);
   map.boolean("compass_deviation", c.compass_deviation);
   for (auto [key, value] :
        {std::pair<const char*, double*>{"compass_deviation_cos_prior_deg",
@@ -254,68 +261,6 @@ std::vector<TimeSegment> read_segments(YamlMap map) {
   }
   map.finish();
   return segments;
-}
-
-void read_calibration_sections(YamlMap& root, Calibration& c) {
-  YamlMap mru = root.map("mru");
-  read_mru_mount(mru, c.mru);
-  // The compass deviation is calibration, not mount: a scenario sets its MRU's own.
-  mru.number("deviation_cos_deg", c.mru.deviation_cos_deg);
-  mru.number("deviation_sin_deg", c.mru.deviation_sin_deg);
-  if (std::hypot(c.mru.deviation_cos_deg, c.mru.deviation_sin_deg) >= 45.0) {
-    mru.fail("deviation_cos_deg", "the deviation's amplitude must be under 45 deg");
-  }
-  mru.finish();
-  YamlMap dvl = root.map("dvl");
-  read_dvl_mount(dvl, c.dvl);
-  dvl.finish();
-  YamlMap sonar = root.map("sonar");
-  read_sonar_mount(sonar, c.sonar);
-  sonar.finish();
-  YamlMap frame = root.map("frame");
-  read_local_frame(frame, c.frame);
-  frame.finish();
-}
-
-namespace {
-Calibration calibration_from_yaml(const YAML::Node& node, const std::string& name) {
-  YamlMap root(node, name, "");
-  Calibration c;
-  read_calibration_sections(root, c);
-  root.finish();
-  return c;
-}
-
-std::string calibration_yaml(const Calibration& c) {
-  std::ostringstream out;
-  out << std::setprecision(17);
-  out << "# Sensor mounts and local frame (docs/formats.md).\n"
-      << "mru:\n  yaw_offset_deg: " << c.mru.yaw_offset_deg
-      << "\n  deviation_cos_deg: " << c.mru.deviation_cos_deg
-      << "\n  deviation_sin_deg: " << c.mru.deviation_sin_deg << "\n"
-      << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
-      << "\n  y_m: " << c.dvl.y_m << "\n"
-      << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
-      << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
-      << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m
-      << "\n  time_offset_s: " << c.sonar.time_offset_s << "\n"
-      << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
-      << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
-  return out.str();
-}
-}  // namespace
-
-Calibration read_calibration(const std::string& path) {
-  return calibration_from_yaml(load_yaml_file(path), path);
-}
-
-void write_calibration(const std::string& path, const Calibration& calibration) {
-  const std::string text = calibration_yaml(calibration);
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
-Calibration calibration_as_stored(const Calibration& calibration) {
-  return calibration_from_yaml(YAML::Load(calibration_yaml(calibration)), "calibration.yaml");
 }
 
 namespace {

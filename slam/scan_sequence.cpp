@@ -30,6 +30,15 @@ PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
   placed.scan.beams = n;
   placed.scan.motion = odometry[centre].motion_since_key;
   placed.centre_world = odometry[centre].pose;
+  // The velocity at the centre: the dead-reckoning motion over the beams 5 either side (0.7 s at
+  // St. Pere's rate), over its time.
+  const std::size_t before = centre - std::min<std::size_t>(5, centre - begin);
+  const std::size_t after = std::min(centre + 5, begin + n - 1);
+  const double span_s = odometry[after].t_s - odometry[before].t_s;
+  if (span_s > 0.0) {
+    placed.scan.velocity_vehicle =
+        odometry[before].pose.pose.mean.between(odometry[after].pose.pose.mean).vector() / span_s;
+  }
   // The shared error of each half (docs/scan_matching.md): a beam's pose error is taken as
   // f_i L xi_side, with L L^T the motion covariance over the whole half and f_i^2 =
   // tr(P_i) / tr(P_half) the beam's share of it, so the marginal matches its own clone's size.

@@ -1,7 +1,8 @@
 // The observation model of trajectory SLAM (paper Eq. 5-8) and the calibration that enters it:
-// the prediction a match starts from, h(X) of a match with the range scale, the stacked residual
-// of a step's matches and its NIS. The updates they make (update_relative_poses, update_compass,
-// through the windowed iterated update) and the step are in trajectory_slam.cpp.
+// the prediction a match starts from, h(X) of a match with the range scale and the clock offset,
+// the stacked residual of a step's matches and its NIS. The updates they make
+// (update_relative_poses, update_compass, through the windowed iterated update) and the step are in
+// trajectory_slam.cpp.
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -22,27 +23,6 @@ std::vector<Eigen::Index> calibration_and_rows(Eigen::Index c, Eigen::Index f, E
 
 }  // namespace
 
-std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
-  std::vector<CalibrationEstimate> out;
-  if (range_scale_row_ >= 0) {
-    const Eigen::Index r = range_scale_row_;
-    out.push_back({"range_scale", calibration_(r), std::sqrt(P_(r, r))});
-  }
-  if (dvl_scale_row_ >= 0) {
-    const Eigen::Index r = dvl_scale_row_;
-    out.push_back({"dvl_scale", calibration_(r), std::sqrt(P_(r, r))});
-  }
-  if (deviation_row_ >= 0) {
-    constexpr double kRadToDeg = 180.0 / M_PI;
-    const Eigen::Index r = deviation_row_;
-    out.push_back({"compass_deviation_cos_deg", calibration_(r) * kRadToDeg,
-                   std::sqrt(P_(r, r)) * kRadToDeg});
-    out.push_back({"compass_deviation_sin_deg", calibration_(r + 1) * kRadToDeg,
-                   std::sqrt(P_(r + 1, r + 1)) * kRadToDeg});
-  }
-  return out;
-}
-
 ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2& predicted) const {
   Eigen::MatrixXd H;
   predicted.mean = observed_relative_pose(j, k, &H);
@@ -61,23 +41,34 @@ ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2
 Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
                                              Eigen::MatrixXd* H) const {
   Eigen::MatrixXd H_pose;
-  const Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
+  Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
   const Eigen::Index c = calibration_.size();
-  if (range_scale_row_ < 0) {
-    if (H) {
-      H->setZero(3, c + H_pose.cols());
-      H->rightCols(H_pose.cols()) = H_pose;
-    }
-    return h;
-  }
-  // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
-  // dh_s/ds = (t, 0) and dh_s/dX = diag(s, s, 1) dh/dX.
-  const double s = calibration_(range_scale_row_);
   if (H) {
     H->setZero(3, c + H_pose.cols());
-    H->block<2, 1>(0, range_scale_row_) = h.translation();
     H->rightCols(H_pose.cols()) = H_pose;
-    H->rightCols(H_pose.cols()).topRows<2>() *= s;
+  }
+  if (clock_row_ >= 0) {
+    // The scans show the frames at t + tau: z = (-)d_a (+) h (+) d_b, d_i = tau u_i, so
+    // dz/dtau = J1 (J1' J- u_a) + J2 u_b and dz/dX = J1 J2' dh/dX.
+    const double tau = calibration_(clock_row_);
+    const Eigen::Vector3d& u_a = velocities_[a];
+    const Eigen::Vector3d& u_b = velocities_[b];
+    Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
+    const Pose2 back = Pose2(Eigen::Vector3d(tau * u_a)).inverse(H ? &J_inverse : nullptr);
+    const Pose2 inner = back.compose(h, H ? &J1_inner : nullptr, H ? &J2_inner : nullptr);
+    h = inner.compose(Pose2(Eigen::Vector3d(tau * u_b)), H ? &J1 : nullptr, H ? &J2 : nullptr);
+    if (H) {
+      H->col(clock_row_) = J1 * J1_inner * J_inverse * u_a + J2 * u_b;
+      H->rightCols(H_pose.cols()) = J1 * J2_inner * H_pose;
+    }
+  }
+  if (range_scale_row_ < 0) return h;
+  // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
+  // dh_s/ds = (t, 0) and dh_s/d(the rest) = diag(s, s, 1) dh/d(the rest).
+  const double s = calibration_(range_scale_row_);
+  if (H) {
+    H->topRows<2>() *= s;
+    H->block<2, 1>(0, range_scale_row_) = h.translation();
   }
   return Pose2(s * h.x(), s * h.y(), h.yaw());
 }

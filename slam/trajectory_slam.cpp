@@ -54,77 +54,6 @@ void MatchRejectionCounts::count(const ValidatedMatch& match) {
   }
 }
 
-TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
-    : config_(config), start_world_(start_world) {
-  const CalibrationStatesConfig& c = config_.calibration;
-  constexpr double kDegToRad = M_PI / 180.0;
-  std::vector<std::pair<double, double>> priors;  // (mean, sd) in row order
-  if (c.range_scale) {
-    range_scale_row_ = static_cast<Eigen::Index>(priors.size());
-    priors.emplace_back(c.range_scale_prior, c.range_scale_sigma);
-  }
-  if (c.dvl_scale) {
-    dvl_scale_row_ = static_cast<Eigen::Index>(priors.size());
-    priors.emplace_back(c.dvl_scale_prior, c.dvl_scale_sigma);
-  }
-  if (c.compass_deviation) {
-    deviation_row_ = static_cast<Eigen::Index>(priors.size());
-    priors.emplace_back(c.compass_deviation_cos_prior_deg * kDegToRad,
-                        c.compass_deviation_sigma_deg * kDegToRad);
-    priors.emplace_back(c.compass_deviation_sin_prior_deg * kDegToRad,
-                        c.compass_deviation_sigma_deg * kDegToRad);
-  }
-  // The first motion runs from the start, whose heading carries the deviation of its own
-  // reading when it was taken from the compass (a start yaw with a variance), none when it is
-  // exact (a simulation's truth): the dead reckoning's heading at scan 0 carries d(psi_0).
-  const double start_yaw_rad = start_world.mean.yaw();
-  previous_deviation_basis_ =
-      start_world.cov(2, 2) > 1e-6
-          ? Eigen::Vector2d(std::cos(start_yaw_rad), std::sin(start_yaw_rad))
-          : Eigen::Vector2d::Zero();
-  const auto count = static_cast<Eigen::Index>(priors.size());
-  calibration_.resize(count);
-  P_ = Eigen::MatrixXd::Zero(count, count);
-  for (Eigen::Index i = 0; i < count; ++i) {
-    const auto& [mean, sd] = priors[static_cast<std::size_t>(i)];
-    calibration_(i) = mean;
-    P_(i, i) = sd * sd;
-  }
-}
-
-Pose2 TrajectorySlam::calibrated_motion(const Pose2& m, Eigen::Matrix3d& J_m,
-                                        Eigen::MatrixXd& J_c) const {
-  J_m.setIdentity();
-  J_c.setZero(3, calibration_.size());
-  Eigen::Vector2d t = m.translation();
-  double yaw = m.yaw();
-  if (dvl_scale_row_ >= 0) {
-    // The DVL measured k times the true velocity: t / k, d/dk = -t_m / k^2.
-    const double k = calibration_(dvl_scale_row_);
-    J_c.block<2, 1>(0, dvl_scale_row_) = -t / (k * k);
-    J_m.topLeftCorner<2, 2>() /= k;
-    t /= k;
-  }
-  if (deviation_row_ >= 0) {
-    // The heading change read delta = d(psi_k) - d(psi_k-1) = (a, b) . deviation_change_ too
-    // much, and the translation, integrated along headings off by d - d(psi_k-1) growing from 0
-    // to delta, is turned by delta / 2 (to first order): x = (R(-delta/2) t, yaw - delta).
-    const double delta = calibration_.segment<2>(deviation_row_).dot(deviation_change_);
-    Eigen::Matrix2d R, J_turn;  // R(-delta/2); d(R(theta) t)/d theta = J R(theta) t
-    R << std::cos(delta / 2.0), std::sin(delta / 2.0), -std::sin(delta / 2.0),
-        std::cos(delta / 2.0);
-    J_turn << 0.0, -1.0, 1.0, 0.0;
-    Eigen::Vector3d dx_ddelta;
-    dx_ddelta << -0.5 * J_turn * R * t, -1.0;
-    J_m.topRows<2>() = R * J_m.topRows<2>();
-    J_c.topRows<2>() = R * J_c.topRows<2>();
-    J_c.block<3, 2>(0, deviation_row_) += dx_ddelta * deviation_change_.transpose();
-    t = R * t;
-    yaw -= delta;
-  }
-  return Pose2(t.x(), t.y(), yaw);
-}
-
 void TrajectorySlam::predict(const GaussianPose2& motion) {
   const Eigen::Index n = P_.rows();
   P_.conservativeResize(n + 3, n + 3);
@@ -158,27 +87,12 @@ bool TrajectorySlam::state_finite() const {
   return P_.allFinite();
 }
 
-void TrajectorySlam::note_deviation_change(double compass_yaw_world_rad) {
-  // The deviation's change over the motion, at the headings the compass read with the estimated
-  // deviation taken out (psi = reading - d(reading), to first order): (a, b) times the change of
-  // (cos psi, sin psi) from the motion's start. Unknown (zero) after a scan without a reading.
-  deviation_change_.setZero();
-  if (deviation_row_ < 0) return;
-  double psi = compass_yaw_world_rad;
-  if (!std::isfinite(psi)) {
-    previous_deviation_basis_.reset();
-    return;
-  }
-  psi -= calibration_.segment<2>(deviation_row_).dot(Eigen::Vector2d(std::cos(psi), std::sin(psi)));
-  const Eigen::Vector2d basis(std::cos(psi), std::sin(psi));
-  if (previous_deviation_basis_) deviation_change_ = basis - *previous_deviation_basis_;
-  previous_deviation_basis_ = basis;
-}
-
 SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   SlamStepStats stats;
   const bool motion_ok = scan.motion.mean.vector().allFinite() && scan.motion.cov.allFinite();
   note_deviation_change(scan.compass_yaw_world_rad);
+  velocities_.push_back(scan.velocity_vehicle.allFinite() ? scan.velocity_vehicle
+                                                          : Eigen::Vector3d::Zero());
   predict(motion_ok ? scan.motion : unknown_motion());
   group_start_.push_back(elements_.size() - 1);
   points_.push_back(finite_points(scan.points));
@@ -370,33 +284,6 @@ std::optional<std::size_t> TrajectorySlam::update_relative_poses(
   const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
   return update(first_involved(b, z), b, residual, R,
                 gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), true);
-}
-
-Eigen::VectorXd TrajectorySlam::compass_residual(std::size_t b, double yaw_world_rad,
-                                                 Eigen::MatrixXd* H) const {
-  // z = the MRU heading observes the yaw of scan b in the world: start yaw + the chain's yaw.
-  Eigen::MatrixXd H_pose;
-  const Pose2 pose = pose_in_start_frame(b, H ? &H_pose : nullptr);
-  const Eigen::Index c = calibration_.size();
-  if (H) {
-    H->setZero(1, c + H_pose.cols());
-    H->rightCols(H_pose.cols()) = H_pose.row(2);
-  }
-  double deviation_rad = 0.0;
-  if (deviation_row_ >= 0) {
-    // The MRU reads psi + a cos(psi) + b sin(psi) for the yaw psi: dh/dpsi = 1 + d'(psi).
-    const double yaw_rad = start_world_.mean.yaw() + pose.yaw();
-    const Eigen::Vector2d basis(std::cos(yaw_rad), std::sin(yaw_rad));
-    const Eigen::Vector2d slope(-std::sin(yaw_rad), std::cos(yaw_rad));
-    const Eigen::Vector2d ab = calibration_.segment<2>(deviation_row_);
-    deviation_rad = ab.dot(basis);
-    if (H) {
-      H->block<1, 2>(0, deviation_row_) = basis.transpose();
-      H->rightCols(H_pose.cols()) *= 1.0 + ab.dot(slope);
-    }
-  }
-  return Eigen::VectorXd::Constant(
-      1, normalize_angle(yaw_world_rad - start_world_.mean.yaw() - pose.yaw() - deviation_rad));
 }
 
 std::optional<std::size_t> TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad,

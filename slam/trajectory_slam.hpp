@@ -58,6 +58,13 @@ struct CalibrationStatesConfig {
   double compass_deviation_cos_prior_deg = 0.0;  ///< a's prior mean, deg
   double compass_deviation_sin_prior_deg = 0.0;  ///< b's prior mean, deg
   double compass_deviation_sigma_deg = 3.0;      ///< the prior's standard deviation of each, deg
+  /// The sonar clock's offset tau left after calibration.yaml's: the beams were sent tau later
+  /// than their times say, so scan i shows the world from the vehicle at t_i + tau, its frame
+  /// moved by tau times the vehicle's velocity there; a match observes
+  /// (-)(tau u_j) (+) h (+) (tau u_k).
+  bool clock_offset = false;
+  double clock_offset_prior_s = 0.0;
+  double clock_offset_sigma_s = 0.5;  ///< the prior's standard deviation, s
 };
 
 struct TrajectorySlamConfig {
@@ -193,6 +200,8 @@ class TrajectorySlam : public ScanSlam {
   Eigen::Index range_scale_row_ = -1;  ///< its row in calibration_ and P_; -1: not estimated
   Eigen::Index dvl_scale_row_ = -1;    ///< its row in calibration_ and P_; -1: not estimated
   Eigen::Index deviation_row_ = -1;    ///< a's row (b's the next, both rad); -1: not estimated
+  Eigen::Index clock_row_ = -1;        ///< its row in calibration_ and P_; -1: not estimated
+  std::vector<Eigen::Vector3d> velocities_;  ///< each scan's Scan::velocity_vehicle
   /// For the motion predict() appends: (cos psi_k - cos psi_k-1, sin psi_k - sin psi_k-1) of the
   /// compass headings at its two scans (zero when either has none), which the deviation's change
   /// over the motion is linear in.

@@ -305,6 +305,29 @@ TEST(SlamConfigYaml, CalibrationStateKeys) {
   EXPECT_EQ(c.trajectory_slam.calibration.dvl_scale_sigma, 0.005);
   expect_bad_slam_config("trajectory_slam:\n  calibration: {dvl_scale_sigma: -0.1}\n", 2,
                          "trajectory_slam.calibration.dvl_scale_sigma");
+  const SlamConfig more =
+      read_slam_config(write_text(dir.file("more.yaml"),
+                                  "trajectory_slam:\n"
+                                  "  calibration: {clock_offset: true, clock_offset_prior_s: 0.5,\n"
+                                  "                clock_offset_sigma_s: 0.2,\n"
+                                  "                compass_deviation: true,\n"
+                                  "                compass_deviation_cos_prior_deg: 0.6,\n"
+                                  "                compass_deviation_sin_prior_deg: -3,\n"
+                                  "                compass_deviation_sigma_deg: 1}\n"));
+  const CalibrationStatesConfig& m = more.trajectory_slam.calibration;
+  EXPECT_TRUE(m.clock_offset);
+  EXPECT_EQ(m.clock_offset_prior_s, 0.5);
+  EXPECT_EQ(m.clock_offset_sigma_s, 0.2);
+  EXPECT_TRUE(m.compass_deviation);
+  EXPECT_EQ(m.compass_deviation_cos_prior_deg, 0.6);
+  EXPECT_EQ(m.compass_deviation_sin_prior_deg, -3.0);
+  EXPECT_EQ(m.compass_deviation_sigma_deg, 1.0);
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {clock_offset_sigma_s: 0}\n", 2,
+                         "trajectory_slam.calibration.clock_offset_sigma_s");
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {compass_deviation_sin_prior_deg: 50}\n",
+                         2, "trajectory_slam.calibration.compass_deviation_sin_prior_deg");
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {compass_deviation_sigma_deg: -1}\n", 2,
+                         "trajectory_slam.calibration.compass_deviation_sigma_deg");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_sigma: 0}\n", 2,
                          "trajectory_slam.calibration.range_scale_sigma");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_prior: -1}\n", 2,

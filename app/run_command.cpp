@@ -39,6 +39,9 @@ void write_method_result(const std::string& out_dir, const MethodResult& result,
   if (!result.calibration_history.empty()) {
     io::write_calibration_csv((out / "calibration.csv").string(), result.calibration_history);
   }
+  if (result.estimated_calibration) {
+    io::write_calibration((out / "calibration.yaml").string(), *result.estimated_calibration);
+  }
   if (result.metrics) write_scores(out_dir, *result.metrics, result.nees, dataset_label);
 }
 
@@ -91,13 +94,15 @@ RunOutcome run(const RunOptions& options) {
   report::load_methods_file(options.methods_file);
   // An unknown method fails before anything is read.
   const bool external = report::method_info(options.method).kind == report::MethodKind::kExternal;
-  const io::OutputRequest out{options.out_dir,
-                              "result",
-                              "run",
-                              {options.dataset_dir, options.config_path, options.methods_file},
-                              options.force};
+  const io::OutputRequest out{
+      options.out_dir,
+      "result",
+      "run",
+      {options.dataset_dir, options.config_path, options.methods_file, options.calibration_path},
+      options.force};
   io::check_output_folder(out);
-  const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
+  const io::RunInputs in =
+      io::load_run_inputs(options.dataset_dir, options.config_path, options.calibration_path);
   const MethodResult result = external ? run_external(options, in) : run_method(options.method, in);
   io::StagedFolder staged(out);
   // An external method's scans carry no points: no map.
@@ -123,6 +128,10 @@ void add_run_command(CLI::App& app, CommandLine& line) {
       ->required();
   run_cli->add_option("--config,-c", options->config_path,
                       "SLAM config YAML (defaults when absent; keys in docs/formats.md)");
+  run_cli->add_option(
+      "--calibration", options->calibration_path,
+      "calibration.yaml to read the dataset with instead of its own (e.g. the one a "
+      "run estimating calibration wrote; docs/formats.md)");
   run_cli->add_option("--methods-file", options->methods_file,
                       "Methods file (YAML) declaring external methods, usable as --method "
                       "(docs/formats.md)");

@@ -19,9 +19,10 @@ struct RunOptions {
   std::string dataset_dir;
   std::string method;
   std::string out_dir;
-  std::string config_path;     ///< empty: the default SLAM config
-  bool force = false;          ///< replace a folder msislab did not write
-  std::string methods_file{};  ///< external methods (docs/formats.md); empty: none
+  std::string config_path;         ///< empty: the default SLAM config
+  bool force = false;              ///< replace a folder msislab did not write
+  std::string methods_file{};      ///< external methods (docs/formats.md); empty: none
+  std::string calibration_path{};  ///< a calibration.yaml in place of the dataset's; empty: its own
 };
 
 struct RunOutcome {

@@ -8,6 +8,7 @@
 #include "app/external_method.hpp"
 #include "io/input_error.hpp"
 #include "report/methods.hpp"
+#include "slam/calibration_update.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
@@ -251,7 +252,10 @@ MethodResult run_method(const std::string& name, const io::RunInputs& in, Shared
   if (e.has_scans()) result.scans = e.scans();
   if (e.slam) result.matches = match_rows(*e.slam, in.truth);
   if (e.slam) result.smoothed_trajectory = e.slam->smoothed_trajectory;
-  if (e.slam) result.calibration_history = e.slam->calibration_history;
+  if (e.slam) {
+    result.calibration_history = e.slam->calibration_history;
+    result.estimated_calibration = calibration_with_estimates(in.calibration, e.slam->calibration);
+  }
   return result;
 }
 

@@ -30,6 +30,9 @@ struct MethodResult {
   std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
   /// A SLAM back end estimating calibration: its estimates after every scan (calibration.csv).
   std::vector<CalibrationSnapshot> calibration_history;
+  /// The dataset's calibration with what the back end estimated added (calibration.yaml; the
+  /// deviation and the clock offset): nullopt when it estimated none of those.
+  std::optional<Calibration> estimated_calibration;
   /// A back end with an online estimate (the pose graph): the smoothed trajectory, written as
   /// trajectory_smoothed.tum and scored as metrics.json's smoothed_* diagnostics.
   std::optional<std::vector<StampedPose>> smoothed_trajectory;

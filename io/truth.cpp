@@ -1,6 +1,7 @@
 #include "io/truth.hpp"
 
 #include <algorithm>
+#include <filesystem>
 
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
@@ -64,11 +65,20 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
   return start;
 }
 
-RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path) {
+RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path,
+                          const std::string& calibration_path) {
   RunInputs in;
   in.config = config_path.empty() ? SlamConfig{} : read_slam_config(config_path);
   in.dataset = dataset_dir;
   in.files = find_dataset_files(dataset_dir);
+  if (!calibration_path.empty()) {
+    // A calibration.yaml of the user's (say, the one a run with calibration states wrote) in
+    // place of the dataset's own.
+    if (!std::filesystem::is_regular_file(calibration_path)) {
+      throw InputError(calibration_path + ": no such calibration file");
+    }
+    in.files.calibration = calibration_path;
+  }
   in.calibration = load_calibration(in.files);
   in.navigation = load_navigation(in.files, in.calibration);
   in.truth = load_truth(in.files, in.calibration);

@@ -49,7 +49,8 @@ struct RunInputs {
 };
 
 /// Reads and checks them (config_path empty: the default config). Throws io::InputError.
-RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path);
+RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path,
+                          const std::string& calibration_path = "");
 /// The same for a dataset held in memory. Throws io::InputError.
 RunInputs run_inputs_of(std::shared_ptr<const DatasetRecords> records, SlamConfig config);
 

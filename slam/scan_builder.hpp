@@ -47,8 +47,9 @@ struct Scan {
   /// standard deviation; NaN when there is none.
   double compass_yaw_world_rad = std::numeric_limits<double>::quiet_NaN();
   double compass_sigma_rad = std::numeric_limits<double>::quiet_NaN();
-  /// The dead reckoning's velocity at the scan's time in the scan's frame (surge m/s, sway m/s,
-  /// yaw rate rad/s): how far the scan frame moves when the sonar's clock is off.
+  /// The dead reckoning's mean velocity over the scan's revolution (surge m/s, sway m/s, yaw rate
+  /// rad/s; its motion from the first beam to the last over their time): how far the scan as a
+  /// whole moves when the sonar's clock is off.
   Eigen::Vector3d velocity_vehicle = Eigen::Vector3d::Zero();
 };
 

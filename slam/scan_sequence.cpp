@@ -30,10 +30,13 @@ PlacedScan build_scan(std::vector<BeamReadings>::const_iterator beams,
   placed.scan.beams = n;
   placed.scan.motion = odometry[centre].motion_since_key;
   placed.centre_world = odometry[centre].pose;
-  // The velocity at the centre: the dead-reckoning motion over the beams 5 either side (0.7 s at
-  // St. Pere's rate), over its time.
-  const std::size_t before = centre - std::min<std::size_t>(5, centre - begin);
-  const std::size_t after = std::min(centre + 5, begin + n - 1);
+  // The velocity the revolution moved at: the dead-reckoning motion from its first beam to its
+  // last, over its time. A clock offset moves every beam by tau times the velocity at its own
+  // time, so the scan as a whole moves by tau times their mean, not the centre's (in a turn that
+  // fills part of a revolution the two differ, and regressed on the centre's the offset came out
+  // about half of the truth on the marina loop).
+  const std::size_t before = begin;
+  const std::size_t after = begin + n - 1;
   const double span_s = odometry[after].t_s - odometry[before].t_s;
   if (span_s > 0.0) {
     placed.scan.velocity_vehicle =

@@ -51,8 +51,8 @@ Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
     // The scans show the frames at t + tau: z = (-)d_a (+) h (+) d_b, d_i = tau u_i, so
     // dz/dtau = J1 (J1' J- u_a) + J2 u_b and dz/dX = J1 J2' dh/dX.
     const double tau = calibration_(clock_row_);
-    const Eigen::Vector3d& u_a = velocities_[a];
-    const Eigen::Vector3d& u_b = velocities_[b];
+    const Eigen::Vector3d& u_a = velocities_.at(a);  // one per scan added (add_scan)
+    const Eigen::Vector3d& u_b = velocities_.at(b);
     Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
     const Pose2 back = Pose2(Eigen::Vector3d(tau * u_a)).inverse(H ? &J_inverse : nullptr);
     const Pose2 inner = back.compose(h, H ? &J1_inner : nullptr, H ? &J2_inner : nullptr);

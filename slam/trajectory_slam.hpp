@@ -60,7 +60,7 @@ struct CalibrationStatesConfig {
   double compass_deviation_sigma_deg = 3.0;      ///< the prior's standard deviation of each, deg
   /// The sonar clock's offset tau left after calibration.yaml's: the beams were sent tau later
   /// than their times say, so scan i shows the world from the vehicle at t_i + tau, its frame
-  /// moved by tau times the vehicle's velocity there; a match observes
+  /// moved by tau times the vehicle's velocity over the revolution, u_i; a match observes
   /// (-)(tau u_j) (+) h (+) (tau u_k).
   bool clock_offset = false;
   double clock_offset_prior_s = 0.0;

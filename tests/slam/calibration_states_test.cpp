@@ -34,6 +34,7 @@ class Open : public Filter {
   std::vector<Pose2>& state() { return this->elements_; }
   Eigen::VectorXd& parameters() { return this->calibration_; }
   Eigen::Vector2d& deviation_change() { return this->deviation_change_; }
+  std::vector<Eigen::Vector3d>& velocities() { return this->velocities_; }
 };
 
 TrajectorySlamConfig with_range_scale() {
@@ -204,6 +205,7 @@ TEST(CalibrationStates, ObservationJacobiansWithTheClockOffset) {
   expect_observation_jacobian(world, 1, 5);
   expect_observation_jacobian(world, 4, 7);
   expect_observation_jacobian(robot, 0, 7);
+  robot.velocities().push_back(loop.scans[8].velocity_vehicle);  // as add_scan does first
   robot.predict(loop.scans[8].motion);
   expect_observation_jacobian(robot, 3, 8);
 }
@@ -366,14 +368,14 @@ double mean_error_m(const TrajectorySlam& slam, const std::vector<Pose2>& truth)
   return sum / static_cast<double>(slam.scans());
 }
 
-TEST_P(BothFilters, RecoverTheRangeScaleOfScansThatSeeTheWorld4PercentSmall) {
+TEST(CalibrationStates, RecoverTheRangeScaleOfScansThatSeeTheWorld4PercentSmall) {
   // Ten loops (seeds 1-10): the estimate within two of its standard deviations of 0.96 in at
   // least 9, and the mean error below the filter's without the state in at least 9.
   int within = 0, better = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     const Loop loop = scaled(make_loop(seed, false), 0.96);
-    const auto estimating = make_filter(GetParam(), with_range_scale());
-    const auto ignoring = make_filter(GetParam(), TrajectorySlamConfig{});
+    const auto estimating = make_filter("robocentric", with_range_scale());
+    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
     const std::vector<CalibrationEstimate> c = estimating->calibration();
     ASSERT_EQ(c.size(), 1u);
@@ -383,23 +385,22 @@ TEST_P(BothFilters, RecoverTheRangeScaleOfScansThatSeeTheWorld4PercentSmall) {
     const double with_m = mean_error_m(*estimating, loop.truth);
     const double without_m = mean_error_m(*ignoring, loop.truth);
     better += with_m < without_m;
-    std::cout << GetParam() << " seed " << seed << ": range scale " << c[0].value << " +- "
-              << c[0].sigma << ", mean error " << with_m << " m (without the state " << without_m
-              << " m)\n";
+    std::cout << " seed " << seed << ": range scale " << c[0].value << " +- " << c[0].sigma
+              << ", mean error " << with_m << " m (without the state " << without_m << " m)\n";
   }
   EXPECT_GE(within, 9);
   EXPECT_GE(better, 9);
 }
 
-TEST_P(BothFilters, RecoverTheDvlScaleOfMotions3PercentLong) {
+TEST(CalibrationStates, RecoverTheDvlScaleOfMotions3PercentLong) {
   // As above, on five loops (seeds 1-5; the suite's time): the estimate within two standard
   // deviations of 1.03 in at least 4 (at a 95 % coverage, 5 of 5 or 4 of 5 in 98 % of sets), the
   // mean error below the filter's without the state in at least 4.
   int within = 0, better = 0;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const Loop loop = dvl_scaled(make_loop(seed, false), 1.03);
-    const auto estimating = make_filter(GetParam(), with_dvl_scale());
-    const auto ignoring = make_filter(GetParam(), TrajectorySlamConfig{});
+    const auto estimating = make_filter("robocentric", with_dvl_scale());
+    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
     const std::vector<CalibrationEstimate> c = estimating->calibration();
     ASSERT_EQ(c.size(), 1u);
@@ -409,26 +410,27 @@ TEST_P(BothFilters, RecoverTheDvlScaleOfMotions3PercentLong) {
     const double with_m = mean_error_m(*estimating, loop.truth);
     const double without_m = mean_error_m(*ignoring, loop.truth);
     better += with_m < without_m;
-    std::cout << GetParam() << " seed " << seed << ": DVL scale " << c[0].value << " +- "
-              << c[0].sigma << ", mean error " << with_m << " m (without the state " << without_m
-              << " m)\n";
+    std::cout << " seed " << seed << ": DVL scale " << c[0].value << " +- " << c[0].sigma
+              << ", mean error " << with_m << " m (without the state " << without_m << " m)\n";
   }
   EXPECT_GE(within, 4);
   EXPECT_GE(better, 4);
 }
 
-TEST_P(BothFilters, RecoverTheCompassDeviation) {
+TEST(CalibrationStates, RecoverTheCompassDeviation) {
   // The replica's injected deviation (a, b) = (0.62, -3.39) deg, a compass with 0.5 deg of
-  // noise, ten loops: of the 20 coefficients, at least 16 within two of their standard deviations
-  // (a consistent estimate has each there with probability 0.954, and 16 or more of 20 with
-  // probability 0.998), and the mean error below the filter's that takes the compass as
-  // calibrated in at least 9 loops. Measured: 17 of 20; over 30 loops (robocentric) 54 of 60, the
-  // normalised errors with means 0.39 and -0.12 and standard deviations 1.05 and 1.26.
+  // noise, five loops (robocentric; the filters' estimates agree, trajectory_slam_test; five for
+  // the sanitizer suite's time): of the 10 coefficients, at least 8 within two of their standard
+  // deviations (a consistent estimate has each there with probability 0.954, and 8 or more of 10
+  // with probability 0.99), and the mean error below the filter's that takes the compass as
+  // calibrated in at least 4 loops. Over 30 loops 54 of the 60 coefficients lie within two
+  // standard deviations, the normalised errors with means 0.39 and -0.12 and standard deviations
+  // 1.05 and 1.26.
   int within = 0, better = 0;
-  for (unsigned seed = 1; seed <= 10; ++seed) {
+  for (unsigned seed = 1; seed <= 5; ++seed) {
     const Loop loop = with_deviated_compass(make_loop(seed, false), 0.62, -3.39, seed, 0.5);
-    const auto estimating = make_filter(GetParam(), with_compass_deviation());
-    const auto ignoring = make_filter(GetParam(), TrajectorySlamConfig{});
+    const auto estimating = make_filter("robocentric", with_compass_deviation());
+    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
     const std::vector<CalibrationEstimate> c = estimating->calibration();
     ASSERT_EQ(c.size(), 2u);
@@ -441,23 +443,23 @@ TEST_P(BothFilters, RecoverTheCompassDeviation) {
     const double with_m = mean_error_m(*estimating, loop.truth);
     const double without_m = mean_error_m(*ignoring, loop.truth);
     better += with_m < without_m;
-    std::cout << GetParam() << " seed " << seed << ": deviation " << c[0].value << " +- "
-              << c[0].sigma << ", " << c[1].value << " +- " << c[1].sigma << " deg, mean error "
-              << with_m << " m (without the state " << without_m << " m)\n";
+    std::cout << " seed " << seed << ": deviation " << c[0].value << " +- " << c[0].sigma << ", "
+              << c[1].value << " +- " << c[1].sigma << " deg, mean error " << with_m
+              << " m (without the state " << without_m << " m)\n";
   }
-  EXPECT_GE(within, 16);
-  EXPECT_GE(better, 9);
+  EXPECT_GE(within, 8);
+  EXPECT_GE(better, 4);
 }
 
-TEST_P(BothFilters, RecoverTheSonarClockOffset) {
+TEST(CalibrationStates, RecoverTheSonarClockOffset) {
   // Scans seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the estimate within two
   // standard deviations of 0.1 s in at least 4 of 5 loops, the mean error below the filter's
   // without the state in at least 4.
   int within = 0, better = 0;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const Loop loop = with_clock_offset(seed, 0.1);
-    const auto estimating = make_filter(GetParam(), with_clock_offset());
-    const auto ignoring = make_filter(GetParam(), TrajectorySlamConfig{});
+    const auto estimating = make_filter("robocentric", with_clock_offset());
+    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
     const std::vector<CalibrationEstimate> c = estimating->calibration();
     ASSERT_EQ(c.size(), 1u);
@@ -467,9 +469,8 @@ TEST_P(BothFilters, RecoverTheSonarClockOffset) {
     const double with_m = mean_error_m(*estimating, loop.truth);
     const double without_m = mean_error_m(*ignoring, loop.truth);
     better += with_m < without_m;
-    std::cout << GetParam() << " seed " << seed << ": clock offset " << c[0].value << " +- "
-              << c[0].sigma << " s, mean error " << with_m << " m (without the state " << without_m
-              << " m)\n";
+    std::cout << " seed " << seed << ": clock offset " << c[0].value << " +- " << c[0].sigma
+              << " s, mean error " << with_m << " m (without the state " << without_m << " m)\n";
   }
   EXPECT_GE(within, 4);
   EXPECT_GE(better, 4);

@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
 #include <string>
@@ -368,53 +369,66 @@ double mean_error_m(const TrajectorySlam& slam, const std::vector<Pose2>& truth)
   return sum / static_cast<double>(slam.scans());
 }
 
-TEST(CalibrationStates, RecoverTheRangeScaleOfScansThatSeeTheWorld4PercentSmall) {
-  // Ten loops (seeds 1-10): the estimate within two of its standard deviations of 0.96 in at
-  // least 9, and the mean error below the filter's without the state in at least 9.
-  int within = 0, better = 0;
-  for (unsigned seed = 1; seed <= 10; ++seed) {
-    const Loop loop = scaled(make_loop(seed, false), 0.96);
-    const auto estimating = make_filter("robocentric", with_range_scale());
+/// A calibration parameter a recovery test expects: its name, its true value and the largest
+/// standard deviation its estimate may keep (the loop informs it).
+struct Expected {
+  std::string name;
+  double value = 0.0;
+  double max_sigma = 0.0;
+};
+
+struct Recovery {
+  int within = 0;  ///< estimates within two of their standard deviations of the truth
+  int better = 0;  ///< loops whose mean error the state lowered
+};
+
+/// The robocentric filter with `config` and without any state over loop_of(seed), seeds
+/// 1..seeds: the estimates (named and ordered as `expected`, each informed below its max_sigma)
+/// within two standard deviations of the truth, and the loops the state made better.
+Recovery recover(unsigned seeds, const std::function<Loop(unsigned)>& loop_of,
+                 const TrajectorySlamConfig& config, const std::vector<Expected>& expected) {
+  Recovery r;
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
+    const Loop loop = loop_of(seed);
+    const auto estimating = make_filter("robocentric", config);
     const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
     const std::vector<CalibrationEstimate> c = estimating->calibration();
-    ASSERT_EQ(c.size(), 1u);
-    EXPECT_EQ(c[0].name, "range_scale");
-    EXPECT_LT(c[0].sigma, 0.02) << "seed " << seed << ": the matches inform it";
-    within += std::abs(c[0].value - 0.96) < 2.0 * c[0].sigma;
+    EXPECT_EQ(c.size(), expected.size());
+    if (c.size() != expected.size()) return r;
+    std::cout << "seed " << seed << ":";
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      EXPECT_EQ(c[i].name, expected[i].name);
+      EXPECT_LT(c[i].sigma, expected[i].max_sigma) << "seed " << seed << ": " << c[i].name;
+      r.within += std::abs(c[i].value - expected[i].value) < 2.0 * c[i].sigma;
+      std::cout << " " << c[i].name << " " << c[i].value << " +- " << c[i].sigma;
+    }
     const double with_m = mean_error_m(*estimating, loop.truth);
     const double without_m = mean_error_m(*ignoring, loop.truth);
-    better += with_m < without_m;
-    std::cout << " seed " << seed << ": range scale " << c[0].value << " +- " << c[0].sigma
-              << ", mean error " << with_m << " m (without the state " << without_m << " m)\n";
+    r.better += with_m < without_m;
+    std::cout << ", mean error " << with_m << " m (without the state " << without_m << " m)\n";
   }
-  EXPECT_GE(within, 9);
-  EXPECT_GE(better, 9);
+  return r;
+}
+
+TEST(CalibrationStates, RecoverTheRangeScaleOfScansThatSeeTheWorld4PercentSmall) {
+  // Ten loops (seeds 1-10): the estimate within two of its standard deviations of 0.96 in at
+  // least 9, and the mean error below the filter's without the state in at least 9.
+  const Recovery r = recover(10, [](unsigned seed) { return scaled(make_loop(seed, false), 0.96); },
+                             with_range_scale(), {{"range_scale", 0.96, 0.02}});
+  EXPECT_GE(r.within, 9);
+  EXPECT_GE(r.better, 9);
 }
 
 TEST(CalibrationStates, RecoverTheDvlScaleOfMotions3PercentLong) {
   // As above, on five loops (seeds 1-5; the suite's time): the estimate within two standard
   // deviations of 1.03 in at least 4 (at a 95 % coverage, 5 of 5 or 4 of 5 in 98 % of sets), the
   // mean error below the filter's without the state in at least 4.
-  int within = 0, better = 0;
-  for (unsigned seed = 1; seed <= 5; ++seed) {
-    const Loop loop = dvl_scaled(make_loop(seed, false), 1.03);
-    const auto estimating = make_filter("robocentric", with_dvl_scale());
-    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
-    for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
-    const std::vector<CalibrationEstimate> c = estimating->calibration();
-    ASSERT_EQ(c.size(), 1u);
-    EXPECT_EQ(c[0].name, "dvl_scale");
-    EXPECT_LT(c[0].sigma, 0.015) << "seed " << seed << ": the matches inform it";
-    within += std::abs(c[0].value - 1.03) < 2.0 * c[0].sigma;
-    const double with_m = mean_error_m(*estimating, loop.truth);
-    const double without_m = mean_error_m(*ignoring, loop.truth);
-    better += with_m < without_m;
-    std::cout << " seed " << seed << ": DVL scale " << c[0].value << " +- " << c[0].sigma
-              << ", mean error " << with_m << " m (without the state " << without_m << " m)\n";
-  }
-  EXPECT_GE(within, 4);
-  EXPECT_GE(better, 4);
+  const Recovery r =
+      recover(5, [](unsigned seed) { return dvl_scaled(make_loop(seed, false), 1.03); },
+              with_dvl_scale(), {{"dvl_scale", 1.03, 0.015}});
+  EXPECT_GE(r.within, 4);
+  EXPECT_GE(r.better, 4);
 }
 
 TEST(CalibrationStates, RecoverTheCompassDeviation) {
@@ -426,54 +440,25 @@ TEST(CalibrationStates, RecoverTheCompassDeviation) {
   // calibrated in at least 4 loops. Over 30 loops 54 of the 60 coefficients lie within two
   // standard deviations, the normalised errors with means 0.39 and -0.12 and standard deviations
   // 1.05 and 1.26.
-  int within = 0, better = 0;
-  for (unsigned seed = 1; seed <= 5; ++seed) {
-    const Loop loop = with_deviated_compass(make_loop(seed, false), 0.62, -3.39, seed, 0.5);
-    const auto estimating = make_filter("robocentric", with_compass_deviation());
-    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
-    for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
-    const std::vector<CalibrationEstimate> c = estimating->calibration();
-    ASSERT_EQ(c.size(), 2u);
-    EXPECT_EQ(c[0].name, "compass_deviation_cos_deg");
-    EXPECT_EQ(c[1].name, "compass_deviation_sin_deg");
-    EXPECT_LT(c[0].sigma, 0.5) << "seed " << seed << ": the turns inform it";
-    EXPECT_LT(c[1].sigma, 0.5) << "seed " << seed << ": the turns inform it";
-    within += (std::abs(c[0].value - 0.62) < 2.0 * c[0].sigma) +
-              (std::abs(c[1].value + 3.39) < 2.0 * c[1].sigma);
-    const double with_m = mean_error_m(*estimating, loop.truth);
-    const double without_m = mean_error_m(*ignoring, loop.truth);
-    better += with_m < without_m;
-    std::cout << " seed " << seed << ": deviation " << c[0].value << " +- " << c[0].sigma << ", "
-              << c[1].value << " +- " << c[1].sigma << " deg, mean error " << with_m
-              << " m (without the state " << without_m << " m)\n";
-  }
-  EXPECT_GE(within, 8);
-  EXPECT_GE(better, 4);
+  const Recovery r = recover(
+      5,
+      [](unsigned seed) {
+        return with_deviated_compass(make_loop(seed, false), 0.62, -3.39, seed, 0.5);
+      },
+      with_compass_deviation(),
+      {{"compass_deviation_cos_deg", 0.62, 0.5}, {"compass_deviation_sin_deg", -3.39, 0.5}});
+  EXPECT_GE(r.within, 8);
+  EXPECT_GE(r.better, 4);
 }
 
 TEST(CalibrationStates, RecoverTheSonarClockOffset) {
   // Scans seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the estimate within two
   // standard deviations of 0.1 s in at least 4 of 5 loops, the mean error below the filter's
   // without the state in at least 4.
-  int within = 0, better = 0;
-  for (unsigned seed = 1; seed <= 5; ++seed) {
-    const Loop loop = with_clock_offset(seed, 0.1);
-    const auto estimating = make_filter("robocentric", with_clock_offset());
-    const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
-    for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
-    const std::vector<CalibrationEstimate> c = estimating->calibration();
-    ASSERT_EQ(c.size(), 1u);
-    EXPECT_EQ(c[0].name, "clock_offset_s");
-    EXPECT_LT(c[0].sigma, 0.05) << "seed " << seed << ": the turns inform it";
-    within += std::abs(c[0].value - 0.1) < 2.0 * c[0].sigma;
-    const double with_m = mean_error_m(*estimating, loop.truth);
-    const double without_m = mean_error_m(*ignoring, loop.truth);
-    better += with_m < without_m;
-    std::cout << " seed " << seed << ": clock offset " << c[0].value << " +- " << c[0].sigma
-              << " s, mean error " << with_m << " m (without the state " << without_m << " m)\n";
-  }
-  EXPECT_GE(within, 4);
-  EXPECT_GE(better, 4);
+  const Recovery r = recover(5, [](unsigned seed) { return with_clock_offset(seed, 0.1); },
+                             with_clock_offset(), {{"clock_offset_s", 0.1, 0.05}});
+  EXPECT_GE(r.within, 4);
+  EXPECT_GE(r.better, 4);
 }
 
 TEST_P(BothFilters, SwitchedOffTheStateLeavesNoParameterAndNoEstimate) {

@@ -163,6 +163,10 @@ void read_validation(YamlMap map, MatchValidationConfig& c) {
   if (!(c.ambiguity_probability > 0.0 && c.ambiguity_probability < 1.0)) {
     map.fail("ambiguity_probability", "must be in (0, 1)");
   }
+  map.number("ambiguity_min_fraction", c.ambiguity_min_fraction);
+  if (!(c.ambiguity_min_fraction >= 0.0 && c.ambiguity_min_fraction < 1.0)) {
+    map.fail("ambiguity_min_fraction", "must be in [0, 1)");
+  }
   map.number("min_overlap", c.min_overlap);
   if (!(c.min_overlap >= 0.0 && c.min_overlap <= 1.0)) map.fail("min_overlap", "must be in [0, 1]");
   map.boolean("initial_guess_term", c.initial_guess_term);

@@ -60,8 +60,21 @@ ComparisonFrame comparison_frame(const std::vector<ScanPoint>& reference, const 
 /// frame some restart slid away from it.
 struct RestartEnds {
   std::vector<Eigen::Vector3d> ends;  ///< each valid restart's end against q, in the frame
+  /// Per end: the RMS distance between the current points placed by the end and by q, over d.
+  std::vector<double> remaining_fraction;
   bool slid[2] = {false, false};
 };
+
+/// The RMS distance (m) between the current scan's points placed in the reference frame by a and
+/// by b.
+double rms_point_distance_m(const std::vector<ScanPoint>& current, const Pose2& a, const Pose2& b) {
+  if (current.empty()) return 0.0;
+  const Eigen::Matrix2d dR = a.rotation() - b.rotation();
+  const Eigen::Vector2d dt = a.translation() - b.translation();
+  double sum_m2 = 0.0;
+  for (const ScanPoint& point : current) sum_m2 += (dR * point.p_m + dt).squaredNorm();
+  return std::sqrt(sum_m2 / static_cast<double>(current.size()));
+}
 
 /// Restarts spIC from q moved along the frame's tested axes, C being q's covariance in the
 /// frame; counts them in `restarts`.
@@ -87,18 +100,23 @@ RestartEnds restart_ends(const std::vector<ScanPoint>& reference,
       const Eigen::Vector3d d = frame.rows * pose_difference(restart.estimate.mean, q.mean);
       if (std::abs(d(axis)) > validation.max_kept_fraction * offset_m) out.slid[axis] = true;
       out.ends.push_back(d);
+      out.remaining_fraction.push_back(
+          rms_point_distance_m(current, restart.estimate.mean, q.mean) / offset_m);
     }
   }
   return out;
 }
 
 /// Whether every restart ends where the solution is in the kept directions: within the gate of
-/// the solution's covariance there (C_kept, factored).
+/// the solution's covariance there (C_kept, factored), or with the scan brought back to within
+/// min_fraction of the offset (the same minimum, reached from another start).
 bool restarts_agree(const RestartEnds& restarts, const std::vector<Eigen::Index>& kept,
-                    const Eigen::LDLT<Eigen::MatrixXd>& C_kept, double gate) {
-  for (const Eigen::Vector3d& end : restarts.ends) {
-    const Eigen::VectorXd d = end(kept);
-    if (d.dot(C_kept.solve(d)) > gate) return false;
+                    const Eigen::LDLT<Eigen::MatrixXd>& C_kept, double gate, double min_fraction) {
+  for (std::size_t i = 0; i < restarts.ends.size(); ++i) {
+    const Eigen::VectorXd d = restarts.ends[i](kept);
+    if (d.dot(C_kept.solve(d)) > gate && restarts.remaining_fraction[i] > min_fraction) {
+      return false;
+    }
   }
   return true;
 }
@@ -124,7 +142,7 @@ bool passes_restarts(const std::vector<ScanPoint>& reference, const std::vector<
   const double gate =
       chi2_quantile(validation.ambiguity_probability, static_cast<double>(kept.size()));
   const Eigen::LDLT<Eigen::MatrixXd> C_kept(C(kept, kept));
-  if (!restarts_agree(restarts, kept, C_kept, gate)) {
+  if (!restarts_agree(restarts, kept, C_kept, gate, validation.ambiguity_min_fraction)) {
     out.rejection = MatchRejection::kAmbiguous;
     return false;
   }

@@ -16,7 +16,8 @@
 //     the corridor and the heading): a reduced measurement A z, A R A^T, with A (2 x 3) of
 //     orthonormal rows;
 //   - a restart that ends elsewhere in the directions kept (beyond the match's covariance at the
-//     chi-square probability configured) shows the minimum is not unique: the match is rejected.
+//     chi-square probability configured, and with the scan's points still a good part of the
+//     offset away) shows the minimum is not unique: the match is rejected.
 #pragma once
 
 #include <Eigen/Core>
@@ -41,6 +42,14 @@ struct MatchValidationConfig {
   /// A restart that ends away from the solution in the directions found observed, beyond this
   /// chi-square probability: the minimum is not unique and the match is rejected.
   double ambiguity_probability = 0.99;
+  /// ...and whose scan stays further from the solution than this fraction of d: the RMS distance
+  /// between the current scan's points placed by the restart's end and by the solution, over d
+  /// (every point began d away). A restart that brings the points back most of the way returned
+  /// to the same minimum; what is left is spIC's dependence on its start, which its covariance
+  /// does not count and which is small against the match's covariance only where that is metres
+  /// wide (docs/trajectory_slam.md, "Match validation at any scale"). 0: every end beyond the
+  /// chi-square bound counts.
+  double ambiguity_min_fraction = 0.25;
   /// Associations over the smaller scan's point count; below it the match is rejected (0: off).
   double min_overlap = 0.0;
   /// The covariance adds the initial-guess term (Brossard, Bonnabel and Barrau, "A New Approach

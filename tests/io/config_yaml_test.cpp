@@ -282,6 +282,20 @@ TEST(SlamConfigYaml, InitialGuessTermKey) {
                          "trajectory_slam.validation.initial_guess_term");
 }
 
+TEST(SlamConfigYaml, AmbiguityMinFractionKey) {
+  const TempDir dir;
+  const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
+  EXPECT_EQ(defaults.trajectory_slam.validation.ambiguity_min_fraction, 0.25);
+  const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
+                                                   "trajectory_slam:\n"
+                                                   "  validation: {ambiguity_min_fraction: 0}\n"));
+  EXPECT_EQ(c.trajectory_slam.validation.ambiguity_min_fraction, 0.0);
+  expect_bad_slam_config("trajectory_slam:\n  validation: {ambiguity_min_fraction: 1}\n", 2,
+                         "trajectory_slam.validation.ambiguity_min_fraction");
+  expect_bad_slam_config("trajectory_slam:\n  validation: {ambiguity_min_fraction: -0.1}\n", 2,
+                         "trajectory_slam.validation.ambiguity_min_fraction");
+}
+
 TEST(SlamConfigYaml, CalibrationStateKeys) {
   const TempDir dir;
   const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));

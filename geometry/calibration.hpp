@@ -16,11 +16,14 @@ struct MruMount {
   double deviation_sin_deg = 0.0;  ///< b, deg
 };
 
-/// DVL: bottom velocity in the vehicle frame = Rz(yaw) [vx, vy]_dvl, measured at [x, y].
+/// DVL: bottom velocity in the vehicle frame = Rz(yaw) [vx, vy]_dvl / scale_factor, measured at
+/// [x, y].
 struct DvlMount {
   double yaw_deg = 293.5;  ///< rotation from the DVL frame to the vehicle frame, deg
   double x_m = 0.0;        ///< lever arm, vehicle frame, m
   double y_m = 0.0;        ///< lever arm, vehicle frame, m
+  /// The DVL reports this many times the true velocity; the pipeline divides by it.
+  double scale_factor = 1.0;
 };
 
 /// Sonar head: bearing in the vehicle frame = bearing_offset + bearing_sign x transducer angle.
@@ -34,6 +37,9 @@ struct SonarMount {
   /// the beams' yaw, as scan matching sees it between consecutive scans, lags the MTi's by this
   /// much (estimated from the sensors alone, docs/simulator.md "Sonar clock offset").
   double time_offset_s = 0.66;
+  /// The sonar reports ranges this many times the true ones (its sound speed over the water's);
+  /// the pipeline divides every range by it.
+  double range_scale = 1.0;
 };
 
 /// The local world frame: x East, y North in metres of UTM (zone from the origin's longitude),

@@ -24,11 +24,21 @@ void read_calibration_sections(YamlMap& root, Calibration& c) {
     mru.fail("deviation_cos_deg", "the deviation's amplitude must be under 45 deg");
   }
   mru.finish();
+  // The scale factors are calibration, not mount: a scenario sets its sensors' own (the DVL's
+  // scale_factor, the sonar's sound speeds).
   YamlMap dvl = root.map("dvl");
   read_dvl_mount(dvl, c.dvl);
+  dvl.number("scale_factor", c.dvl.scale_factor);
+  if (!(c.dvl.scale_factor >= 0.5 && c.dvl.scale_factor <= 2.0)) {
+    dvl.fail("scale_factor", "must be in [0.5, 2]");
+  }
   dvl.finish();
   YamlMap sonar = root.map("sonar");
   read_sonar_mount(sonar, c.sonar);
+  sonar.number("range_scale", c.sonar.range_scale);
+  if (!(c.sonar.range_scale >= 0.5 && c.sonar.range_scale <= 2.0)) {
+    sonar.fail("range_scale", "must be in [0.5, 2]");
+  }
   sonar.finish();
   YamlMap frame = root.map("frame");
   read_local_frame(frame, c.frame);
@@ -52,11 +62,12 @@ std::string calibration_yaml(const Calibration& c) {
       << "\n  deviation_cos_deg: " << c.mru.deviation_cos_deg
       << "\n  deviation_sin_deg: " << c.mru.deviation_sin_deg << "\n"
       << "dvl:\n  yaw_deg: " << c.dvl.yaw_deg << "\n  x_m: " << c.dvl.x_m
-      << "\n  y_m: " << c.dvl.y_m << "\n"
+      << "\n  y_m: " << c.dvl.y_m << "\n  scale_factor: " << c.dvl.scale_factor << "\n"
       << "sonar:\n  x_m: " << c.sonar.x_m << "\n  y_m: " << c.sonar.y_m
       << "\n  bearing_offset_deg: " << c.sonar.bearing_offset_rad / kDegToRad
       << "\n  bearing_sign: " << c.sonar.bearing_sign << "\n  z_m: " << c.sonar.z_m
-      << "\n  time_offset_s: " << c.sonar.time_offset_s << "\n"
+      << "\n  time_offset_s: " << c.sonar.time_offset_s
+      << "\n  range_scale: " << c.sonar.range_scale << "\n"
       << "frame:\n  origin_latitude_deg: " << c.frame.origin_latitude_deg
       << "\n  origin_longitude_deg: " << c.frame.origin_longitude_deg << "\n";
   return out.str();

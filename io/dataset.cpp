@@ -104,7 +104,7 @@ NavigationLog navigation_of(const std::vector<DvlRecord>& dvl, const std::vector
       continue;
     }
     const Eigen::Vector2d v_dvl_mps(row.bottom_vel_cm_s[0] / 100.0, row.bottom_vel_cm_s[1] / 100.0);
-    log.dvl.push_back({row.t_log_s, R_vehicle_from_dvl * v_dvl_mps});
+    log.dvl.push_back({row.t_log_s, R_vehicle_from_dvl * v_dvl_mps / calibration.dvl.scale_factor});
   }
   for (const MtiRecord& row : mti) {
     log.heading.push_back({row.t_log_s, vehicle_yaw_from_mru(row.yaw_deg, calibration.mru)});

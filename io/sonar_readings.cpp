@@ -10,11 +10,14 @@ namespace msislab::io {
 
 namespace {
 
+/// The beam's readings, each range divided by the mount's range scale (calibration.yaml).
 std::vector<SonarReading> readings_of(double t_s, const std::vector<double>& ranges_m,
-                                      double bearing_rad, const SegmentationConfig& config) {
+                                      double bearing_rad, const SonarMount& mount,
+                                      const SegmentationConfig& config) {
   std::vector<SonarReading> readings;
   for (const double range_m : ranges_m) {
-    readings.push_back({t_s, range_m, bearing_rad, config.sigma_range_m, config.sigma_bearing_rad});
+    readings.push_back({t_s, range_m / mount.range_scale, bearing_rad, config.sigma_range_m,
+                        config.sigma_bearing_rad});
   }
   return readings;
 }
@@ -27,8 +30,8 @@ SonarInput from_is_log(const std::vector<SonarBeamRecord>& beams, const SonarSet
     const double bearing = sonar_bearing_in_vehicle(beam.transducer_angle_rad, mount);
     const double t_s = beam.t_log_s + mount.time_offset_s;  // on the navigation clock
     input.beams.push_back(
-        {t_s,
-         readings_of(t_s, segment_profile(beam.intensity, setup.bin_m, config), bearing, config)});
+        {t_s, readings_of(t_s, segment_profile(beam.intensity, setup.bin_m, config), bearing, mount,
+                          config)});
   }
   return input;
 }
@@ -69,7 +72,7 @@ SonarInput readings_from_detections(const DatasetFiles& files,
     }
     BeamReadings& beam = input.beams[static_cast<std::size_t>(first.beam_row)];
     beam.readings = readings_of(beam.t_s, segment_detections(ranges_m, setup.bin_m, config),
-                                sonar_bearing_in_vehicle(first.angle_rad, mount), config);
+                                sonar_bearing_in_vehicle(first.angle_rad, mount), mount, config);
   }
   input.beams_per_revolution = steps_per_revolution(setup);
   return input;

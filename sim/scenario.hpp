@@ -78,7 +78,8 @@ struct SonarConfig {
   /// The sound speed the sonar converts echo time to range with, m/s.
   double sound_speed_mps = 1500.0;
   /// The sound speed in the water, m/s (absent: sound_speed_mps). The sonar reports a surface at
-  /// range r as r sound_speed_mps / water_sound_speed_mps: a range scale its user must find.
+  /// range r as r sound_speed_mps / water_sound_speed_mps: a range scale, which the dataset's
+  /// calibration.yaml states (sonar.range_scale) unless stated_calibration hides it.
   std::optional<double> water_sound_speed_mps;
   double absorption_db_per_m = 0.0354;  ///< one-way, ~700 kHz in sea water (DAVE's value)
   double gain_db = 36.2;                ///< receiver gain added to the level
@@ -158,12 +159,12 @@ struct Scenario {
   std::vector<TimeSegment> segments;
   /// What the dataset's calibration.yaml states, where it is not what the sensors do (the
   /// scenario's `stated_calibration`): an error left for the estimators to find. Absent: the
-  /// file states the sensors' own mounts, deviation and clock offset.
+  /// file states the sensors' own mounts, deviation, clock offset and scale factors.
   std::optional<Calibration> stated_calibration;
 };
 
-/// The calibration the sensors of this scenario have (their mounts, deviation, clock offset and
-/// frame): what a perfect calibration would state.
+/// The calibration the sensors of this scenario have (their mounts, deviation, clock offset, DVL
+/// scale factor, sonar range scale and frame): what a perfect calibration would state.
 Calibration true_calibration(const Scenario& scenario);
 
 /// The calibration a dataset from this scenario carries: stated_calibration when the scenario

@@ -18,7 +18,12 @@ Calibration true_calibration(const Scenario& scenario) {
   calibration.mru.deviation_cos_deg = scenario.mru.deviation_cos_deg;
   calibration.mru.deviation_sin_deg = scenario.mru.deviation_sin_deg;
   calibration.dvl = scenario.dvl.mount;
+  calibration.dvl.scale_factor = scenario.dvl.scale_factor;
   calibration.sonar = scenario.sonar.mount;
+  // Ranges come out sound_speed / water_sound_speed times the true ones.
+  calibration.sonar.range_scale =
+      scenario.sonar.sound_speed_mps /
+      scenario.sonar.water_sound_speed_mps.value_or(scenario.sonar.sound_speed_mps);
   calibration.frame = scenario.gps.frame;
   return calibration;
 }

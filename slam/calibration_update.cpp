@@ -14,6 +14,10 @@ std::optional<Calibration> calibration_with_estimates(
       c.mru.deviation_sin_deg += e.value;
     } else if (e.name == "clock_offset_s") {
       c.sonar.time_offset_s += e.value;
+    } else if (e.name == "range_scale") {
+      c.sonar.range_scale *= e.value;  // the states estimate the scale left: the two multiply
+    } else if (e.name == "dvl_scale") {
+      c.dvl.scale_factor *= e.value;
     } else {
       continue;
     }

@@ -4,8 +4,9 @@
 # seeds 42..), robocentric SLAM read through the detections with config/stpere_replica.yaml plus
 # the state that estimates the error. Cases: the sonar's range scale 0.96 and 1.03 (a water sound
 # speed of 1500 / 0.96 and 1500 / 1.03 m/s against the sonar's 1500), the DVL's scale factor 1.01,
-# the sonar clock's 0.66 s offset and the compass deviation (a, b) = (0.62, -3.39) deg, the last
-# two left out of the dataset's calibration.yaml (stated_calibration). Prints a Markdown table, a row per estimated value: the runs whose
+# the sonar clock's 0.66 s offset and the compass deviation (a, b) = (0.62, -3.39) deg, each left
+# out of the dataset's calibration.yaml (stated_calibration). Prints a Markdown table, a row per
+# estimated value: the runs whose
 # estimate lies within two of its standard deviations of the injected value, the estimates' range
 # and mean, their mean standard deviation, the mean error, ANEES and the steps in bounds of the
 # Monte Carlo NEES test. Writes under out/calibration_recovery/.
@@ -36,9 +37,9 @@ touch "$out/.calibration_recovery"
 
 # CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)
 cases=(
-  "range_scale_0.96 range_scale range_scale=0.96 sonar.water_sound_speed_mps=1562.5"
-  "range_scale_1.03 range_scale range_scale=1.03 sonar.water_sound_speed_mps=1456.3106796116506"
-  "dvl_scale_1.01 dvl_scale dvl_scale=1.01 dvl.scale_factor=1.01"
+  "range_scale_0.96 range_scale range_scale=0.96 sonar.water_sound_speed_mps=1562.5,stated_calibration.sonar.range_scale=1"
+  "range_scale_1.03 range_scale range_scale=1.03 sonar.water_sound_speed_mps=1456.3106796116506,stated_calibration.sonar.range_scale=1"
+  "dvl_scale_1.01 dvl_scale dvl_scale=1.01 dvl.scale_factor=1.01,stated_calibration.dvl.scale_factor=1"
   "clock_offset clock_offset clock_offset_s=0.66 stated_calibration.sonar.time_offset_s=0"
   "deviation compass_deviation compass_deviation_cos_deg=0.62,compass_deviation_sin_deg=-3.39 mru.deviation_cos_deg=0.62,mru.deviation_sin_deg=-3.39,stated_calibration.mru.deviation_cos_deg=0,stated_calibration.mru.deviation_sin_deg=0"
 )

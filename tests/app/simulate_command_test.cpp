@@ -448,8 +448,8 @@ TEST(SimulateCommand, SonarStopsAtStopSAndNavigationRunsOn) {
 TEST(SimulateCommand, StatedCalibrationIsWrittenWhileTheSensorsKeepTheirOwn) {
   // stated_calibration: calibration.yaml says the sonar's clock has no offset and the compass no
   // deviation, while the sonar still logs 0.66 s behind and the MRU deviates (errors left for
-  // the estimators). The DVL's scale factor and the water's sound speed are not calibration:
-  // they change the logs, not calibration.yaml.
+  // the estimators). The DVL's scale factor and the water's sound speed change the logs, and
+  // calibration.yaml states them (dvl.scale_factor, sonar.range_scale) as no key hides them.
   const BoxDataset& box = box_dataset();
   const TempDir tmp;
   const std::string scenario =
@@ -466,7 +466,11 @@ TEST(SimulateCommand, StatedCalibrationIsWrittenWhileTheSensorsKeepTheirOwn) {
   EXPECT_EQ(c.sonar.time_offset_s, 0.0);
   EXPECT_EQ(c.mru.deviation_cos_deg, 0.0);
   EXPECT_EQ(c.mru.deviation_sin_deg, 0.0);
+  EXPECT_EQ(c.dvl.scale_factor, 1.01);
+  EXPECT_EQ(c.sonar.range_scale, 1500.0 / 1440.0);
   const Calibration plain = io::read_calibration((box.dir / "calibration.yaml").string());
+  EXPECT_EQ(plain.dvl.scale_factor, 1.0);
+  EXPECT_EQ(plain.sonar.range_scale, 1.0);
   EXPECT_EQ(c.mru.yaw_offset_deg, plain.mru.yaw_offset_deg);
   EXPECT_EQ(c.dvl.yaw_deg, plain.dvl.yaw_deg);
   // The log still runs the true 0.66 s behind the truth's beam times.
@@ -585,6 +589,18 @@ TEST(SimulateCommand, DetectionsAreTheDetectorOnEveryProfileInTheRealLayout) {
   std::size_t with_readings = 0;
   for (const BeamReadings& b : sonar.beams) with_readings += !b.readings.empty();
   EXPECT_EQ(with_readings, detected_beams);
+  // A range scale in the calibration divides every reading's range.
+  Calibration scaled = calibration;
+  scaled.sonar.range_scale = 1.25;
+  const io::SonarInput shorter = io::load_sonar_readings(files, scaled, config.segmentation);
+  ASSERT_EQ(shorter.beams.size(), sonar.beams.size());
+  for (std::size_t i = 0; i < sonar.beams.size(); ++i) {
+    ASSERT_EQ(shorter.beams[i].readings.size(), sonar.beams[i].readings.size());
+    for (std::size_t k = 0; k < sonar.beams[i].readings.size(); ++k) {
+      ASSERT_NEAR(shorter.beams[i].readings[k].range_m * 1.25, sonar.beams[i].readings[k].range_m,
+                  1e-12);
+    }
+  }
   config.segmentation.source = SonarSource::kRaw;
   EXPECT_EQ(io::load_sonar_readings(files, calibration, config.segmentation).source, "IS log");
 }

@@ -111,6 +111,8 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   c.sonar.bearing_offset_rad = 2.9876543210987654;
   c.sonar.bearing_sign = 1.0;
   c.sonar.time_offset_s = -0.12345678901234567;
+  c.sonar.range_scale = 1500.0 / 1440.0;
+  c.dvl.scale_factor = 1.01;
   c.frame.origin_latitude_deg = -12.345678901234567;
   c.frame.origin_longitude_deg = 179.99999999999997;
   const std::string path = dir.file("calibration.yaml");
@@ -128,6 +130,8 @@ TEST(CalibrationYaml, WriteReadRoundTrip) {
   EXPECT_NEAR(back.sonar.bearing_offset_rad, c.sonar.bearing_offset_rad, kAngleTolerance_rad);
   EXPECT_EQ(back.sonar.bearing_sign, c.sonar.bearing_sign);
   EXPECT_EQ(back.sonar.time_offset_s, c.sonar.time_offset_s);
+  EXPECT_EQ(back.sonar.range_scale, c.sonar.range_scale);
+  EXPECT_EQ(back.dvl.scale_factor, c.dvl.scale_factor);
   EXPECT_EQ(back.frame.origin_latitude_deg, c.frame.origin_latitude_deg);
   EXPECT_EQ(back.frame.origin_longitude_deg, c.frame.origin_longitude_deg);
   // What a dataset held in memory carries is what the file gives back, to the bit.
@@ -177,6 +181,9 @@ TEST(CalibrationYaml, BadValues) {
   expect_bad_calibration("frame:\n  origin_latitude_deg: 95\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_latitude_deg: -84.5\n", 2, "frame.origin_latitude_deg");
   expect_bad_calibration("frame:\n  origin_longitude_deg: 181\n", 2, "frame.origin_longitude_deg");
+  expect_bad_calibration("dvl:\n  scale_factor: 0\n", 2, "dvl.scale_factor");
+  expect_bad_calibration("dvl:\n  scale_factor: .nan\n", 2, "dvl.scale_factor");
+  expect_bad_calibration("sonar:\n  range_scale: 2.5\n", 2, "sonar.range_scale");
 }
 
 TEST(CalibrationYaml, MalformedSyntaxNamesFileAndLine) {

@@ -216,6 +216,21 @@ TEST(LoadNavigation, DropsRowsWithoutBottomLockAndAppliesTheMounts) {
   EXPECT_EQ(log.heading[3].t_s, 100.3);
 }
 
+// The DVL's scale factor (calibration.yaml dvl.scale_factor): it reads that many times the true
+// velocity, so every velocity is divided by it.
+TEST(LoadNavigation, DividesTheVelocitiesByTheDvlScaleFactor) {
+  const TempDir dir;
+  write_dvl_log(dir.file("n_DVL.log"), {dvl_row(10.0, 30.0, -12.0, 1.0)});
+  write_mti_log(dir.file("n_MTi.log"), {mti_row(10.0, 0.0)});
+  const DatasetFiles files = find_dataset_files(dir.path().string());
+  Calibration calibration = load_calibration(files);
+  const NavigationLog plain = load_navigation(files, calibration);
+  calibration.dvl.scale_factor = 1.25;
+  const NavigationLog scaled = load_navigation(files, calibration);
+  ASSERT_EQ(scaled.dvl.size(), 1u);
+  EXPECT_NEAR((scaled.dvl[0].v_vehicle_mps * 1.25 - plain.dvl[0].v_vehicle_mps).norm(), 0.0, 1e-15);
+}
+
 TEST(LoadNavigation, UsesTheCalibrationFile) {
   const TempDir dir;
   write_dvl_log(dir.file("n_DVL.log"), {dvl_row(10.0, 30.0, 0.0, 1.0)});

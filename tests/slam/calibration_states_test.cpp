@@ -338,8 +338,11 @@ TEST(CalibrationStates, EstimatesAddToTheStatedCalibration) {
   Calibration stated;
   stated.mru.deviation_cos_deg = 0.5;
   stated.sonar.time_offset_s = 0.6;
+  stated.sonar.range_scale = 1.02;
+  stated.dvl.scale_factor = 0.99;
   const std::optional<Calibration> next =
       calibration_with_estimates(stated, {{"range_scale", 0.97, 0.01},
+                                          {"dvl_scale", 1.02, 0.01},
                                           {"clock_offset_s", 0.05, 0.01},
                                           {"compass_deviation_cos_deg", 0.12, 0.1},
                                           {"compass_deviation_sin_deg", -3.4, 0.1}});
@@ -347,9 +350,12 @@ TEST(CalibrationStates, EstimatesAddToTheStatedCalibration) {
   EXPECT_DOUBLE_EQ(next->mru.deviation_cos_deg, 0.62);
   EXPECT_DOUBLE_EQ(next->mru.deviation_sin_deg, -3.4);
   EXPECT_DOUBLE_EQ(next->sonar.time_offset_s, 0.65);
+  // The scales estimate what is left after the stated ones: the two multiply.
+  EXPECT_DOUBLE_EQ(next->sonar.range_scale, 1.02 * 0.97);
+  EXPECT_DOUBLE_EQ(next->dvl.scale_factor, 0.99 * 1.02);
   EXPECT_EQ(next->mru.yaw_offset_deg, stated.mru.yaw_offset_deg);
   EXPECT_EQ(next->dvl.yaw_deg, stated.dvl.yaw_deg);
-  EXPECT_FALSE(calibration_with_estimates(stated, {{"range_scale", 0.97, 0.01}}));
+  EXPECT_TRUE(calibration_with_estimates(stated, {{"range_scale", 0.97, 0.01}}));
   EXPECT_FALSE(calibration_with_estimates(stated, {}));
 }
 

@@ -200,6 +200,17 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
   }
   map.number("compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
   require_positive(map, "compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
+  map.boolean("heading_bias", c.heading_bias);
+  if (map.number("heading_bias_prior_deg", c.heading_bias_prior_deg) &&
+      std::abs(c.heading_bias_prior_deg) >= 45.0) {
+    map.fail("heading_bias_prior_deg", "must be under 45 deg");
+  }
+  map.number("heading_bias_sigma_deg", c.heading_bias_sigma_deg);
+  if (c.heading_bias_sigma_deg < 0.0) map.fail("heading_bias_sigma_deg", "must be >= 0");
+  map.number("heading_bias_walk_deg_per_sqrt_s", c.heading_bias_walk_deg_per_sqrt_s);
+  if (c.heading_bias_walk_deg_per_sqrt_s < 0.0) {
+    map.fail("heading_bias_walk_deg_per_sqrt_s", "must be >= 0");
+  }
   map.finish();
 }
 

@@ -1,8 +1,8 @@
 // The calibration states of trajectory SLAM (docs/trajectory_slam.md, "Calibration states"):
 // their priors at the start, the dead-reckoning motion as the state takes it in, x = g(c, m)
-// (the DVL scale, the compass deviation's change), the compass's h with the deviation, and the
-// estimates read out. How a match sees the range scale and the clock offset is in
-// trajectory_observations.cpp; the updates and the step in trajectory_slam.cpp.
+// (the DVL scale, the compass deviation's change), the heading bias's walk, the compass's h with
+// the bias and the deviation, and the estimates read out. How a match sees the range scale and the
+// clock offset is in trajectory_observations.cpp; the updates and the step in trajectory_slam.cpp.
 #include <cmath>
 #include <utility>
 #include <vector>
@@ -27,6 +27,10 @@ TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const Gaussia
   if (c.clock_offset) {
     clock_row_ = static_cast<Eigen::Index>(priors.size());
     priors.emplace_back(c.clock_offset_prior_s, c.clock_offset_sigma_s);
+  }
+  if (c.heading_bias) {
+    heading_bias_row_ = static_cast<Eigen::Index>(priors.size());
+    priors.emplace_back(c.heading_bias_prior_deg * kDegToRad, c.heading_bias_sigma_deg * kDegToRad);
   }
   if (c.compass_deviation) {
     deviation_row_ = static_cast<Eigen::Index>(priors.size());
@@ -86,6 +90,20 @@ Pose2 TrajectorySlam::calibrated_motion(const Pose2& m, Eigen::Matrix3d& J_m,
   return Pose2(t.x(), t.y(), yaw);
 }
 
+void TrajectorySlam::walk_heading_bias(double t_s) {
+  if (heading_bias_row_ < 0) return;
+  if (previous_scan_t_s_ && t_s > *previous_scan_t_s_) {
+    // beta_k = beta_k-1 + w, w independent of the state: only beta's own variance grows. The
+    // dead-reckoning motion's heading change also carries w (the compass drove it); over a scan's
+    // 13.8 s that is 0.037 deg at 0.01 deg / sqrt(s), against the motion's own heading noise, and
+    // left out (docs/trajectory_slam.md).
+    const double q =
+        std::pow(config_.calibration.heading_bias_walk_deg_per_sqrt_s * M_PI / 180.0, 2);
+    P_(heading_bias_row_, heading_bias_row_) += q * (t_s - *previous_scan_t_s_);
+  }
+  previous_scan_t_s_ = t_s;
+}
+
 void TrajectorySlam::note_deviation_change(double compass_yaw_world_rad) {
   // The deviation's change over the motion, at the headings the compass read with the estimated
   // deviation taken out (psi = reading - d(reading), to first order): (a, b) times the change of
@@ -114,13 +132,18 @@ Eigen::VectorXd TrajectorySlam::compass_residual(std::size_t b, double yaw_world
     H->rightCols(H_pose.cols()) = H_pose.row(2);
   }
   double deviation_rad = 0.0;
+  if (heading_bias_row_ >= 0) {
+    // The MRU reads psi + beta: dh/dbeta = 1.
+    deviation_rad += calibration_(heading_bias_row_);
+    if (H) (*H)(0, heading_bias_row_) = 1.0;
+  }
   if (deviation_row_ >= 0) {
     // The MRU reads psi + a cos(psi) + b sin(psi) for the yaw psi: dh/dpsi = 1 + d'(psi).
     const double yaw_rad = start_world_.mean.yaw() + pose.yaw();
     const Eigen::Vector2d basis(std::cos(yaw_rad), std::sin(yaw_rad));
     const Eigen::Vector2d slope(-std::sin(yaw_rad), std::cos(yaw_rad));
     const Eigen::Vector2d ab = calibration_.segment<2>(deviation_row_);
-    deviation_rad = ab.dot(basis);
+    deviation_rad += ab.dot(basis);
     if (H) {
       H->block<1, 2>(0, deviation_row_) = basis.transpose();
       H->rightCols(H_pose.cols()) *= 1.0 + ab.dot(slope);
@@ -144,8 +167,13 @@ std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
     const Eigen::Index r = clock_row_;
     out.push_back({"clock_offset_s", calibration_(r), std::sqrt(P_(r, r))});
   }
+  constexpr double kRadToDeg = 180.0 / M_PI;
+  if (heading_bias_row_ >= 0) {
+    const Eigen::Index r = heading_bias_row_;
+    out.push_back(
+        {"heading_bias_deg", calibration_(r) * kRadToDeg, std::sqrt(P_(r, r)) * kRadToDeg});
+  }
   if (deviation_row_ >= 0) {
-    constexpr double kRadToDeg = 180.0 / M_PI;
     const Eigen::Index r = deviation_row_;
     out.push_back({"compass_deviation_cos_deg", calibration_(r) * kRadToDeg,
                    std::sqrt(P_(r, r)) * kRadToDeg});

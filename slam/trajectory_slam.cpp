@@ -90,6 +90,7 @@ bool TrajectorySlam::state_finite() const {
 SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   SlamStepStats stats;
   const bool motion_ok = scan.motion.mean.vector().allFinite() && scan.motion.cov.allFinite();
+  walk_heading_bias(scan.t_s);
   note_deviation_change(scan.compass_yaw_world_rad);
   velocities_.push_back(scan.velocity_vehicle.allFinite() ? scan.velocity_vehicle
                                                           : Eigen::Vector3d::Zero());

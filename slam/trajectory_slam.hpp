@@ -65,6 +65,16 @@ struct CalibrationStatesConfig {
   bool clock_offset = false;
   double clock_offset_prior_s = 0.0;
   double clock_offset_sigma_s = 0.5;  ///< the prior's standard deviation, s
+  /// The compass's heading bias beta left after calibration.yaml's: the MRU reads psi + beta,
+  /// beta a random walk from its prior (as the simulated MRU's bias). The compass update observes
+  /// yaw + beta, so the compass no longer pins the heading tighter than the walk allows; its
+  /// constant part is not observable from the vehicle's own sensors (its prior stays), its change
+  /// since an earlier scan is, through the matches that return to that scan.
+  bool heading_bias = false;
+  double heading_bias_prior_deg = 0.0;
+  double heading_bias_sigma_deg = 0.0;  ///< the prior's standard deviation (0: known), deg
+  /// The walk's density: beta's variance grows by its square times the time between scans.
+  double heading_bias_walk_deg_per_sqrt_s = 0.01;
 };
 
 struct TrajectorySlamConfig {
@@ -197,10 +207,11 @@ class TrajectorySlam : public ScanSlam {
   TrajectorySlamConfig config_;
   GaussianPose2 start_world_;
   Eigen::VectorXd calibration_;  ///< the parameters switched on, in the rows below; else empty
-  Eigen::Index range_scale_row_ = -1;  ///< its row in calibration_ and P_; -1: not estimated
-  Eigen::Index dvl_scale_row_ = -1;    ///< its row in calibration_ and P_; -1: not estimated
-  Eigen::Index deviation_row_ = -1;    ///< a's row (b's the next, both rad); -1: not estimated
-  Eigen::Index clock_row_ = -1;        ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index range_scale_row_ = -1;   ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index dvl_scale_row_ = -1;     ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index deviation_row_ = -1;     ///< a's row (b's the next, both rad); -1: not estimated
+  Eigen::Index clock_row_ = -1;         ///< its row in calibration_ and P_; -1: not estimated
+  Eigen::Index heading_bias_row_ = -1;  ///< its row (rad) in calibration_ and P_; -1: not estimated
   std::vector<Eigen::Vector3d> velocities_;  ///< each scan's Scan::velocity_vehicle
   /// For the motion predict() appends: (cos psi_k - cos psi_k-1, sin psi_k - sin psi_k-1) of the
   /// compass headings at its two scans (zero when either has none), which the deviation's change
@@ -243,6 +254,9 @@ class TrajectorySlam : public ScanSlam {
   /// The MRU heading as an observation of scan b's yaw; as update().
   std::optional<std::size_t> update_compass(std::size_t b, double yaw_world_rad, double sigma_rad);
 
+  /// The heading bias's walk from the previous scan to a scan at t_s: its variance grows by
+  /// q (t_s - t_previous); the first scan starts it at its prior.
+  void walk_heading_bias(double t_s);
   /// Sets deviation_change_ for the motion to a scan with this compass reading (NaN: none).
   void note_deviation_change(double compass_yaw_world_rad);
   /// The motion as the state takes it in, x = g(c, m), with its Jacobians dg/dm (3 x 3) and dg/dc
@@ -253,6 +267,7 @@ class TrajectorySlam : public ScanSlam {
   /// (cos psi, sin psi) of the previous scan's heading (the start's, first); none after a scan
   /// without a compass reading.
   std::optional<Eigen::Vector2d> previous_deviation_basis_;
+  std::optional<double> previous_scan_t_s_;  ///< for the heading bias's walk
   std::vector<std::vector<ScanPoint>> points_;
   SlamTotals totals_;
   std::mt19937_64 linearisation_rng_{0x6c696e656172ULL};  ///< fixed: the same run, the same bytes

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The table of docs/trajectory_slam.md, "Calibration states": robocentric and world-centric SLAM
 # with every calibration state off (the default config) and with each on alone
-# (trajectory_slam.calibration.range_scale, dvl_scale, compass_deviation), on the replica (seed 42,
+# (trajectory_slam.calibration.range_scale, dvl_scale, compass_deviation, heading_bias), on the
+# replica (seed 42,
 # read through its detections with config/stpere_replica.yaml) and on the real St. Pere run
 # (config/stpere.yaml; skipped, said, when the dataset is not there). Prints a Markdown table: mean
 # error; on simulation the ANEES and the share of scan steps whose NEES lies inside one run's 95 %
@@ -46,7 +47,7 @@ with_state() {  # CONFIG STATE
 rows=()
 run_dataset() {  # NAME DATASET CONFIG
   local name=$1 dataset=$2 config=$3
-  for state in off range_scale dvl_scale compass_deviation; do
+  for state in off range_scale dvl_scale compass_deviation heading_bias; do
     local cfg=$config
     if [ $state != off ]; then
       cfg="$out/$name.$state.yaml"
@@ -113,10 +114,11 @@ for row in sys.argv[1:]:
         inside = sum(LOWER <= x <= UPPER for x in nees) / len(nees)
         second = f"{m['anees']:.2f} ({100 * inside:.0f} %)"
     names = {"range_scale": "s", "dvl_scale": "k", "clock_offset_s": "tau",
-             "compass_deviation_cos_deg": "a", "compass_deviation_sin_deg": "b"}
+             "compass_deviation_cos_deg": "a", "compass_deviation_sin_deg": "b",
+             "heading_bias_deg": "beta"}
     scale = ", ".join(f"{short} {d[key]:.3f} ({d[key + '_sigma']:.3f})"
                       for key, short in names.items() if key in d)
-    if state == "compass_deviation":
+    if state in ("compass_deviation", "heading_bias"):
         scale += " deg"
     if state == "clock_offset":
         scale += " s (calibration.yaml: 0 s)"

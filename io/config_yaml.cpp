@@ -79,6 +79,12 @@ void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
   map.number("initial_velocity_sigma_mps", c.initial_velocity_sigma_mps);
   map.number("initial_yaw_rate_sigma_radps", c.initial_yaw_rate_sigma_radps);
   map.number("dvl_gate_chi2", c.dvl_gate_chi2);
+  map.number("heading_bias_walk_deg_per_sqrt_s", c.heading_bias_walk_deg_per_sqrt_s);
+  if (c.heading_bias_walk_deg_per_sqrt_s < 0.0) {
+    map.fail("heading_bias_walk_deg_per_sqrt_s", "must be >= 0 (0: no bias walk)");
+  }
+  map.number("heading_bias_sigma_deg", c.heading_bias_sigma_deg);
+  if (c.heading_bias_sigma_deg < 0.0) map.fail("heading_bias_sigma_deg", "must be >= 0");
   require_positive(map, "dvl_sigma_mps", c.dvl_sigma_mps);
   require_positive(map, "heading_sigma_deg", c.heading_sigma_rad);
   require_positive(map, "accel_sigma_mps2", c.accel_sigma_mps2);
@@ -173,7 +179,8 @@ void read_validation(YamlMap map, MatchValidationConfig& c) {
   map.finish();
 }
 
-void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
+void read_calibration_states(YamlMap map, CalibrationStatesConfig& c,
+                             const DeadReckoningConfig& compass) {
   map.boolean("range_scale", c.range_scale);
   map.number("range_scale_prior", c.range_scale_prior);
   require_positive(map, "range_scale_prior", c.range_scale_prior);
@@ -201,20 +208,20 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c) {
   map.number("compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
   require_positive(map, "compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
   map.boolean("heading_bias", c.heading_bias);
-  if (map.number("heading_bias_prior_deg", c.heading_bias_prior_deg) &&
-      std::abs(c.heading_bias_prior_deg) >= 45.0) {
-    map.fail("heading_bias_prior_deg", "must be under 45 deg");
-  }
-  map.number("heading_bias_sigma_deg", c.heading_bias_sigma_deg);
-  if (c.heading_bias_sigma_deg < 0.0) map.fail("heading_bias_sigma_deg", "must be >= 0");
-  map.number("heading_bias_walk_deg_per_sqrt_s", c.heading_bias_walk_deg_per_sqrt_s);
-  if (c.heading_bias_walk_deg_per_sqrt_s < 0.0) {
-    map.fail("heading_bias_walk_deg_per_sqrt_s", "must be >= 0");
+  // The compass's bias model is the dead reckoning's (the sensor's), in one place.
+  c.heading_bias_walk_deg_per_sqrt_s = compass.heading_bias_walk_deg_per_sqrt_s;
+  c.heading_bias_sigma_deg = compass.heading_bias_sigma_deg;
+  if (c.heading_bias &&
+      !(c.heading_bias_walk_deg_per_sqrt_s > 0.0 || c.heading_bias_sigma_deg > 0.0)) {
+    map.fail("heading_bias",
+             "needs the compass's bias model: dead_reckoning.heading_bias_walk_deg_per_sqrt_s or "
+             "heading_bias_sigma_deg above 0");
   }
   map.finish();
 }
 
-void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
+void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c,
+                          const DeadReckoningConfig& dead_reckoning) {
   map.number("association_distance_m", c.association_distance_m);
   require_positive(map, "association_distance_m", c.association_distance_m);
   read_count(map, "max_matches_per_scan", c.max_matches_per_scan, 0, 1000);
@@ -231,7 +238,7 @@ void read_trajectory_slam(YamlMap map, TrajectorySlamConfig& c) {
   read_count(map, "linearisation_samples", c.linearisation_samples, 0, 1000000);
   read_matching(map.map("matching"), c.matching);
   read_validation(map.map("validation"), c.validation);
-  read_calibration_states(map.map("calibration"), c.calibration);
+  read_calibration_states(map.map("calibration"), c.calibration, dead_reckoning);
   map.finish();
 }
 
@@ -284,7 +291,7 @@ SlamConfig slam_config_from_yaml(const YAML::Node& node, const std::string& path
   SlamConfig config;
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
-  read_trajectory_slam(root.map("trajectory_slam"), config.trajectory_slam);
+  read_trajectory_slam(root.map("trajectory_slam"), config.trajectory_slam, config.dead_reckoning);
   read_pose_graph(root.map("pose_graph"), config.pose_graph);
   config.segments = read_segments(root.map("segments"));
   root.finish();

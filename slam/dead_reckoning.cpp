@@ -18,7 +18,8 @@ DeadReckoningEkf::DeadReckoningEkf(const DeadReckoningConfig& config,
   P_.topLeftCorner<3, 3>() = initial.pose.cov;
   const double sv2 = config.initial_velocity_sigma_mps * config.initial_velocity_sigma_mps;
   const double sr2 = config.initial_yaw_rate_sigma_radps * config.initial_yaw_rate_sigma_radps;
-  P_.bottomRightCorner<3, 3>().diagonal() << sv2, sv2, sr2;
+  const double sb = config.heading_bias_sigma_deg * M_PI / 180.0;
+  P_.diagonal().tail<4>() << sv2, sv2, sr2, sb * sb;
   for (int slot = 0; slot < kCloneSlots; ++slot) mark(slot);
 }
 
@@ -27,8 +28,9 @@ void DeadReckoningEkf::predict(double t_s) {
   if (!(dt > 0.0)) return;
   const double yaw = x_(2), u = x_(3), v = x_(4), r = x_(5);
   const double c = std::cos(yaw), s = std::sin(yaw);
-  // x+ = x + R(yaw) [u v]^T dt, yaw+ = yaw + r dt, [u v r] constant (Ribas 2008, Sec. 3.1).
-  Matrix6d F = Matrix6d::Identity();
+  // x+ = x + R(yaw) [u v]^T dt, yaw+ = yaw + r dt, [u v r] constant (Ribas 2008, Sec. 3.1);
+  // the heading bias beta+ = beta + a random walk.
+  DeadReckoningMatrix F = DeadReckoningMatrix::Identity();
   F(0, 2) = -(u * s + v * c) * dt;
   F(1, 2) = (u * c - v * s) * dt;
   F(0, 3) = c * dt;
@@ -46,7 +48,7 @@ void DeadReckoningEkf::predict(double t_s) {
   const double qa = config_.accel_sigma_mps2 * config_.accel_sigma_mps2;
   const double qr = config_.yaw_accel_sigma_radps2 * config_.yaw_accel_sigma_radps2;
   const double dt2 = dt * dt, dt3 = dt2 * dt;
-  Matrix6d Q = Matrix6d::Zero();
+  DeadReckoningMatrix Q = DeadReckoningMatrix::Zero();
   Q.block<2, 2>(0, 0) = qa * dt3 / 3.0 * Eigen::Matrix2d::Identity();
   Q.block<2, 2>(0, 3) = qa * dt2 / 2.0 * Pose2(0.0, 0.0, yaw).rotation();
   Q.block<2, 2>(3, 0) = Q.block<2, 2>(0, 3).transpose();
@@ -54,6 +56,8 @@ void DeadReckoningEkf::predict(double t_s) {
   Q(2, 2) = qr * dt3 / 3.0;
   Q(2, 5) = Q(5, 2) = qr * dt2 / 2.0;
   Q(5, 5) = qr * dt;
+  const double walk = config_.heading_bias_walk_deg_per_sqrt_s * M_PI / 180.0;
+  Q(6, 6) = walk * walk * dt;
   P_ = F * P_ * F.transpose() + Q;
   for (Clone& clone : clones_) clone.P_x = F * clone.P_x;  // the clones do not move
   t_s_ = t_s;
@@ -61,20 +65,20 @@ void DeadReckoningEkf::predict(double t_s) {
 
 template <int M>
 double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
-                                const Eigen::Matrix<double, M, 6>& H,
+                                const Eigen::Matrix<double, M, kDeadReckoningStates>& H,
                                 const Eigen::Matrix<double, M, M>& R, double gate_chi2) {
   // S = H P H^T + R; NIS = nu^T S^-1 nu; K = P H^T S^-1 (M <= 2: closed-form inverse).
   const Eigen::Matrix<double, M, M> S_inv = (H * P_ * H.transpose() + R).inverse();
   const double nis = innovation.dot(S_inv * innovation);
   if (gate_chi2 > 0.0 && nis > gate_chi2) return nis;
-  const Eigen::Matrix<double, 6, M> K = P_ * H.transpose() * S_inv;
+  const Eigen::Matrix<double, kDeadReckoningStates, M> K = P_ * H.transpose() * S_inv;
   // The clones keep the estimate made at their mark (frozen, not smoothed): only the correlation
   // of the state's error with theirs changes, e+ = (I - K H) e - K v.
   for (Clone& clone : clones_) clone.P_x -= K * H * clone.P_x;
   x_ += K * innovation;
   x_(2) = normalize_angle(x_(2));
   // Joseph form keeps P symmetric and positive definite.
-  const Matrix6d I_KH = Matrix6d::Identity() - K * H;
+  const DeadReckoningMatrix I_KH = DeadReckoningMatrix::Identity() - K * H;
   P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
   return nis;
 }
@@ -82,7 +86,8 @@ double DeadReckoningEkf::update(const Eigen::Matrix<double, M, 1>& innovation,
 double DeadReckoningEkf::update_dvl(const DvlVelocity& dvl) {
   predict(dvl.t_s);
   // z = [u - r y_dvl, v + r x_dvl]: the vehicle velocity seen at the DVL's lever arm.
-  Eigen::Matrix<double, 2, 6> H = Eigen::Matrix<double, 2, 6>::Zero();
+  Eigen::Matrix<double, 2, kDeadReckoningStates> H =
+      Eigen::Matrix<double, 2, kDeadReckoningStates>::Zero();
   H(0, 3) = 1.0;
   H(0, 5) = -p_vehicle_dvl_m_.y();
   H(1, 4) = 1.0;
@@ -95,9 +100,12 @@ double DeadReckoningEkf::update_dvl(const DvlVelocity& dvl) {
 
 double DeadReckoningEkf::update_heading(const HeadingReading& heading) {
   predict(heading.t_s);
-  Eigen::Matrix<double, 1, 6> H = Eigen::Matrix<double, 1, 6>::Zero();
+  // z = yaw + beta: the reading's bias (zero, and known, when it does not walk).
+  Eigen::Matrix<double, 1, kDeadReckoningStates> H =
+      Eigen::Matrix<double, 1, kDeadReckoningStates>::Zero();
   H(0, 2) = 1.0;
-  const Eigen::Matrix<double, 1, 1> innovation(normalize_angle(heading.yaw_rad - x_(2)));
+  H(0, 6) = 1.0;
+  const Eigen::Matrix<double, 1, 1> innovation(normalize_angle(heading.yaw_rad - x_(2) - x_(6)));
   const Eigen::Matrix<double, 1, 1> R(config_.heading_sigma_rad * config_.heading_sigma_rad);
   return update<1>(innovation, H, R, 0.0);
 }

@@ -28,10 +28,17 @@ struct DeadReckoningConfig {
   /// tail probability and throws away real motion (docs/dead_reckoning.md, "Choosing the noise
   /// levels", has the measured rejection rate).
   double dvl_gate_chi2 = 0.0;
+  /// The heading reading's bias beta, a random walk of this density (deg per root second): the
+  /// MRU reads yaw + beta + white noise. 0: no bias (the heading noise is white).
+  double heading_bias_walk_deg_per_sqrt_s = 0.0;
+  /// beta's standard deviation at the start, deg (0: the compass is right at the start).
+  double heading_bias_sigma_deg = 0.0;
 };
 
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
+/// x, y, yaw, u, v, r and the heading reading's bias beta.
+constexpr int kDeadReckoningStates = 7;
+using DeadReckoningVector = Eigen::Matrix<double, kDeadReckoningStates, 1>;
+using DeadReckoningMatrix = Eigen::Matrix<double, kDeadReckoningStates, kDeadReckoningStates>;
 
 class DeadReckoningEkf {
  public:
@@ -45,12 +52,13 @@ class DeadReckoningEkf {
   /// DVL update, z = [u - r y_dvl, v + r x_dvl]. Returns the normalized innovation squared
   /// (NIS, chi-square 2 DOF when consistent); the update is skipped when the NIS exceeds the gate.
   double update_dvl(const DvlVelocity& dvl);
-  /// Heading update, z = yaw with the innovation wrapped. Returns the NIS (chi-square 1 DOF).
+  /// Heading update, z = yaw + beta with the innovation wrapped. Returns the NIS (chi-square 1
+  /// DOF).
   double update_heading(const HeadingReading& heading);
 
   double time() const { return t_s_; }
-  const Vector6d& state() const { return x_; }
-  const Matrix6d& covariance() const { return P_; }
+  const DeadReckoningVector& state() const { return x_; }
+  const DeadReckoningMatrix& covariance() const { return P_; }
   /// The vehicle pose in the world frame with its 3x3 marginal covariance.
   StampedPose pose() const;
 
@@ -67,20 +75,22 @@ class DeadReckoningEkf {
 
  private:
   template <int M>
-  double update(const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, 6>& H,
+  double update(const Eigen::Matrix<double, M, 1>& innovation,
+                const Eigen::Matrix<double, M, kDeadReckoningStates>& H,
                 const Eigen::Matrix<double, M, M>& R, double gate_chi2);
 
   DeadReckoningConfig config_;
   Eigen::Vector2d p_vehicle_dvl_m_;
   double t_s_ = 0.0;
-  Vector6d x_ = Vector6d::Zero();
-  Matrix6d P_ = Matrix6d::Zero();
+  DeadReckoningVector x_ = DeadReckoningVector::Zero();
+  DeadReckoningMatrix P_ = DeadReckoningMatrix::Zero();
   // A clone: the estimate at the slot's last mark() (frozen), its error covariance and the
   // cross-covariance of the state's error with it.
   struct Clone {
     Eigen::Vector3d pose = Eigen::Vector3d::Zero();
     Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
-    Eigen::Matrix<double, 6, 3> P_x = Eigen::Matrix<double, 6, 3>::Zero();
+    Eigen::Matrix<double, kDeadReckoningStates, 3> P_x =
+        Eigen::Matrix<double, kDeadReckoningStates, 3>::Zero();
   };
   Clone clones_[kCloneSlots];
 };

@@ -30,7 +30,7 @@ TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const Gaussia
   }
   if (c.heading_bias) {
     heading_bias_row_ = static_cast<Eigen::Index>(priors.size());
-    priors.emplace_back(c.heading_bias_prior_deg * kDegToRad, c.heading_bias_sigma_deg * kDegToRad);
+    priors.emplace_back(0.0, c.heading_bias_sigma_deg * kDegToRad);
   }
   if (c.compass_deviation) {
     deviation_row_ = static_cast<Eigen::Index>(priors.size());

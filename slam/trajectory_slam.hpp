@@ -66,15 +66,15 @@ struct CalibrationStatesConfig {
   double clock_offset_prior_s = 0.0;
   double clock_offset_sigma_s = 0.5;  ///< the prior's standard deviation, s
   /// The compass's heading bias beta left after calibration.yaml's: the MRU reads psi + beta,
-  /// beta a random walk from its prior (as the simulated MRU's bias). The compass update observes
+  /// beta a random walk from 0 (as the simulated MRU's bias). The compass update observes
   /// yaw + beta, so the compass no longer pins the heading tighter than the walk allows; its
   /// constant part is not observable from the vehicle's own sensors (its prior stays), its change
-  /// since an earlier scan is, through the matches that return to that scan.
+  /// since an earlier scan is, through the matches that return to that scan. Its model is the
+  /// dead reckoning's (DeadReckoningConfig::heading_bias_*; the config file has it there only).
   bool heading_bias = false;
-  double heading_bias_prior_deg = 0.0;
   double heading_bias_sigma_deg = 0.0;  ///< the prior's standard deviation (0: known), deg
   /// The walk's density: beta's variance grows by its square times the time between scans.
-  double heading_bias_walk_deg_per_sqrt_s = 0.01;
+  double heading_bias_walk_deg_per_sqrt_s = 0.0;
 };
 
 struct TrajectorySlamConfig {

@@ -42,6 +42,14 @@ with_state() {  # CONFIG STATE
     exit 2
   fi
   printf 'trajectory_slam:\n  calibration:\n    %s: true\n' "$2"
+  # The heading bias's model is the dead reckoning's: the simulated MRU's walk (its default).
+  if [ "$2" = heading_bias ]; then
+    if grep -q '^dead_reckoning:' "$1"; then
+      echo "tools/calibration_states.sh: $1 has a dead_reckoning: section; merge by hand" >&2
+      exit 2
+    fi
+    printf 'dead_reckoning:\n  heading_bias_walk_deg_per_sqrt_s: 0.01\n'
+  fi
 }
 
 rows=()

@@ -352,25 +352,28 @@ TEST(SlamConfigYaml, CalibrationStateKeys) {
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_sigma: 0}\n", 2,
                          "trajectory_slam.calibration.range_scale_sigma");
   EXPECT_FALSE(m.heading_bias);
-  EXPECT_EQ(m.heading_bias_sigma_deg, 0.0);
-  EXPECT_EQ(m.heading_bias_walk_deg_per_sqrt_s, 0.01);
-  const SlamConfig bias = read_slam_config(
-      write_text(dir.file("bias.yaml"),
-                 "trajectory_slam:\n"
-                 "  calibration: {heading_bias: true, heading_bias_prior_deg: -2,\n"
-                 "                heading_bias_sigma_deg: 1.5,\n"
-                 "                heading_bias_walk_deg_per_sqrt_s: 0.05}\n"));
+  EXPECT_EQ(more.dead_reckoning.heading_bias_walk_deg_per_sqrt_s, 0.0);
+  EXPECT_EQ(more.dead_reckoning.heading_bias_sigma_deg, 0.0);
+  // The compass's bias model is the dead reckoning's; the SLAM's state takes it from there.
+  const SlamConfig bias =
+      read_slam_config(write_text(dir.file("bias.yaml"),
+                                  "dead_reckoning: {heading_bias_walk_deg_per_sqrt_s: 0.05,\n"
+                                  "                 heading_bias_sigma_deg: 1.5}\n"
+                                  "trajectory_slam:\n"
+                                  "  calibration: {heading_bias: true}\n"));
+  EXPECT_EQ(bias.dead_reckoning.heading_bias_walk_deg_per_sqrt_s, 0.05);
+  EXPECT_EQ(bias.dead_reckoning.heading_bias_sigma_deg, 1.5);
   EXPECT_TRUE(bias.trajectory_slam.calibration.heading_bias);
-  EXPECT_EQ(bias.trajectory_slam.calibration.heading_bias_prior_deg, -2.0);
   EXPECT_EQ(bias.trajectory_slam.calibration.heading_bias_sigma_deg, 1.5);
   EXPECT_EQ(bias.trajectory_slam.calibration.heading_bias_walk_deg_per_sqrt_s, 0.05);
-  expect_bad_slam_config("trajectory_slam:\n  calibration: {heading_bias_sigma_deg: -1}\n", 2,
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {heading_bias: true}\n", 2,
+                         "trajectory_slam.calibration.heading_bias");
+  expect_bad_slam_config("dead_reckoning: {heading_bias_sigma_deg: -1}\n", 1,
+                         "dead_reckoning.heading_bias_sigma_deg");
+  expect_bad_slam_config("dead_reckoning: {heading_bias_walk_deg_per_sqrt_s: .nan}\n", 1,
+                         "dead_reckoning.heading_bias_walk_deg_per_sqrt_s");
+  expect_bad_slam_config("trajectory_slam:\n  calibration: {heading_bias_sigma_deg: 1}\n", 2,
                          "trajectory_slam.calibration.heading_bias_sigma_deg");
-  expect_bad_slam_config("trajectory_slam:\n  calibration: {heading_bias_prior_deg: 45}\n", 2,
-                         "trajectory_slam.calibration.heading_bias_prior_deg");
-  expect_bad_slam_config(
-      "trajectory_slam:\n  calibration: {heading_bias_walk_deg_per_sqrt_s: .nan}\n", 2,
-      "trajectory_slam.calibration.heading_bias_walk_deg_per_sqrt_s");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {range_scale_prior: -1}\n", 2,
                          "trajectory_slam.calibration.range_scale_prior");
   expect_bad_slam_config("trajectory_slam:\n  calibration: {sound_speed: 1}\n", 2,

@@ -85,6 +85,10 @@ void read_dead_reckoning(YamlMap map, DeadReckoningConfig& c) {
   }
   map.number("heading_bias_sigma_deg", c.heading_bias_sigma_deg);
   if (c.heading_bias_sigma_deg < 0.0) map.fail("heading_bias_sigma_deg", "must be >= 0");
+  map.number("dvl_scale_sigma", c.dvl_scale_sigma);
+  if (!(c.dvl_scale_sigma >= 0.0 && c.dvl_scale_sigma < 0.5)) {
+    map.fail("dvl_scale_sigma", "must be in [0, 0.5)");
+  }
   require_positive(map, "dvl_sigma_mps", c.dvl_sigma_mps);
   require_positive(map, "heading_sigma_deg", c.heading_sigma_rad);
   require_positive(map, "accel_sigma_mps2", c.accel_sigma_mps2);

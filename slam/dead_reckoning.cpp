@@ -15,6 +15,7 @@ DeadReckoningEkf::DeadReckoningEkf(const DeadReckoningConfig& config,
                                    const StampedPose& initial)
     : config_(config), p_vehicle_dvl_m_(p_vehicle_dvl_m), t_s_(initial.t_s) {
   x_.head<3>() = initial.pose.mean.vector();
+  p_start_world_m_ = initial.pose.mean.translation();
   P_.topLeftCorner<3, 3>() = initial.pose.cov;
   const double sv2 = config.initial_velocity_sigma_mps * config.initial_velocity_sigma_mps;
   const double sr2 = config.initial_yaw_rate_sigma_radps * config.initial_yaw_rate_sigma_radps;
@@ -127,6 +128,12 @@ GaussianPose2 DeadReckoningEkf::motion_since_mark(int slot) const {
   const Eigen::Matrix3d cross = J_now * P_now_mark * J_mark.transpose();
   motion.cov = J_mark * clone.P * J_mark.transpose() +
                J_now * P_.topLeftCorner<3, 3>() * J_now.transpose() + cross + cross.transpose();
+  // The DVL scale's error moves the motion's translation by (k - 1) t (t the motion's own).
+  if (config_.dvl_scale_sigma > 0.0) {
+    const Eigen::Vector2d t = motion.mean.translation();
+    motion.cov.topLeftCorner<2, 2>() +=
+        config_.dvl_scale_sigma * config_.dvl_scale_sigma * t * t.transpose();
+  }
   return motion;
 }
 
@@ -135,6 +142,12 @@ StampedPose DeadReckoningEkf::pose() const {
   out.t_s = t_s_;
   out.pose.mean = Pose2(x_(0), x_(1), x_(2));
   out.pose.cov = P_.topLeftCorner<3, 3>();
+  // The DVL scale's error moves the position by (k - 1) times the distance dead-reckoned.
+  if (config_.dvl_scale_sigma > 0.0) {
+    const Eigen::Vector2d d = x_.head<2>() - p_start_world_m_;
+    out.pose.cov.topLeftCorner<2, 2>() +=
+        config_.dvl_scale_sigma * config_.dvl_scale_sigma * d * d.transpose();
+  }
   return out;
 }
 

@@ -33,6 +33,11 @@ struct DeadReckoningConfig {
   double heading_bias_walk_deg_per_sqrt_s = 0.0;
   /// beta's standard deviation at the start, deg (0: the compass is right at the start).
   double heading_bias_sigma_deg = 0.0;
+  /// The DVL's scale factor k (it reads k times the true velocity, after calibration.yaml's
+  /// dvl.scale_factor) is 1 with this standard deviation: constant, and unobservable from these
+  /// sensors alone. Its error moves the position by (k - 1) times the distance dead-reckoned, so
+  /// the poses and motions carry sigma^2 d d^T (a considered parameter, not a state). 0: known.
+  double dvl_scale_sigma = 0.0;
 };
 
 /// x, y, yaw, u, v, r and the heading reading's bias beta.
@@ -81,6 +86,7 @@ class DeadReckoningEkf {
 
   DeadReckoningConfig config_;
   Eigen::Vector2d p_vehicle_dvl_m_;
+  Eigen::Vector2d p_start_world_m_ = Eigen::Vector2d::Zero();  ///< where the integration began
   double t_s_ = 0.0;
   DeadReckoningVector x_ = DeadReckoningVector::Zero();
   DeadReckoningMatrix P_ = DeadReckoningMatrix::Zero();

@@ -23,6 +23,12 @@ std::unique_ptr<ScanSlam> make_scan_slam(ScanSlamBackend backend, const SlamConf
   return nullptr;
 }
 
+SlamConfig scan_motion_config(const SlamConfig& config) {
+  SlamConfig out = config;
+  if (config.trajectory_slam.calibration.dvl_scale) out.dead_reckoning.dvl_scale_sigma = 0.0;
+  return out;
+}
+
 std::vector<PlacedScan> build_placed_scans(const NavigationLog& navigation,
                                            const std::vector<BeamReadings>& beams,
                                            const SlamConfig& config, const ScanSlamSetup& setup) {
@@ -40,7 +46,7 @@ ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigatio
   // Dead reckoning (the paper's DVL + MRU EKF), and the scans it places (Sec. II).
   out.dead_reckoning =
       run_dead_reckoning(navigation, config.dead_reckoning, setup.p_vehicle_dvl_m, setup.start);
-  out.scans = build_placed_scans(navigation, beams, config, setup);
+  out.scans = build_placed_scans(navigation, beams, scan_motion_config(config), setup);
   // The back end, scan by scan (Sec. III-IV).
   for (const PlacedScan& placed : out.scans) {
     SlamStepStats step = backend.add_scan(placed.scan);

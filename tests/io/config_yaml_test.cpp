@@ -363,6 +363,13 @@ TEST(SlamConfigYaml, CalibrationStateKeys) {
                                   "  calibration: {heading_bias: true}\n"));
   EXPECT_EQ(bias.dead_reckoning.heading_bias_walk_deg_per_sqrt_s, 0.05);
   EXPECT_EQ(bias.dead_reckoning.heading_bias_sigma_deg, 1.5);
+  EXPECT_EQ(bias.dead_reckoning.dvl_scale_sigma, 0.0);
+  EXPECT_EQ(read_slam_config(
+                write_text(dir.file("scale.yaml"), "dead_reckoning: {dvl_scale_sigma: 0.01}\n"))
+                .dead_reckoning.dvl_scale_sigma,
+            0.01);
+  expect_bad_slam_config("dead_reckoning: {dvl_scale_sigma: 0.5}\n", 1,
+                         "dead_reckoning.dvl_scale_sigma");
   EXPECT_TRUE(bias.trajectory_slam.calibration.heading_bias);
   EXPECT_EQ(bias.trajectory_slam.calibration.heading_bias_sigma_deg, 1.5);
   EXPECT_EQ(bias.trajectory_slam.calibration.heading_bias_walk_deg_per_sqrt_s, 0.05);

@@ -34,6 +34,7 @@ if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.calibration_recove
 fi
 mkdir -p "$out"
 touch "$out/.calibration_recovery"
+source tools/run_fresh.sh
 
 # CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)
 cases=(
@@ -68,8 +69,9 @@ with open(dst, "w") as f:
 EOF
   { cat config/stpere_replica.yaml; printf 'trajectory_slam:\n  calibration:\n    %s: true\n' "$state"; } \
     >"$out/$name.config.yaml"
-  "$msislab" montecarlo "$out/$name.scenario.yaml" --runs "$runs" --out "$out/$name" \
-    --methods robocentric --config "$out/$name.config.yaml" --no-plot >/dev/null
+  # A folder made by another build or from another scenario is stale: run_fresh starts it again.
+  run_fresh "$out/$name" "$msislab" montecarlo "$out/$name.scenario.yaml" --runs "$runs" \
+    --out "$out/$name" --methods robocentric --config "$out/$name.config.yaml" --no-plot >/dev/null
 done
 
 python3 - "$out" "${cases[@]}" <<'EOF'

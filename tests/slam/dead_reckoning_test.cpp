@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <iostream>
 #include <random>
@@ -201,6 +202,36 @@ TEST(DeadReckoning, ConsistentWithAWalkingHeadingBias) {
   }
   EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
   EXPECT_GT(white_sum.back() / runs, 20.0);
+}
+
+// The two sensor-error models on a short run (what the sanitizer suite runs of them; the two
+// consistency tests around this one are statistics it leaves out): switched off they change
+// nothing, to the bit; on, the pose's covariance grows by them, the walk in the heading and the
+// scale along the distance travelled.
+TEST(DeadReckoning, TheSensorErrorModelsAddToTheCovariance) {
+  DeadReckoningConfig c;
+  const Simulation sim = simulate(c, 120.0, 9, {0.2, 0.1}, 1.0);
+  const std::vector<double> times = {30.0, 60.0, 119.0};
+  const auto plain = odometry_at(sim.log, c, {0.2, 0.1}, start_of(sim, c), times);
+  DeadReckoningConfig zero = c;
+  zero.heading_bias_walk_deg_per_sqrt_s = 0.0;
+  zero.dvl_scale_sigma = 0.0;
+  const auto same = odometry_at(sim.log, zero, {0.2, 0.1}, start_of(sim, c), times);
+  DeadReckoningConfig modelled = c;
+  modelled.heading_bias_walk_deg_per_sqrt_s = 0.5;
+  modelled.dvl_scale_sigma = 0.05;
+  const auto wider = odometry_at(sim.log, modelled, {0.2, 0.1}, start_of(sim, c), times);
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    EXPECT_EQ(same[i].pose.pose.cov, plain[i].pose.pose.cov);
+    EXPECT_EQ(same[i].motion_since_key.cov, plain[i].motion_since_key.cov);
+    const Eigen::Matrix3d& P = wider[i].pose.pose.cov;
+    ASSERT_TRUE(P.allFinite());
+    EXPECT_GT(P(2, 2), plain[i].pose.pose.cov(2, 2));       // the walk
+    const double position_variance_m2 = P(0, 0) + P(1, 1);  // the scale
+    EXPECT_GT(position_variance_m2, plain[i].pose.pose.cov(0, 0) + plain[i].pose.pose.cov(1, 1));
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(P);
+    EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0);
+  }
 }
 
 // A precise DVL (0.01 m/s, an A50's class) whose scale factor is off by k - 1 ~ N(0, 0.02^2),

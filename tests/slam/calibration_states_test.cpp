@@ -1,13 +1,13 @@
 // Calibration states of trajectory SLAM (docs/trajectory_slam.md, "Calibration states"): the
 // sonar's range scale, the DVL's scale factor, the sonar clock's offset, the compass deviation and
-// the compass's walking heading bias, estimated with the trajectory. The observation Jacobians (a match's h with one parameter and
-// with two, the compass residual's) against finite differences in both filters, during and after
-// a robocentric step; the prediction's dependence on the DVL scale and the deviation against
-// finite differences; recovery on the synthetic loop whose scans see the basin 4 % small, whose
-// motions are 3 % long, whose scans are seen 0.1 s late, or whose compass deviates (within two
-// standard deviations, the trajectory then better than without the state), or whose compass's
-// bias walks (the yaw consistent with the state); and no parameter in
-// the state with them switched off.
+// the compass's walking heading bias, estimated with the trajectory. The observation Jacobians (a
+// match's h with one parameter and with two, the compass residual's) against finite differences in
+// both filters, during and after a robocentric step; the prediction's dependence on the DVL scale
+// and the deviation against finite differences; recovery on the synthetic loop whose scans see the
+// basin 4 % small, whose motions are 3 % long, whose scans are seen 0.1 s late, or whose compass
+// deviates (within two standard deviations, the trajectory then better than without the state), or
+// whose compass's bias walks (the yaw consistent with the state); and no parameter in the state
+// with them switched off.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>

@@ -539,9 +539,9 @@ TEST(CalibrationStates, CompassResidualJacobianWithTheHeadingBias) {
 // state the last scan's yaw is consistent: the average over ten loops of its 1-DOF NEES inside
 // the two-sided 99 % bounds of chi-square(10) / 10, [0.22, 2.52] (measured 2.19; the loop's
 // filter sits near the 95 % bound 2.05 without any walk: 1.56 without the state, 2.16 with it,
-// two of the ten loops' last yaw at a NEES of 5-8 either way: spIC's yaw), and the bias estimated
-// within two standard deviations in at least 8 of 10 loops (9); without it, the yaw NEES is far
-// above (261).
+// two of the ten loops' last yaw at a NEES of 5-8 either way: the filter's own), and the bias
+// estimated within two standard deviations in at least 8 of 10 loops (9); without it, the yaw NEES
+// is far above (261).
 TEST(CalibrationStates, RecoverTheHeadingBiasOfAWalkingCompass) {
   double nees_with = 0.0, nees_without = 0.0;
   int within = 0;

@@ -6,8 +6,10 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
+#include <functional>
 #include <iostream>
 #include <random>
+#include <string>
 
 #include "eval/evaluation.hpp"
 #include "tests/draws.hpp"
@@ -127,37 +129,66 @@ TEST(DeadReckoning, LeverArmIsCompensated) {
   EXPECT_GT(err_without, 2.0 * err_with);
 }
 
+constexpr int kConsistencyRuns = 50;
+const std::vector<double> kCheckpoints_s = {60, 120, 180, 240, 300, 360, 420, 480, 540, 600};
+
+/// For each filter config, the 3-DOF NEES of its pose averaged over kConsistencyRuns runs at each
+/// checkpoint: the filter sampled at the truth stamps nearest the checkpoints (the production
+/// path), the truth simulated with `truth` (run r from seed first_seed + r, its DVL reading
+/// dvl_scale() times the velocity, drawn once per run).
+std::vector<std::vector<double>> checkpoint_anees(const DeadReckoningConfig& truth,
+                                                  unsigned first_seed,
+                                                  const std::vector<DeadReckoningConfig>& filters,
+                                                  const std::function<double()>& dvl_scale) {
+  std::vector<std::vector<double>> anees(filters.size(),
+                                         std::vector<double>(kCheckpoints_s.size(), 0.0));
+  for (int run = 0; run < kConsistencyRuns; ++run) {
+    const double k = dvl_scale();
+    const Simulation sim =
+        simulate(truth, 610.0, first_seed + static_cast<unsigned>(run), {0, 0}, 1.0, k);
+    std::vector<TruthState> at_checks;
+    for (const double t : kCheckpoints_s) at_checks.push_back(truth_at(sim, t));
+    std::vector<double> times;
+    for (const TruthState& t : at_checks) times.push_back(t.t_s);
+    for (std::size_t f = 0; f < filters.size(); ++f) {
+      const auto samples =
+          odometry_at(sim.log, filters[f], Eigen::Vector2d::Zero(), start_of(sim, truth), times);
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        const StampedPose& est = samples[i].pose;
+        const Eigen::Vector3d e = pose_difference(est.pose.mean, at_checks[i].pose);
+        anees[f][i] += e.dot(est.pose.cov.inverse() * e) / kConsistencyRuns;
+      }
+    }
+  }
+  return anees;
+}
+
+/// The average NEES inside the 95 % bounds for 50 runs, [2.36, 3.72] (field-notes.md), at 8 or
+/// more of the 10 checkpoints, and never below 1.5 or above 5; `other` (a filter that leaves out
+/// an error, when given) printed beside it.
+void expect_consistent_at_checkpoints(const std::vector<double>& anees,
+                                      const std::vector<double>& other = {},
+                                      const std::string& other_name = "") {
+  int inside = 0;
+  for (std::size_t i = 0; i < kCheckpoints_s.size(); ++i) {
+    inside += anees[i] >= 2.36 && anees[i] <= 3.72;
+    std::cout << "t = " << kCheckpoints_s[i] << " s: average NEES over " << kConsistencyRuns
+              << " runs " << anees[i];
+    if (!other.empty()) std::cout << " (" << other_name << ": " << other[i] << ")";
+    std::cout << "\n";
+    EXPECT_GT(anees[i], 1.5) << "too pessimistic at t = " << kCheckpoints_s[i];
+    EXPECT_LT(anees[i], 5.0) << "overconfident at t = " << kCheckpoints_s[i];
+  }
+  EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
+}
+
+double exact_dvl() { return 1.0; }
+
 // The truth follows the filter's own model, so the 3-DOF NEES averaged over N = 50 runs must lie
 // in the two-sided 95% chi-square bounds [2.36, 3.72] at most checkpoints (field-notes.md).
 TEST(DeadReckoning, ConsistentWhenTheModelHolds) {
-  DeadReckoningConfig c;
-  const int runs = 50;
-  const std::vector<double> checkpoints_s = {60, 120, 180, 240, 300, 360, 420, 480, 540, 600};
-  std::vector<double> nees_sum(checkpoints_s.size(), 0.0);
-  for (int run = 0; run < runs; ++run) {
-    const Simulation sim = simulate(c, 610.0, 100 + static_cast<unsigned>(run), {0, 0}, 1.0);
-    // The filter sampled at the truth stamps nearest the checkpoints (the production path).
-    std::vector<TruthState> at_checks;
-    for (const double t : checkpoints_s) at_checks.push_back(truth_at(sim, t));
-    std::vector<double> times;
-    for (const TruthState& t : at_checks) times.push_back(t.t_s);
-    const auto samples = odometry_at(sim.log, c, Eigen::Vector2d::Zero(), start_of(sim, c), times);
-    for (std::size_t i = 0; i < samples.size(); ++i) {
-      const StampedPose& est = samples[i].pose;
-      const Eigen::Vector3d e = pose_difference(est.pose.mean, at_checks[i].pose);
-      nees_sum[i] += e.dot(est.pose.cov.inverse() * e);
-    }
-  }
-  int inside = 0;
-  for (std::size_t i = 0; i < checkpoints_s.size(); ++i) {
-    const double anees = nees_sum[i] / runs;
-    inside += anees >= 2.36 && anees <= 3.72;
-    std::cout << "t = " << checkpoints_s[i] << " s: average NEES over " << runs << " runs " << anees
-              << "\n";
-    EXPECT_GT(anees, 1.5) << "too pessimistic at t = " << checkpoints_s[i];
-    EXPECT_LT(anees, 5.0) << "overconfident at t = " << checkpoints_s[i];
-  }
-  EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
+  const DeadReckoningConfig c;
+  expect_consistent_at_checkpoints(checkpoint_anees(c, 100, {c}, exact_dvl)[0]);
 }
 
 // A compass whose bias walks 0.05 deg / sqrt(s) under 0.1 deg of white noise (1.2 deg of walk in
@@ -170,38 +201,9 @@ TEST(DeadReckoning, ConsistentWithAWalkingHeadingBias) {
   c.heading_bias_walk_deg_per_sqrt_s = 0.05;
   DeadReckoningConfig white = c;
   white.heading_bias_walk_deg_per_sqrt_s = 0.0;
-  const int runs = 50;
-  const std::vector<double> checkpoints_s = {60, 120, 180, 240, 300, 360, 420, 480, 540, 600};
-  std::vector<double> nees_sum(checkpoints_s.size(), 0.0), white_sum(checkpoints_s.size(), 0.0);
-  for (int run = 0; run < runs; ++run) {
-    const Simulation sim = simulate(c, 610.0, 300 + static_cast<unsigned>(run), {0, 0}, 1.0);
-    std::vector<TruthState> at_checks;
-    for (const double t : checkpoints_s) at_checks.push_back(truth_at(sim, t));
-    std::vector<double> times;
-    for (const TruthState& t : at_checks) times.push_back(t.t_s);
-    for (const auto& [config, sums] :
-         {std::pair<const DeadReckoningConfig*, std::vector<double>*>{&c, &nees_sum},
-          {&white, &white_sum}}) {
-      const auto samples =
-          odometry_at(sim.log, *config, Eigen::Vector2d::Zero(), start_of(sim, c), times);
-      for (std::size_t i = 0; i < samples.size(); ++i) {
-        const StampedPose& est = samples[i].pose;
-        const Eigen::Vector3d e = pose_difference(est.pose.mean, at_checks[i].pose);
-        (*sums)[i] += e.dot(est.pose.cov.inverse() * e);
-      }
-    }
-  }
-  int inside = 0;
-  for (std::size_t i = 0; i < checkpoints_s.size(); ++i) {
-    const double anees = nees_sum[i] / runs;
-    inside += anees >= 2.36 && anees <= 3.72;
-    std::cout << "t = " << checkpoints_s[i] << " s: average NEES " << anees
-              << " (the walk read as white noise: " << white_sum[i] / runs << ")\n";
-    EXPECT_GT(anees, 1.5) << "too pessimistic at t = " << checkpoints_s[i];
-    EXPECT_LT(anees, 5.0) << "overconfident at t = " << checkpoints_s[i];
-  }
-  EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
-  EXPECT_GT(white_sum.back() / runs, 20.0);
+  const auto anees = checkpoint_anees(c, 300, {c, white}, exact_dvl);
+  expect_consistent_at_checkpoints(anees[0], anees[1], "the walk read as white noise");
+  EXPECT_GT(anees[1].back(), 20.0);
 }
 
 // The two sensor-error models on a short run (what the sanitizer suite runs of them; the two
@@ -245,41 +247,12 @@ TEST(DeadReckoning, ConsistentWithAnUncertainDvlScale) {
   c.dvl_scale_sigma = 0.02;
   DeadReckoningConfig exact = c;
   exact.dvl_scale_sigma = 0.0;
-  const int runs = 50;
-  const std::vector<double> checkpoints_s = {60, 120, 180, 240, 300, 360, 420, 480, 540, 600};
-  std::vector<double> nees_sum(checkpoints_s.size(), 0.0), exact_sum(checkpoints_s.size(), 0.0);
   std::mt19937 scale_rng(4242);
   std::normal_distribution<double> n01(0.0, 1.0);
-  for (int run = 0; run < runs; ++run) {
-    const double k = 1.0 + c.dvl_scale_sigma * n01(scale_rng);
-    const Simulation sim = simulate(c, 610.0, 500 + static_cast<unsigned>(run), {0, 0}, 1.0, k);
-    std::vector<TruthState> at_checks;
-    for (const double t : checkpoints_s) at_checks.push_back(truth_at(sim, t));
-    std::vector<double> times;
-    for (const TruthState& t : at_checks) times.push_back(t.t_s);
-    for (const auto& [config, sums] :
-         {std::pair<const DeadReckoningConfig*, std::vector<double>*>{&c, &nees_sum},
-          {&exact, &exact_sum}}) {
-      const auto samples =
-          odometry_at(sim.log, *config, Eigen::Vector2d::Zero(), start_of(sim, c), times);
-      for (std::size_t i = 0; i < samples.size(); ++i) {
-        const StampedPose& est = samples[i].pose;
-        const Eigen::Vector3d e = pose_difference(est.pose.mean, at_checks[i].pose);
-        (*sums)[i] += e.dot(est.pose.cov.inverse() * e);
-      }
-    }
-  }
-  int inside = 0;
-  for (std::size_t i = 0; i < checkpoints_s.size(); ++i) {
-    const double anees = nees_sum[i] / runs;
-    inside += anees >= 2.36 && anees <= 3.72;
-    std::cout << "t = " << checkpoints_s[i] << " s: average NEES " << anees
-              << " (the scale taken as exact: " << exact_sum[i] / runs << ")\n";
-    EXPECT_GT(anees, 1.5) << "too pessimistic at t = " << checkpoints_s[i];
-    EXPECT_LT(anees, 5.0) << "overconfident at t = " << checkpoints_s[i];
-  }
-  EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
-  EXPECT_GT(exact_sum.back() / runs, 5.0);
+  const auto anees = checkpoint_anees(c, 500, {c, exact},
+                                      [&] { return 1.0 + c.dvl_scale_sigma * n01(scale_rng); });
+  expect_consistent_at_checkpoints(anees[0], anees[1], "the scale taken as exact");
+  EXPECT_GT(anees[1].back(), 5.0);
 }
 
 // The motion since a key sample (stochastic cloning) has an honest covariance: over 50 runs with

@@ -258,6 +258,36 @@ TEST(CalibrationStates, DvlScalePredictionAgainstFiniteDifferences) {
   EXPECT_LT((P.bottomRightCorner<3, 3>() - expected).norm(), 1e-9);
 }
 
+/// Checks H of compass_residual(b, z) against central differences over the calibration parameters
+/// (the first c columns) and the elements 0..b (the next 3(b + 1)).
+template <class Filter>
+void expect_compass_jacobian(Filter& slam, std::size_t b, double z) {
+  Eigen::MatrixXd H;
+  slam.compass_residual(b, z, &H);
+  const Eigen::Index c = slam.parameters().size();
+  ASSERT_EQ(H.cols(), static_cast<Eigen::Index>(c + 3 * (b + 1)));
+  const double step = 1e-6;
+  for (Eigen::Index col = 0; col < H.cols(); ++col) {
+    const auto perturb = [&](double d) {
+      if (col < c) {
+        slam.parameters()(col) += d;
+        return;
+      }
+      const std::size_t element = static_cast<std::size_t>((col - c) / 3);
+      Eigen::Vector3d v = slam.state()[element].vector();
+      v((col - c) % 3) += d;
+      slam.state()[element] = Pose2(v);
+    };
+    perturb(step);
+    const double plus = slam.compass_residual(b, z, nullptr)(0);
+    perturb(-2 * step);
+    const double minus = slam.compass_residual(b, z, nullptr)(0);
+    perturb(step);
+    // The residual is z - h: its difference quotient is -dh.
+    EXPECT_NEAR(H(0, col), -(plus - minus) / (2 * step), 1e-6) << "b " << b << " column " << col;
+  }
+}
+
 // The compass residual z - (psi + a cos(psi) + b sin(psi)), psi the scan's world yaw: its
 // Jacobian over the deviation and the elements against central differences, in both filters.
 TEST(CalibrationStates, CompassResidualJacobianWithTheDeviation) {
@@ -265,37 +295,11 @@ TEST(CalibrationStates, CompassResidualJacobianWithTheDeviation) {
   Open<WorldCentricSlam> world(with_compass_deviation(), GaussianPose2{});
   Open<RoboCentricSlam> robot(with_compass_deviation(), GaussianPose2{});
   for (std::size_t k = 0; k < 12; ++k) world.add_scan(loop.scans[k]), robot.add_scan(loop.scans[k]);
+  ASSERT_EQ(robot.parameters().size(), 2);  // a, b
   ASSERT_NE(robot.parameters()(1), 0.0);
-  const auto check = [](auto& slam, std::size_t b, double z) {
-    Eigen::MatrixXd H;
-    slam.compass_residual(b, z, &H);
-    ASSERT_EQ(H.cols(), static_cast<Eigen::Index>(2 + 3 * (b + 1)));
-    const double step = 1e-6;
-    const auto numeric = [&](auto perturb) {
-      perturb(step);
-      const double plus = slam.compass_residual(b, z, nullptr)(0);
-      perturb(-2 * step);
-      const double minus = slam.compass_residual(b, z, nullptr)(0);
-      perturb(step);
-      return (plus - minus) / (2 * step);  // of z - h: -dh
-    };
-    for (Eigen::Index col = 0; col < H.cols(); ++col) {
-      const auto perturb = [&](double d) {
-        if (col < 2) {
-          slam.parameters()(col) += d;
-          return;
-        }
-        const std::size_t element = static_cast<std::size_t>((col - 2) / 3);
-        Eigen::Vector3d v = slam.state()[element].vector();
-        v((col - 2) % 3) += d;
-        slam.state()[element] = Pose2(v);
-      };
-      EXPECT_NEAR(H(0, col), -numeric(perturb), 1e-6) << "b " << b << " column " << col;
-    }
-  };
-  check(world, 11, 1.3);
-  check(robot, 11, 1.3);
-  check(robot, 5, -2.0);
+  expect_compass_jacobian(world, 11, 1.3);
+  expect_compass_jacobian(robot, 11, 1.3);
+  expect_compass_jacobian(robot, 5, -2.0);
 }
 
 // With the deviation: x = (R(-delta/2) t, yaw - delta), delta = (a, b) . (cos psi_k - cos
@@ -504,34 +508,9 @@ TEST(CalibrationStates, CompassResidualJacobianWithTheHeadingBias) {
   for (std::size_t k = 0; k < 12; ++k) world.add_scan(loop.scans[k]), robot.add_scan(loop.scans[k]);
   ASSERT_EQ(robot.parameters().size(), 3);  // beta, a, b
   ASSERT_NE(robot.parameters()(0), 0.0);
-  const auto check = [](auto& slam, std::size_t b, double z) {
-    Eigen::MatrixXd H;
-    slam.compass_residual(b, z, &H);
-    const Eigen::Index c = slam.parameters().size();
-    ASSERT_EQ(H.cols(), static_cast<Eigen::Index>(c + 3 * (b + 1)));
-    const double step = 1e-6;
-    for (Eigen::Index col = 0; col < H.cols(); ++col) {
-      const auto perturb = [&](double d) {
-        if (col < c) {
-          slam.parameters()(col) += d;
-          return;
-        }
-        const std::size_t element = static_cast<std::size_t>((col - c) / 3);
-        Eigen::Vector3d v = slam.state()[element].vector();
-        v((col - c) % 3) += d;
-        slam.state()[element] = Pose2(v);
-      };
-      perturb(step);
-      const double plus = slam.compass_residual(b, z, nullptr)(0);
-      perturb(-2 * step);
-      const double minus = slam.compass_residual(b, z, nullptr)(0);
-      perturb(step);
-      EXPECT_NEAR(H(0, col), -(plus - minus) / (2 * step), 1e-6) << "b " << b << " column " << col;
-    }
-  };
-  check(world, 11, 1.3);
-  check(robot, 11, 1.3);
-  check(robot, 5, -2.0);
+  expect_compass_jacobian(world, 11, 1.3);
+  expect_compass_jacobian(robot, 11, 1.3);
+  expect_compass_jacobian(robot, 5, -2.0);
 }
 
 // A compass whose bias walks 0.3 deg / sqrt(s) under 0.1 deg of white noise, read as 0.1 deg of

@@ -156,11 +156,7 @@ Estimate estimate(const report::MethodInfo& method, const io::RunInputs& in, Sha
     const std::unique_ptr<ScanSlam> backend = method.make_slam(in.config, in.start.pose);
     e.slam = run_scan_slam(*backend, in.navigation, sonar->beams, in.config,
                            scan_slam_setup(in, *sonar));
-    // Its scans are the dead reckoning's too, unless their motions left out a DVL-scale term the
-    // dead reckoning carries (scan_motion_config).
-    const bool same_motions = scan_motion_config(in.config).dead_reckoning.dvl_scale_sigma ==
-                              in.config.dead_reckoning.dvl_scale_sigma;
-    if (shared && !shared->dead_reckoning_scans && same_motions) {
+    if (shared && !shared->dead_reckoning_scans && slam_scans_are_dead_reckonings(in.config)) {
       shared->dead_reckoning_scans = e.slam->scans;
     }
   } else if (method.kind == report::MethodKind::kIntegration) {

@@ -23,10 +23,20 @@ std::unique_ptr<ScanSlam> make_scan_slam(ScanSlamBackend backend, const SlamConf
   return nullptr;
 }
 
+namespace {
+/// The config whose dead reckoning builds a back end's scan motions: with the filters' DVL-scale
+/// state on, the state carries the scale's uncertainty (correlated over every motion), so the
+/// motions leave out the dead reckoning's considered one.
 SlamConfig scan_motion_config(const SlamConfig& config) {
   SlamConfig out = config;
   if (config.trajectory_slam.calibration.dvl_scale) out.dead_reckoning.dvl_scale_sigma = 0.0;
   return out;
+}
+}  // namespace
+
+bool slam_scans_are_dead_reckonings(const SlamConfig& config) {
+  return scan_motion_config(config).dead_reckoning.dvl_scale_sigma ==
+         config.dead_reckoning.dvl_scale_sigma;
 }
 
 std::vector<PlacedScan> build_placed_scans(const NavigationLog& navigation,

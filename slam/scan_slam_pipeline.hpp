@@ -61,10 +61,10 @@ struct ScanSlamEstimate {
 
 /// The sonar's revolutions as motion-compensated scans placed by dead reckoning (Sec. II; the
 /// scans run_scan_slam feeds its back end).
-/// The config whose dead reckoning builds a back end's scan motions: with the filters' DVL-scale
-/// state on, the state carries the scale's uncertainty (correlated over every motion), so the
-/// motions leave out the dead reckoning's considered one (dead_reckoning.dvl_scale_sigma).
-SlamConfig scan_motion_config(const SlamConfig& config);
+/// Whether run_scan_slam's scans are build_placed_scans' with `config` as given, i.e. the dead
+/// reckoning's own: not when the filters' DVL-scale state carries the scale's uncertainty, for
+/// then their motions leave out the dead reckoning's (dead_reckoning.dvl_scale_sigma).
+bool slam_scans_are_dead_reckonings(const SlamConfig& config);
 
 std::vector<PlacedScan> build_placed_scans(const NavigationLog& navigation,
                                            const std::vector<BeamReadings>& beams,

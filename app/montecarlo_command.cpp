@@ -25,6 +25,7 @@
 #include "io/scenario_scene.hpp"
 #include "io/text_lines.hpp"
 #include "report/methods.hpp"
+#include "sim/navigation_sensors.hpp"
 
 namespace msislab::app {
 
@@ -58,7 +59,11 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   for (const std::string& warning : checked.warnings) std::cerr << "msislab: " << warning << '\n';
   ctx.scenario = std::move(checked.scenario);
   ctx.mesh = std::move(checked.mesh);
-  if (!options.config_path.empty()) ctx.config = io::read_slam_config(options.config_path);
+  // Every run's dataset carries the scenario's navigation noise; the config is made over it once.
+  io::DatasetConfig config = io::slam_config_for_dataset(
+      options.config_path, io::navigation_noise_as_stored(sim::navigation_noise_of(ctx.scenario)),
+      "the scenario");
+  ctx.config = std::move(config.config);
   ctx.scenario_text = io::read_whole_file(options.scenario_path);
   DirectoryInputs inputs;
   inputs.scenario_text = ctx.scenario_text;
@@ -82,6 +87,8 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   manifest.runs = options.runs;
   manifest.methods = options.methods;
   write_directory_header(options.out_dir, manifest, inputs);
+  // Said once every input is checked (a bad input's message stays one line).
+  if (!config.noise_note.empty()) std::cerr << "msislab: " << config.noise_note << '\n';
   ctx.dir = options.out_dir;
   ctx.keep_datasets = options.keep_datasets;
   return ctx;

@@ -83,6 +83,7 @@ io::OutputRequest scans_output(const ScansOptions& options) {
 ScansSummary build_scans_command(const ScansOptions& options) {
   io::check_output_folder(scans_output(options));
   const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
+  if (!in.noise_note.empty()) std::cerr << "msislab: " << in.noise_note << '\n';
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
   const io::Truth& truth = in.truth;

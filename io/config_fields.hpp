@@ -9,6 +9,7 @@
 #include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "io/yaml_fields.hpp"
+#include "slam/slam_config.hpp"
 
 namespace msislab::io {
 
@@ -28,6 +29,10 @@ void read_local_frame(YamlMap& map,
 /// calibration.yaml's sections (mru, dvl, sonar, frame) of `root` into c; absent keys keep their
 /// values. Calls finish() on each section, not on root.
 void read_calibration_sections(YamlMap& root, Calibration& c);
+
+/// A SLAM config's keys over `base` (absent keys keep base's values); `path` names the file in
+/// errors. A null node reads as an empty file.
+SlamConfig slam_config_of(const YAML::Node& node, const std::string& path, const SlamConfig& base);
 
 /// `name: [begin_s, end_s]` entries in file order; calls finish() on the mapping.
 std::vector<TimeSegment> read_segments(YamlMap map);

@@ -211,10 +211,13 @@ void read_calibration_states(YamlMap map, CalibrationStatesConfig& c,
   }
   map.number("compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
   require_positive(map, "compass_deviation_sigma_deg", c.compass_deviation_sigma_deg);
-  map.boolean("heading_bias", c.heading_bias);
-  // The compass's bias model is the dead reckoning's (the sensor's), in one place.
+  // The compass's bias model is the dead reckoning's (the sensor's), in one place; the state is on
+  // where the model has a bias unless the config says otherwise.
   c.heading_bias_walk_deg_per_sqrt_s = compass.heading_bias_walk_deg_per_sqrt_s;
   c.heading_bias_sigma_deg = compass.heading_bias_sigma_deg;
+  if (!map.boolean("heading_bias", c.heading_bias)) {
+    c.heading_bias = c.heading_bias_walk_deg_per_sqrt_s > 0.0 || c.heading_bias_sigma_deg > 0.0;
+  }
   if (c.heading_bias &&
       !(c.heading_bias_walk_deg_per_sqrt_s > 0.0 || c.heading_bias_sigma_deg > 0.0)) {
     map.fail("heading_bias",
@@ -289,10 +292,16 @@ std::vector<TimeSegment> read_segments(YamlMap map) {
   return segments;
 }
 
-namespace {
-SlamConfig slam_config_from_yaml(const YAML::Node& node, const std::string& path) {
+SlamConfig slam_config_of(const YAML::Node& node, const std::string& path, const SlamConfig& base) {
   YamlMap root(node, path, "");
-  SlamConfig config;
+  SlamConfig config = base;
+  std::string noise;
+  if (root.text("navigation_noise", noise)) {
+    if (noise != "dataset" && noise != "config") {
+      root.fail("navigation_noise", "must be 'dataset' or 'config', got '" + noise + "'");
+    }
+    config.navigation_noise_from_dataset = noise == "dataset";
+  }
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
   read_trajectory_slam(root.map("trajectory_slam"), config.trajectory_slam, config.dead_reckoning);
@@ -301,14 +310,13 @@ SlamConfig slam_config_from_yaml(const YAML::Node& node, const std::string& path
   root.finish();
   return config;
 }
-}  // namespace
 
 SlamConfig read_slam_config(const std::string& path) {
-  return slam_config_from_yaml(load_yaml_file(path), path);
+  return slam_config_of(load_yaml_file(path), path, SlamConfig{});
 }
 
 SlamConfig read_slam_config_text(const std::string& text, const std::string& name) {
-  return slam_config_from_yaml(load_yaml_text(text, name), name);
+  return slam_config_of(load_yaml_text(text, name), name, SlamConfig{});
 }
 
 void write_dead_reckoning_config(const std::string& path, const DeadReckoningConfig& config) {

@@ -59,6 +59,7 @@ DatasetFiles find_dataset_files(const std::string& dir) {
     }
   }
   files.calibration = existing(fs::path(dir) / "calibration.yaml");
+  files.navigation_noise = existing(fs::path(dir) / "navigation_noise.yaml");
   files.truth_trajectory = existing(fs::path(dir) / "truth" / "trajectory.tum");
   files.truth_beams = existing(fs::path(dir) / "truth" / "beams.csv");
   files.truth_segments = existing(fs::path(dir) / "truth" / "segments.csv");

@@ -8,6 +8,7 @@
 
 #include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
+#include "geometry/navigation_noise.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/tum.hpp"
@@ -25,6 +26,7 @@ struct DatasetFiles {
   std::optional<std::string> beam_times;        ///< *_IS_timestamps.log
   std::optional<std::string> detections;        ///< *_detections.csv or *_detections.csv.gz
   std::optional<std::string> calibration;       ///< calibration.yaml
+  std::optional<std::string> navigation_noise;  ///< navigation_noise.yaml (simulated datasets)
   std::optional<std::string> truth_trajectory;  ///< truth/trajectory.tum
   std::optional<std::string> truth_beams;       ///< truth/beams.csv
   std::optional<std::string> truth_segments;    ///< truth/segments.csv
@@ -36,6 +38,8 @@ struct DatasetFiles {
 struct DatasetRecords {
   std::string name;
   Calibration calibration;  ///< as stored (calibration_as_stored)
+  /// The scenario's navigation noise, as stored (navigation_noise_as_stored); absent: none stated.
+  std::optional<NavigationNoise> navigation_noise;
   std::vector<DvlRecord> dvl;
   std::vector<MtiRecord> mti;
   std::vector<GpsRecord> gps;  ///< empty: no *_DGPS.log

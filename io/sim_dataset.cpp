@@ -13,6 +13,7 @@
 #include "io/stpere_logs.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
+#include "sim/navigation_sensors.hpp"
 
 namespace msislab::io {
 
@@ -201,6 +202,7 @@ void write_files(const fs::path& dir, const sim::Scenario& scenario,
   write_mti_log(base + "_MTi.log", records.mti);
   if (scenario.gps.enabled) write_gps_log(base + "_DGPS.log", records.gps);
   write_calibration((dir / "calibration.yaml").string(), records.calibration);
+  write_navigation_noise((dir / "navigation_noise.yaml").string(), *records.navigation_noise);
   write_file_atomically((dir / "scenario.yaml").string(),
                         [&](std::ostream& out) { out << scenario_text; });
   fs::create_directories(dir / "truth");
@@ -237,6 +239,8 @@ DatasetRecords simulated_records(const sim::Scenario& scenario, const sim::Simul
                  std::to_string(scenario.seed) + ", in memory)";
   const Calibration calibration = sim::calibration_of(scenario);
   records.calibration = as_stored ? calibration_as_stored(calibration) : calibration;
+  const NavigationNoise noise = sim::navigation_noise_of(scenario);
+  records.navigation_noise = as_stored ? navigation_noise_as_stored(noise) : noise;
   records.is_log = beam_records(result.beams, scenario.sonar.mount);
   records.beam_times = beam_time_records(records.is_log);
   records.detections = detection_records(records.is_log, scenario);

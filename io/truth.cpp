@@ -68,9 +68,14 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path,
                           const std::string& calibration_path) {
   RunInputs in;
-  in.config = config_path.empty() ? SlamConfig{} : read_slam_config(config_path);
   in.dataset = dataset_dir;
   in.files = find_dataset_files(dataset_dir);
+  std::optional<NavigationNoise> noise;
+  if (in.files.navigation_noise) noise = read_navigation_noise(*in.files.navigation_noise);
+  DatasetConfig config =
+      slam_config_for_dataset(config_path, noise, in.files.navigation_noise.value_or(""));
+  in.config = std::move(config.config);
+  in.noise_note = std::move(config.noise_note);
   if (!calibration_path.empty()) {
     // A calibration.yaml of the user's (say, the one a run with calibration states wrote) in
     // place of the dataset's own.

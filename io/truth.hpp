@@ -39,6 +39,9 @@ StampedPose initial_pose(const Truth& truth, const NavigationLog& navigation,
 /// the shared start pose.
 struct RunInputs {
   SlamConfig config;
+  /// Which of the dataset's navigation noise values the config took (slam_config_for_dataset);
+  /// "" when none: the commands say it.
+  std::string noise_note;
   std::string dataset;  ///< the directory, or the in-memory dataset's name, for messages
   DatasetFiles files;
   std::shared_ptr<const DatasetRecords> records;  ///< set for a dataset held in memory
@@ -48,10 +51,12 @@ struct RunInputs {
   StampedPose start;
 };
 
-/// Reads and checks them (config_path empty: the default config). Throws io::InputError.
+/// Reads and checks them (config_path empty: the default config; either over the dataset's
+/// navigation_noise.yaml, slam_config_for_dataset). Throws io::InputError.
 RunInputs load_run_inputs(const std::string& dataset_dir, const std::string& config_path,
                           const std::string& calibration_path = "");
-/// The same for a dataset held in memory. Throws io::InputError.
+/// The same for a dataset held in memory, with the config made for it (slam_config_for_dataset
+/// over its records' navigation noise). Throws io::InputError.
 RunInputs run_inputs_of(std::shared_ptr<const DatasetRecords> records, SlamConfig config);
 
 }  // namespace msislab::io

@@ -7,6 +7,7 @@
 
 #include "geometry/calibration.hpp"
 #include "sim/random.hpp"
+#include "sim/scenario.hpp"
 
 namespace msislab::sim {
 
@@ -150,6 +151,21 @@ std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig
     e_m = phi * e_m + gps.correlated_sigma_m * std::sqrt(1.0 - phi * phi) * n;
   }
   return fixes;
+}
+
+NavigationNoise navigation_noise_of(const Scenario& scenario) {
+  const DvlConfig& dvl = scenario.dvl;
+  const MruConfig& mru = scenario.mru;
+  NavigationNoise noise;
+  noise.dvl_sigma_mps =
+      std::sqrt((1.0 - dvl.outlier_probability) * dvl.noise_sigma_mps * dvl.noise_sigma_mps +
+                dvl.outlier_probability * dvl.outlier_sigma_mps * dvl.outlier_sigma_mps);
+  noise.heading_sigma_deg = mru.heading_noise_deg;
+  noise.heading_bias_walk_deg_per_sqrt_s = mru.bias_random_walk_deg_per_sqrt_s;
+  noise.heading_bias_sigma_deg = std::abs(mru.bias_initial_deg);
+  const double stated_scale = calibration_of(scenario).dvl.scale_factor;
+  noise.dvl_scale_sigma = std::abs(dvl.scale_factor / stated_scale - 1.0);
+  return noise;
 }
 
 }  // namespace msislab::sim

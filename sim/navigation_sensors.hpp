@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "geometry/navigation_noise.hpp"
 #include "sim/scenario.hpp"
 #include "sim/scene.hpp"
 #include "sim/vehicle.hpp"
@@ -48,5 +49,14 @@ Eigen::Vector2d drag_buoy(const Eigen::Vector2d& p_buoy_m, const Eigen::Vector2d
                           double tether_m);
 std::vector<GpsFix> simulate_gps(const VehicleTrajectory& truth, const GpsConfig& gps,
                                  std::uint64_t seed);
+
+/// The scenario's navigation errors in the dead reckoning's terms, for its dataset to carry: the
+/// DVL's contaminated normal by its standard deviation, sqrt((1 - p) s^2 + p s_o^2); the MRU's
+/// white noise and bias walk as they are; and the constants the dataset's calibration.yaml does
+/// not state (the MRU's initial bias, the DVL scale factor beyond the stated one) by their size,
+/// as one standard deviation of an unknown constant. Mounts, deviation, clock offset and range
+/// scale are calibration (the filters' states), not noise; the DVL's constant bias_mps and its
+/// dropouts are not modelled by the dead reckoning and are left out.
+NavigationNoise navigation_noise_of(const Scenario& scenario);
 
 }  // namespace msislab::sim

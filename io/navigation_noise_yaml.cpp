@@ -1,0 +1,138 @@
+// navigation_noise.yaml (docs/formats.md): the navigation noise a simulated dataset was made with,
+// in the SLAM config's dead_reckoning keys; and the config a run on a dataset uses, the config
+// file's keys over that noise over the defaults.
+#include <cmath>
+#include <cstdio>
+
+#include "io/atomic_file.hpp"
+#include "io/config_fields.hpp"
+#include "io/config_yaml.hpp"
+#include "io/text_lines.hpp"
+#include "io/yaml_fields.hpp"
+
+namespace msislab::io {
+
+namespace {
+
+struct NoiseKey {
+  const char* name;
+  double NavigationNoise::*value;
+  bool white;  ///< a white-noise sigma: 0 leaves the filter's own (a filter needs one above 0)
+};
+
+constexpr NoiseKey kNoiseKeys[] = {
+    {"dvl_sigma_mps", &NavigationNoise::dvl_sigma_mps, true},
+    {"heading_sigma_deg", &NavigationNoise::heading_sigma_deg, true},
+    {"heading_bias_walk_deg_per_sqrt_s", &NavigationNoise::heading_bias_walk_deg_per_sqrt_s, false},
+    {"heading_bias_sigma_deg", &NavigationNoise::heading_bias_sigma_deg, false},
+    {"dvl_scale_sigma", &NavigationNoise::dvl_scale_sigma, false},
+};
+
+NavigationNoise navigation_noise_from_yaml(const YAML::Node& node, const std::string& name) {
+  YamlMap root(node, name, "");
+  YamlMap map = root.map("dead_reckoning");
+  NavigationNoise noise;
+  for (const NoiseKey& key : kNoiseKeys) {
+    map.number(key.name, noise.*key.value);
+    if (!(noise.*key.value >= 0.0)) map.fail(key.name, "must be >= 0");
+  }
+  if (noise.dvl_scale_sigma >= 0.5) map.fail("dvl_scale_sigma", "must be under 0.5");
+  map.finish();
+  root.finish();
+  return noise;
+}
+
+std::string navigation_noise_yaml(const NavigationNoise& noise) {
+  std::string text =
+      "# The navigation noise of the scenario that made this dataset, in the SLAM config's\n"
+      "# dead_reckoning keys (docs/formats.md). msislab run, montecarlo and sweep take each value\n"
+      "# the config does not set.\n"
+      "dead_reckoning:\n";
+  for (const NoiseKey& key : kNoiseKeys) {
+    text += std::string("  ") + key.name + ": " + format_number(noise.*key.value) + "\n";
+  }
+  return text;
+}
+
+/// Sets the dead-reckoning key `name` of c to value (the noise's units are the config file's).
+void set_dead_reckoning(DeadReckoningConfig& c, const std::string& name, double value) {
+  if (name == "dvl_sigma_mps") c.dvl_sigma_mps = value;
+  if (name == "heading_sigma_deg") c.heading_sigma_rad = value * M_PI / 180.0;
+  if (name == "heading_bias_walk_deg_per_sqrt_s") c.heading_bias_walk_deg_per_sqrt_s = value;
+  if (name == "heading_bias_sigma_deg") c.heading_bias_sigma_deg = value;
+  if (name == "dvl_scale_sigma") c.dvl_scale_sigma = value;
+}
+
+std::string short_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", value);
+  return text;
+}
+
+std::string noise_values(const NavigationNoise& noise) {
+  std::string text;
+  for (const NoiseKey& key : kNoiseKeys) {
+    text += std::string(text.empty() ? "" : ", ") + key.name + " " + short_number(noise.*key.value);
+  }
+  return text;
+}
+
+}  // namespace
+
+NavigationNoise read_navigation_noise(const std::string& path) {
+  return navigation_noise_from_yaml(load_yaml_file(path), path);
+}
+
+void write_navigation_noise(const std::string& path, const NavigationNoise& noise) {
+  const std::string text = navigation_noise_yaml(noise);
+  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+}
+
+NavigationNoise navigation_noise_as_stored(const NavigationNoise& noise) {
+  return navigation_noise_from_yaml(YAML::Load(navigation_noise_yaml(noise)),
+                                    "navigation_noise.yaml");
+}
+
+DatasetConfig slam_config_for_dataset(const std::string& config_path,
+                                      const std::optional<NavigationNoise>& noise,
+                                      const std::string& noise_source) {
+  const YAML::Node node = config_path.empty() ? YAML::Node() : load_yaml_file(config_path);
+  const std::string name = config_path.empty() ? "(default config)" : config_path;
+  // Read once as it is: whether it asks for the dataset's noise (and any error in it, first).
+  const SlamConfig own = slam_config_of(node, name, SlamConfig{});
+  DatasetConfig out;
+  if (!noise) {
+    out.config = own;
+    return out;
+  }
+  if (!own.navigation_noise_from_dataset) {
+    out.config = own;
+    out.noise_note = noise_source + " states the sensors' noise (" + noise_values(*noise) +
+                     "); `navigation_noise: dataset` in a config uses it";
+    return out;
+  }
+  SlamConfig base;
+  std::string taken;
+  {
+    // A key the file has, whatever its value: the reader below checks it.
+    const auto set_by_file = [&](const char* key) {
+      if (!node.IsMap() || !node["dead_reckoning"]) return false;
+      const YAML::Node section = node["dead_reckoning"];
+      return section.IsMap() && static_cast<bool>(section[key]);
+    };
+    for (const NoiseKey& key : kNoiseKeys) {
+      const double value = (*noise).*key.value;
+      if (set_by_file(key.name) || (key.white && !(value > 0.0))) continue;
+      set_dead_reckoning(base.dead_reckoning, key.name, value);
+      taken += std::string(taken.empty() ? "" : ", ") + key.name + " " + short_number(value);
+    }
+  }
+  out.config = slam_config_of(node, name, base);
+  if (!taken.empty()) {
+    out.noise_note = "dead reckoning noise from " + noise_source + " (" + taken +
+                     "), where the config does not set it";
+  }
+  return out;
+}
+
+}  // namespace msislab::io

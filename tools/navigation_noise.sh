@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The table of docs/dead_reckoning.md, "Noise matched to the sensors": every shipped scenario with
+# the navigation noise of the config (the defaults: St. Pere's figures) against the noise its
+# sensors have (`navigation_noise: dataset`, the scenario's navigation_noise.yaml), N Monte Carlo
+# runs each (default 10; the concrete basin 6), robocentric SLAM, the pose graph and dead
+# reckoning. The replica is read through its detections (config/stpere_replica.yaml), the others
+# with the default config. Prints a Markdown table: mean error, ANEES and the share of scan steps
+# whose run-averaged NEES lies inside the two-sided 95 % bounds. Writes under out/navigation_noise/.
+# Usage: tools/navigation_noise.sh [--runs N] [--msislab EXE]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+msislab=build/release/tools/msislab
+runs=10
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
+    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
+    *) echo "tools/navigation_noise.sh: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
+       exit 2 ;;
+  esac
+done
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "tools/navigation_noise.sh: --runs '$runs' is not a count" >&2; exit 2; }
+[ -x "$msislab" ] || { echo "tools/navigation_noise.sh: no $msislab (build first)" >&2; exit 2; }
+
+out=out/navigation_noise
+# Configs are written beside the results: only into a folder this script made (its marker).
+if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.navigation_noise" ]; then
+  echo "tools/navigation_noise.sh: $out exists and was not written by this script; refusing" >&2
+  exit 2
+fi
+mkdir -p "$out"
+touch "$out/.navigation_noise"
+source tools/run_fresh.sh
+
+# SCENARIO  CONFIG (- : none)  RUNS
+cases=(
+  "stpere_replica config/stpere_replica.yaml $runs"
+  "straight_channel - $runs"
+  "open_area - $runs"
+  "marina_loop - $runs"
+  "concrete_basin - $(( runs < 6 ? runs : 6 ))"
+)
+for c in "${cases[@]}"; do
+  read -r name config n <<<"$c"
+  for noise in config dataset; do
+    cfg="$out/$name.$noise.yaml"
+    { [ "$config" = - ] || cat "$config"; echo "navigation_noise: $noise"; } >"$cfg"
+    run_fresh "$out/$name.$noise" "$msislab" montecarlo "scenarios/$name.yaml" --runs "$n" \
+      --out "$out/$name.$noise" --methods robocentric,posegraph,deadreckoning --config "$cfg" \
+      --no-plot >/dev/null
+  done
+done
+
+python3 - "$out" "${cases[@]}" <<'PY'
+import json, os, sys
+out = sys.argv[1]
+methods = ["robocentric", "posegraph", "deadreckoning"]
+print("| scenario (runs) | noise | " + " | ".join(
+    f"{m}: mean error, ANEES, steps in bounds" for m in methods) + " |")
+print("| --- | --- |" + " ---: |" * len(methods))
+for case in sys.argv[2:]:
+    name, _, n = case.split(" ")
+    for noise in ("config", "dataset"):
+        s = json.load(open(os.path.join(out, f"{name}.{noise}", "summary.json")))
+        cells = [f"{s[m]['mean_error_m']:.2f} m, {s[m]['anees']:.2f}, "
+                 f"{100 * s[m]['nees_in_bounds_fraction']:.0f} %" for m in methods]
+        label = "the defaults" if noise == "config" else "the sensors' (dataset)"
+        print(f"| {name} ({n}) | {label} | " + " | ".join(cells) + " |")
+PY

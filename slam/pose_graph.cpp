@@ -10,9 +10,13 @@
 #include <stdexcept>
 #include <string>
 
+#include "slam/pose_graph_edges.hpp"
+
 namespace msislab {
 
 namespace {
+
+using namespace pose_graph_edges;  // NOLINT(google-build-using-namespace): the edges' own header
 
 /// W with W S W^T = I for a positive definite S: the inverse of its lower Cholesky factor.
 Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
@@ -22,122 +26,6 @@ Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
   }
   return llt.matrixL().solve(Eigen::MatrixXd::Identity(S.rows(), S.cols()));
 }
-
-/// r = W A (z (-) ((-)x_i (+) x_j)); dr/dx_i = -W A J_i, dr/dx_j = -W A J_j with J_i, J_j the
-/// Jacobians of between().
-class RelativeCost : public ceres::CostFunction {
- public:
-  RelativeCost(const Pose2& z, const Eigen::MatrixXd& WA) : z_(z), WA_(WA) {
-    set_num_residuals(static_cast<int>(WA.rows()));
-    mutable_parameter_block_sizes()->assign({3, 3});
-  }
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
-    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
-    Eigen::Matrix3d J_i, J_j;
-    const Pose2 h = x_i.between(x_j, &J_i, &J_j);
-    const Eigen::Index d = WA_.rows();
-    Eigen::Map<Eigen::VectorXd> r(residuals, d);
-    r = WA_ * pose_difference(z_, h);
-    if (jacobians) {
-      for (int b = 0; b < 2; ++b) {
-        if (!jacobians[b]) continue;
-        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(jacobians[b], d, 3);
-        J = -WA_ * (b == 0 ? J_i : J_j);
-      }
-    }
-    return true;
-  }
-
- private:
-  Pose2 z_;
-  Eigen::MatrixXd WA_;
-};
-
-/// r = W (z (-) x_i); dr/dx_i = -W.
-class PriorCost : public ceres::SizedCostFunction<3, 3> {
- public:
-  PriorCost(const Pose2& z, const Eigen::Matrix3d& W) : z_(z), W_(W) {}
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const Pose2 x(parameters[0][0], parameters[0][1], parameters[0][2]);
-    Eigen::Map<Eigen::Vector3d> r(residuals);
-    r = W_ * pose_difference(z_, x);
-    if (jacobians && jacobians[0]) {
-      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(jacobians[0]);
-      J = -W_;
-    }
-    return true;
-  }
-
- private:
-  Pose2 z_;
-  Eigen::Matrix3d W_;
-};
-
-/// r = (yaw_z - yaw_i) / sigma, wrapped; dr/dx_i = [0, 0, -1 / sigma].
-class HeadingCost : public ceres::SizedCostFunction<1, 3> {
- public:
-  HeadingCost(double yaw_rad, double sigma_rad) : yaw_rad_(yaw_rad), sigma_rad_(sigma_rad) {}
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    residuals[0] = normalize_angle(yaw_rad_ - parameters[0][2]) / sigma_rad_;
-    if (jacobians && jacobians[0]) {
-      jacobians[0][0] = 0.0;
-      jacobians[0][1] = 0.0;
-      jacobians[0][2] = -1.0 / sigma_rad_;
-    }
-    return true;
-  }
-
- private:
-  double yaw_rad_;
-  double sigma_rad_;
-};
-
-/// Dynamic covariance scaling's kernel: rho(s) = s for s <= c^2, else 3 c^2 - 4 c^4 / (c^2 + s)
-/// (rho' = 4 c^4 / (c^2 + s)^2, rho'' = -8 c^4 / (c^2 + s)^3): continuous with its derivative at
-/// the gate. c^2 is read from the graph at each evaluation (the graduated start changes it).
-class DynamicCovarianceScalingLoss : public ceres::LossFunction {
- public:
-  explicit DynamicCovarianceScalingLoss(const double* c2) : c2_(c2) {}
-  void Evaluate(double s, double rho[3]) const override {
-    const double c2 = *c2_;
-    if (s <= c2) {
-      rho[0] = s;
-      rho[1] = 1.0;
-      rho[2] = 0.0;
-      return;
-    }
-    const double d = c2 + s;
-    rho[0] = 3.0 * c2 - 4.0 * c2 * c2 / d;
-    rho[1] = 4.0 * c2 * c2 / (d * d);
-    rho[2] = -8.0 * c2 * c2 / (d * d * d);
-  }
-
- private:
-  const double* c2_;
-};
-
-/// Cauchy: rho(s) = c^2 log(1 + s / c^2), rho' = 1 / (1 + s / c^2), rho'' = -rho'^2 / c^2.
-class CauchyLoss : public ceres::LossFunction {
- public:
-  explicit CauchyLoss(const double* c2) : c2_(c2) {}
-  void Evaluate(double s, double rho[3]) const override {
-    const double c2 = *c2_;
-    const double w = 1.0 / (1.0 + s / c2);
-    rho[0] = c2 * std::log1p(s / c2);
-    rho[1] = w;
-    rho[2] = -w * w / c2;
-  }
-
- private:
-  const double* c2_;
-};
 
 }  // namespace
 
@@ -153,6 +41,7 @@ PoseGraph::PoseGraph(const PoseGraphConfig& config)
     : config_(config), problem_(std::make_unique<Problem>()) {
   problem_->c2 = config_.robust_scale_chi2;
   poses_.reserve(kMaxNodes);
+  biases_.reserve(kMaxNodes);
 }
 
 PoseGraph::~PoseGraph() = default;
@@ -162,7 +51,10 @@ std::size_t PoseGraph::add_node(const Pose2& initial_world) {
     throw std::length_error("pose graph: more than " + std::to_string(kMaxNodes) + " nodes");
   }
   poses_.push_back(initial_world.vector());  // within the reserved capacity: nothing moves
+  biases_.push_back(0.0);                    // likewise
   fixed_.push_back(false);
+  has_bias_.push_back(false);
+  bias_fixed_.push_back(false);
   problem_->problem.AddParameterBlock(poses_.back().data(), 3);
   return poses_.size() - 1;
 }
@@ -176,9 +68,11 @@ void PoseGraph::hold_before(std::size_t first_free) {
   first_free = std::min(first_free, poses_.size());
   for (std::size_t i = first_free; i < held_before_; ++i) {
     if (!fixed_[i]) problem_->problem.SetParameterBlockVariable(poses_[i].data());
+    if (has_bias_[i] && !bias_fixed_[i]) problem_->problem.SetParameterBlockVariable(&biases_[i]);
   }
   for (std::size_t i = held_before_; i < first_free; ++i) {
     problem_->problem.SetParameterBlockConstant(poses_[i].data());
+    if (has_bias_[i]) problem_->problem.SetParameterBlockConstant(&biases_[i]);
   }
   held_before_ = first_free;
 }
@@ -212,6 +106,53 @@ void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_ra
   double* pose = poses_.at(i).data();
   problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr, pose);
 }
+
+void PoseGraph::add_heading_bias(std::size_t i, double initial_rad, bool fixed) {
+  if (has_bias_.at(i)) {
+    throw std::invalid_argument("pose graph: node " + std::to_string(i) + " has a bias already");
+  }
+  biases_[i] = initial_rad;
+  problem_->problem.AddParameterBlock(&biases_[i], 1);
+  has_bias_[i] = true;
+  bias_fixed_[i] = fixed;
+  if (fixed || i < held_before_) problem_->problem.SetParameterBlockConstant(&biases_[i]);
+}
+
+double* PoseGraph::bias_block(std::size_t i) {
+  if (!has_bias_.at(i)) {
+    throw std::out_of_range("pose graph: node " + std::to_string(i) + " has no heading bias");
+  }
+  return &biases_[i];
+}
+
+void PoseGraph::add_heading_bias_prior(std::size_t i, double mean_rad, double sigma_rad) {
+  if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: bias sigma must be > 0");
+  double* bias = bias_block(i);
+  problem_->problem.AddResidualBlock(new BiasPriorCost(mean_rad, sigma_rad), nullptr, bias);
+}
+
+void PoseGraph::add_heading_bias_walk(std::size_t i, std::size_t j, double sigma_rad) {
+  if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: walk sigma must be > 0");
+  double *bias_i = bias_block(i), *bias_j = bias_block(j);
+  problem_->problem.AddResidualBlock(new BiasWalkCost(sigma_rad), nullptr, bias_i, bias_j);
+}
+
+void PoseGraph::add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
+                                   double sigma_rad) {
+  if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
+  double *pose = poses_.at(i).data(), *bias = bias_block(bias_node);
+  problem_->problem.AddResidualBlock(new BiasedHeadingCost(yaw_world_rad, sigma_rad), nullptr, pose,
+                                     bias);
+}
+
+double PoseGraph::heading_bias(std::size_t i) const {
+  if (!has_bias_.at(i)) {
+    throw std::out_of_range("pose graph: node " + std::to_string(i) + " has no heading bias");
+  }
+  return biases_[i];
+}
+
+void PoseGraph::set_heading_bias(std::size_t i, double bias_rad) { *bias_block(i) = bias_rad; }
 
 PoseGraphSolve PoseGraph::solve(bool count_downweighted) {
   ceres::Solver::Options options;
@@ -253,21 +194,31 @@ using Poses = std::vector<Eigen::Vector3d>;
 
 /// The graph's information J^T J at the current estimate, over every edge (robust ones at their
 /// weight there, as the solver sees them: Problem::Evaluate applies the losses), factored once by
-/// Eigen's sparse Cholesky (AMD ordering), J's columns the free nodes in index order. A fixed
-/// node's covariance blocks are zero.
+/// Eigen's sparse Cholesky (AMD ordering), J's columns the free nodes in index order, then the
+/// free heading-bias blocks in theirs. A fixed node's covariance blocks are zero.
 ///
 /// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its
 /// sparse QR (SuiteSparse over BLAS) gives other last bits with another memory layout, against
 /// "same seed, same bytes" (docs/pose_graph.md). This depends only on the values.
 class Information {
  public:
-  Information(ceres::Problem& problem, Poses& poses) : problem_(problem), poses_(poses) {
+  Information(ceres::Problem& problem, Poses& poses, std::vector<double>& biases,
+              const std::vector<bool>& has_bias)
+      : problem_(problem), poses_(poses) {
     std::vector<double*> free_blocks;
+    Eigen::Index columns = 0;
     column_.assign(poses.size(), -1);
     for (std::size_t i = 0; i < poses.size(); ++i) {
       if (problem.IsParameterBlockConstant(poses[i].data())) continue;
-      column_[i] = 3 * static_cast<Eigen::Index>(free_blocks.size());
+      column_[i] = columns;
+      columns += 3;
       free_blocks.push_back(poses[i].data());
+    }
+    bias_column_.assign(poses.size(), -1);
+    for (std::size_t i = 0; i < poses.size(); ++i) {
+      if (!has_bias[i] || problem.IsParameterBlockConstant(&biases[i])) continue;
+      bias_column_[i] = columns++;
+      free_blocks.push_back(&biases[i]);
     }
     if (free_blocks.empty()) return;
     ceres::Problem::EvaluateOptions options;
@@ -282,9 +233,11 @@ class Information {
     singular_ = llt_.info() != Eigen::Success;
   }
 
-  /// The joint marginal covariance of `nodes` (3n x 3n, in that order): the information's
-  /// inverse, solved for those nodes' columns only.
-  Eigen::MatrixXd joint(const std::vector<std::size_t>& nodes) const {
+  /// The joint marginal covariance of the heading biases of `bias_nodes`, then of the poses of
+  /// `nodes` (b + 3n square, in that order): the information's inverse, solved for those columns
+  /// only.
+  Eigen::MatrixXd joint(const std::vector<std::size_t>& nodes,
+                        const std::vector<std::size_t>& bias_nodes) const {
     for (const std::size_t i : nodes) {
       std::vector<ceres::ResidualBlockId> edges;
       problem_.GetResidualBlocksForParameterBlock(poses_.at(i).data(), &edges);
@@ -295,18 +248,25 @@ class Information {
     if (singular_) {
       throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
     }
-    const auto n = static_cast<Eigen::Index>(nodes.size());
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(3 * n, 3 * n);
+    // Each wanted row of the result: its column of the information (-1: held, zero covariance).
+    std::vector<Eigen::Index> wanted;
+    for (const std::size_t i : bias_nodes) wanted.push_back(bias_column_.at(i));
+    for (const std::size_t i : nodes) {
+      for (Eigen::Index r = 0; r < 3; ++r) wanted.push_back(column_[i] < 0 ? -1 : column_[i] + r);
+    }
+    const auto m = static_cast<Eigen::Index>(wanted.size());
+    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
     if (llt_.rows() == 0) return C;
-    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(llt_.rows(), 3 * n);
-    for (Eigen::Index a = 0; a < n; ++a) {
-      const Eigen::Index c = column_[nodes[static_cast<std::size_t>(a)]];
-      if (c >= 0) unit.block<3, 3>(c, 3 * a).setIdentity();
+    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(llt_.rows(), m);
+    for (Eigen::Index a = 0; a < m; ++a) {
+      if (wanted[static_cast<std::size_t>(a)] >= 0)
+        unit(wanted[static_cast<std::size_t>(a)], a) = 1;
     }
     const Eigen::MatrixXd solved = llt_.solve(unit);
-    for (Eigen::Index a = 0; a < n; ++a) {
-      const Eigen::Index c = column_[nodes[static_cast<std::size_t>(a)]];
-      if (c >= 0) C.middleRows<3>(3 * a) = solved.middleRows<3>(c);
+    for (Eigen::Index a = 0; a < m; ++a) {
+      if (wanted[static_cast<std::size_t>(a)] >= 0) {
+        C.row(a) = solved.row(wanted[static_cast<std::size_t>(a)]);
+      }
     }
     return 0.5 * (C + C.transpose());  // exactly symmetric
   }
@@ -314,7 +274,8 @@ class Information {
  private:
   ceres::Problem& problem_;
   const Poses& poses_;
-  std::vector<Eigen::Index> column_;
+  std::vector<Eigen::Index> column_;       ///< a node's first pose column, -1 when held
+  std::vector<Eigen::Index> bias_column_;  ///< its bias's column, -1 when none or held
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
   bool singular_ = false;
 };
@@ -323,7 +284,7 @@ class Information {
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
   hold_before(0);
-  const Information information(problem_->problem, poses_);
+  const Information information(problem_->problem, poses_, biases_, has_bias_);
   std::vector<Eigen::Matrix3d> out;
   // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
   constexpr std::size_t kBatch = 64;
@@ -331,7 +292,7 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
     const std::vector<std::size_t> batch(
         nodes.begin() + static_cast<long>(first),
         nodes.begin() + static_cast<long>(std::min(first + kBatch, nodes.size())));
-    const Eigen::MatrixXd joint = information.joint(batch);
+    const Eigen::MatrixXd joint = information.joint(batch, {});
     for (std::size_t k = 0; k < batch.size(); ++k) {
       out.emplace_back(
           joint.block<3, 3>(3 * static_cast<Eigen::Index>(k), 3 * static_cast<Eigen::Index>(k)));
@@ -340,9 +301,10 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
   return out;
 }
 
-Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes) {
+Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes,
+                                            const std::vector<std::size_t>& bias_nodes) {
   hold_before(0);
-  return Information(problem_->problem, poses_).joint(nodes);
+  return Information(problem_->problem, poses_, biases_, has_bias_).joint(nodes, bias_nodes);
 }
 
 void PoseGraph::set_pose(std::size_t i, const Pose2& world) { poses_.at(i) = world.vector(); }

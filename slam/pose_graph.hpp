@@ -6,7 +6,10 @@
 //   I
 //              (A: the observed directions as orthonormal rows, as in trajectory SLAM's matches);
 //   prior:     r = W (z (-) x_i);
-//   heading:   r = (yaw_z - yaw_i) / sigma   (the compass).
+//   heading:   r = (yaw_z - yaw_i) / sigma   (the compass), or (yaw_z - yaw_i - b_i) / sigma
+//              through node i's heading bias b_i (a scalar block; the compass's walking bias,
+//              docs/pose_graph.md), whose walk is r = (b_j - b_i) / (q sqrt(dt)) and prior
+//              r = (b_i - b_0) / sigma.
 // Analytic rather than automatic Jacobians: the pose algebra already has them, checked against
 // central differences in tests, and the residuals stay written in the same SE(2) type every filter
 // uses (Ceres' Jets would need a templated copy of it).
@@ -88,6 +91,22 @@ class PoseGraph {
   /// The compass: yaw_world_rad ~ yaw_i with standard deviation sigma_rad.
   void add_heading(std::size_t i, double yaw_world_rad, double sigma_rad);
 
+  /// Gives node i a heading-bias block at initial_rad (held there when fixed: known). Throws
+  /// std::invalid_argument when it has one already.
+  void add_heading_bias(std::size_t i, double initial_rad, bool fixed);
+  /// b_i ~ N(mean_rad, sigma_rad^2). The bias add_* throw std::out_of_range for a node without a
+  /// bias block.
+  void add_heading_bias_prior(std::size_t i, double mean_rad, double sigma_rad);
+  /// b_j - b_i ~ N(0, sigma_rad^2): the bias's walk from node i to node j.
+  void add_heading_bias_walk(std::size_t i, std::size_t j, double sigma_rad);
+  /// The compass through a bias: yaw_world_rad ~ yaw_i + b_k (k = bias_node: node i's own, or
+  /// the one a constant bias lives in), standard deviation sigma_rad.
+  void add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
+                          double sigma_rad);
+  double heading_bias(std::size_t i) const;
+  /// Moves a bias (a warm start for the next solve).
+  void set_heading_bias(std::size_t i, double bias_rad);
+
   /// Solves from the current poses (warm start: each solve starts where the last ended).
   /// count_downweighted: evaluate every robust edge afterwards for edges_downweighted (else 0).
   PoseGraphSolve solve(bool count_downweighted = true);
@@ -103,7 +122,9 @@ class PoseGraph {
   /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph
   /// knows of the pose of one node seen from another, which the odometry chain alone overstates
   /// once loops close. Throws as covariances() does.
-  Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes);
+  /// bias_nodes: first, the heading biases of these nodes (b + 3n square, the biases leading).
+  Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes,
+                                   const std::vector<std::size_t>& bias_nodes = {});
   /// Moves a node (a warm start for the next solve).
   void set_pose(std::size_t i, const Pose2& world);
 
@@ -112,16 +133,21 @@ class PoseGraph {
 
  private:
   struct Problem;
-  static constexpr std::size_t kMaxNodes = std::size_t{1} << 20;  ///< 24 MB of address space
+  static constexpr std::size_t kMaxNodes = std::size_t{1} << 20;  ///< 32 MB of address space
   PoseGraphConfig config_;
   /// The nodes' poses in one buffer reserved up front for kMaxNodes (address space only: its
   /// pages are touched as nodes come), so that their addresses never move (Ceres holds them) and
   /// increase with the node index: nothing the solver does then depends on the memory layout
   /// (the environment's size, the output path's length), for "same seed, same bytes".
   std::vector<Eigen::Vector3d> poses_;
-  std::vector<bool> fixed_;      ///< per node: held for good (the gauge)
-  std::size_t held_before_ = 0;  ///< nodes before this are held for now (hold_before)
+  std::vector<double> biases_;    ///< per node its heading bias (a block where has_bias_), reserved
+  std::vector<bool> fixed_;       ///< per node: held for good (the gauge)
+  std::vector<bool> has_bias_;    ///< per node: it has a heading-bias block
+  std::vector<bool> bias_fixed_;  ///< per node: that block held for good
+  std::size_t held_before_ = 0;   ///< nodes before this are held for now (hold_before)
   std::unique_ptr<Problem> problem_;
+
+  double* bias_block(std::size_t i);  ///< node i's bias block; throws when it has none
 };
 
 }  // namespace msislab

@@ -18,16 +18,21 @@ namespace msislab {
 struct PoseGraphBelief {
   std::vector<std::size_t> nodes;  ///< graph node of each pose, in the covariance's order
   std::vector<Pose2> means;        ///< world frame
-  Eigen::MatrixXd cov;             ///< joint, 3n x 3n
+  Eigen::MatrixXd cov;             ///< joint, (p + 3n) square: the parameters, then the poses
   Eigen::Index newest = 0;         ///< the scan's own node, as an index into nodes
+  /// Calibration leading the state (the newest node's heading bias, or none), as the filters'.
+  Eigen::VectorXd parameters;
+
+  /// The first row of the pose at index i in cov.
+  Eigen::Index at(Eigen::Index i) const { return parameters.size() + 3 * i; }
 
   /// The pose of the newest node seen from the belief's node c, with its Jacobian H (3 x 3n).
   GaussianPose2 predict(Eigen::Index c, Eigen::MatrixXd* H) const {
     Eigen::Matrix3d J_c, J_t;
     const Pose2 h = means[c].between(means[newest], &J_c, &J_t);
     H->setZero(3, cov.cols());
-    H->block<3, 3>(0, 3 * c) = J_c;
-    H->block<3, 3>(0, 3 * newest) = J_t;
+    H->block<3, 3>(0, at(c)) = J_c;
+    H->block<3, 3>(0, at(newest)) = J_t;
     const Eigen::Matrix3d P = *H * cov * H->transpose();
     return {h, 0.5 * (P + P.transpose())};
   }
@@ -48,9 +53,9 @@ struct PoseGraphBelief {
     const Pose2 mean = means[from].compose(relative.mean, &J_from, &J_relative);
     const Eigen::Index n = cov.rows();
     cov.conservativeResize(n + 3, n + 3);
-    cov.bottomRows<3>().leftCols(n) = J_from * cov.middleRows<3>(3 * from).leftCols(n);
+    cov.bottomRows<3>().leftCols(n) = J_from * cov.middleRows<3>(at(from)).leftCols(n);
     cov.rightCols<3>().topRows(n) = cov.bottomRows<3>().leftCols(n).transpose();
-    const Eigen::Matrix3d P = J_from * cov.block<3, 3>(3 * from, 3 * from) * J_from.transpose() +
+    const Eigen::Matrix3d P = J_from * cov.block<3, 3>(at(from), at(from)) * J_from.transpose() +
                               J_relative * relative.cov * J_relative.transpose();
     cov.bottomRightCorner<3, 3>() = 0.5 * (P + P.transpose());
     nodes.push_back(node);
@@ -58,14 +63,15 @@ struct PoseGraphBelief {
   }
 
   /// The marginal covariance of the node at index i.
-  Eigen::Matrix3d node_cov(Eigen::Index i) const { return cov.block<3, 3>(3 * i, 3 * i); }
+  Eigen::Matrix3d node_cov(Eigen::Index i) const { return cov.block<3, 3>(at(i), at(i)); }
 
-  /// The joint covariance of the nodes at the given indices, in their order (the others
-  /// marginalised: their rows and columns dropped).
+  /// The joint covariance of the parameters and the nodes at the given indices, in their order
+  /// (the other nodes marginalised: their rows and columns dropped).
   Eigen::MatrixXd marginal(const std::vector<Eigen::Index>& kept) const {
     std::vector<Eigen::Index> rows;
+    for (Eigen::Index r = 0; r < parameters.size(); ++r) rows.push_back(r);
     for (const Eigen::Index i : kept) {
-      for (Eigen::Index r = 0; r < 3; ++r) rows.push_back(3 * i + r);
+      for (Eigen::Index r = 0; r < 3; ++r) rows.push_back(at(i) + r);
     }
     return cov(rows, rows);
   }
@@ -92,8 +98,8 @@ struct PoseGraphBelief {
                           const Eigen::VectorXd& innovation, const Eigen::MatrixXd& S) {
       return innovation.dot(S.ldlt().solve(innovation)) <= gate_chi2;
     };
-    if (!iterated_ekf_update(means.begin(), means.size(), cov, residual, R, iterations, gate, K,
-                             PHt)) {
+    if (!iterated_ekf_update(parameters, means.begin(), means.size(), cov, residual, R, iterations,
+                             gate, K, PHt)) {
       return false;
     }
     cov.noalias() -= K * PHt.transpose();

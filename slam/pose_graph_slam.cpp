@@ -25,6 +25,43 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
     start_cov_.setZero();
   }
   window_cov_ = start_cov_;
+  if (front_end.calibration.heading_bias) {
+    // The compass's bias leads the belief from the start (its prior); the scans' nodes carry it
+    // in the graph (the first with the prior, the later ones through the walk).
+    const double sigma_rad = front_end.calibration.heading_bias_sigma_deg * M_PI / 180.0;
+    window_cov_ = Eigen::MatrixXd::Zero(4, 4);
+    window_cov_(0, 0) = sigma_rad * sigma_rad;
+    window_cov_.bottomRightCorner<3, 3>() = start_cov_;
+  }
+  newest_joint_ = window_cov_;
+}
+
+bool PoseGraphSlam::estimates_heading_bias() const { return front_end_.calibration.heading_bias; }
+
+std::size_t PoseGraphSlam::bias_node(std::size_t node) const {
+  // A bias that does not walk is one constant: the first scan's block.
+  return front_end_.calibration.heading_bias_walk_deg_per_sqrt_s > 0.0 ? node : 1;
+}
+
+void PoseGraphSlam::add_bias_block(std::size_t node, double t_s, PoseGraphBelief& belief) {
+  const CalibrationStatesConfig& c = front_end_.calibration;
+  const double walk_rad = c.heading_bias_walk_deg_per_sqrt_s * M_PI / 180.0;
+  if (node == 1) {
+    const double sigma_rad = c.heading_bias_sigma_deg * M_PI / 180.0;
+    graph_->add_heading_bias(1, belief.parameters(0), !(sigma_rad > 0.0));
+    if (sigma_rad > 0.0) graph_->add_heading_bias_prior(1, 0.0, sigma_rad);
+  } else if (walk_rad > 0.0) {
+    const double dt_s = std::max(0.0, t_s - previous_t_s_);
+    // The walk over the scans' interval (paper-free: the filters' model, docs/pose_graph.md).
+    belief.cov(0, 0) += walk_rad * walk_rad * dt_s;
+    graph_->add_heading_bias(node, belief.parameters(0), false);
+    if (dt_s > 0.0) {
+      graph_->add_heading_bias_walk(node - 1, node, walk_rad * std::sqrt(dt_s));
+    } else {
+      graph_->add_heading_bias_walk(node - 1, node, 1e-9);  // the same instant: the same bias
+    }
+  }
+  previous_t_s_ = t_s;
 }
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
@@ -40,6 +77,10 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
   // the kept old nodes and the window.
   PoseGraphBelief belief;
+  if (estimates_heading_bias()) {
+    belief.parameters =
+        Eigen::VectorXd::Constant(1, k == 0 ? 0.0 : graph_->heading_bias(bias_node(node - 1)));
+  }
   if (windowed) {
     for (const std::size_t i : old_nodes_) {
       belief.nodes.push_back(i);
@@ -51,13 +92,21 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     }
     belief.cov = window_cov_;
     belief.append_composed(node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
+  } else if (estimates_heading_bias()) {
+    // The bias's joint with the newest node, carried from scan to scan; the previous node
+    // marginalised once the new one is composed onto it.
+    PoseGraphBelief chain{
+        {node - 1}, {graph_->pose(node - 1)}, newest_joint_, 0, belief.parameters};
+    chain.append_composed(node, 0, motion);
+    belief = {{node}, {chain.means[1]}, chain.marginal({1}), 0, chain.parameters};
   } else {
     const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
     const GaussianPose2 newest = compose(previous, motion);
-    belief = {{node}, {newest.mean}, newest.cov, 0};
+    belief = {{node}, {newest.mean}, newest.cov, 0, {}};
   }
   graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
   graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
+  if (estimates_heading_bias()) add_bias_block(node, scan.t_s, belief);
   motions_.push_back(motion);
   points_.push_back(finite_points(scan.points));
   ++totals_.scans;
@@ -66,7 +115,12 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   if (front_end_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
       scan.compass_sigma_rad > 0.0 &&
       update_compass(scan.compass_yaw_world_rad, scan.compass_sigma_rad, belief)) {
-    graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+    if (estimates_heading_bias()) {
+      graph_->add_biased_heading(node, bias_node(node), scan.compass_yaw_world_rad,
+                                 scan.compass_sigma_rad);
+    } else {
+      graph_->add_heading(node, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+    }
     write_means(belief);
     stats.compass_accepted = true;
     ++totals_.compass_accepted;
@@ -104,12 +158,19 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   const GaussianPose2 newest{belief.means[static_cast<std::size_t>(t)], belief.node_cov(t)};
   require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
                  scan.t_s, "compass and match updates");
-  if (windowed) keep_window(belief, k);
+  if (windowed) {
+    keep_window(belief, k);
+  } else if (estimates_heading_bias()) {
+    newest_joint_ = belief.marginal({t});
+  }
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
     solve(!windowed);  // windowed, edges_downweighted waits for the smoothing solve
     require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, scan.t_s, "solve");
   }
   online_.push_back({graph_->pose(node), newest.cov});
+  if (estimates_heading_bias()) {
+    bias_ = {graph_->heading_bias(bias_node(node)), std::sqrt(belief.cov(0, 0))};
+  }
   return stats;
 }
 
@@ -118,9 +179,13 @@ bool PoseGraphSlam::update_compass(double yaw_world_rad, double sigma_rad,
   const Eigen::Index t = belief.newest;
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     H->setZero(1, belief.cov.cols());
-    (*H)(0, 3 * t + 2) = 1.0;
+    (*H)(0, belief.at(t) + 2) = 1.0;
+    // Through the bias when the belief carries it: h = yaw + b.
+    const double bias_rad = belief.parameters.size() > 0 ? belief.parameters(0) : 0.0;
+    if (belief.parameters.size() > 0) (*H)(0, 0) = 1.0;
     return Eigen::VectorXd::Constant(
-        1, normalize_angle(yaw_world_rad - belief.means[static_cast<std::size_t>(t)].yaw()));
+        1, normalize_angle(yaw_world_rad - belief.means[static_cast<std::size_t>(t)].yaw() -
+                           bias_rad));
   };
   // Linear in the yaw: one step is exact.
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
@@ -138,7 +203,12 @@ PoseGraphBelief PoseGraphSlam::whole_graph_belief(
   belief.nodes.push_back(node);
   belief.means.push_back(newest_mean);
   belief.newest = static_cast<Eigen::Index>(candidates.size());
-  belief.cov = graph_->joint_covariance(belief.nodes);
+  if (estimates_heading_bias()) {
+    belief.parameters = Eigen::VectorXd::Constant(1, graph_->heading_bias(bias_node(node)));
+    belief.cov = graph_->joint_covariance(belief.nodes, {bias_node(node)});
+  } else {
+    belief.cov = graph_->joint_covariance(belief.nodes);
+  }
   return belief;
 }
 
@@ -190,110 +260,14 @@ void PoseGraphSlam::match(std::size_t k,
   }
 }
 
-std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
-    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates,
-    std::size_t k) {
-  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
-  std::vector<Eigen::Index> in_belief;
-  for (const auto& candidate : candidates) {
-    const std::size_t i = candidate.second + 1;
-    if (i >= window_first_) {
-      in_belief.push_back(window_at + static_cast<Eigen::Index>(i - window_first_));
-      continue;
-    }
-    ++outside_window_matches_;
-    auto at = std::find(belief.nodes.begin(), belief.nodes.end(), i);
-    if (at == belief.nodes.end()) {
-      append_old(belief, i);
-      at = belief.nodes.end() - 1;
-    }
-    const auto index = static_cast<Eigen::Index>(at - belief.nodes.begin());
-    if (index < window_at) old_used_[static_cast<std::size_t>(index)] = k;
-    in_belief.push_back(index);
-  }
-  return in_belief;
-}
-
-void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
-  // The nearest node of the belief along the odometry chain.
-  Eigen::Index from = -1;
-  std::size_t chain = std::numeric_limits<std::size_t>::max();
-  for (std::size_t b = 0; b < belief.nodes.size(); ++b) {
-    const std::size_t n = belief.nodes[b];
-    const std::size_t d = n > i ? n - i : i - n;
-    if (d < chain) {
-      chain = d;
-      from = static_cast<Eigen::Index>(b);
-    }
-  }
-  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans)) {
-    const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
-    GaussianPose2 relative;  // node j to node i along the odometry: motions_[m] is node m to m + 1
-    for (std::size_t m = std::min(i, j); m < std::max(i, j); ++m) {
-      relative = compose(relative, motions_[m]);
-    }
-    if (j > i) relative = invert(relative);
-    relative.mean = belief.means[static_cast<std::size_t>(from)].between(graph_->pose(i));
-    belief.append_relative(i, from, relative);
-    return;
-  }
-  // Its correlation with the belief is not known: the window's one approximation left.
-  belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
-  ++old_uncorrelated_;
-}
-
 void PoseGraphSlam::write_means(const PoseGraphBelief& belief) {
   for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
     graph_->set_pose(belief.nodes[i], belief.means[i]);
   }
-}
-
-void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
-  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
-  const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
-  const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, config_.online_window_scans);
-  left_window_cov_.resize(window_first_ + static_cast<std::size_t>(dropped),
-                          Eigen::Matrix3d::Zero());
-  for (Eigen::Index d = 0; d < dropped; ++d) {
-    left_window_cov_[window_first_ + static_cast<std::size_t>(d)] = belief.node_cov(window_at + d);
+  if (belief.parameters.size() > 0) {
+    graph_->set_heading_bias(bias_node(belief.nodes[static_cast<std::size_t>(belief.newest)]),
+                             belief.parameters(0));
   }
-  std::vector<Eigen::Index> kept_at = keep_old_nodes(belief, k);
-  for (Eigen::Index b = window_at + dropped; b <= belief.newest; ++b) kept_at.push_back(b);
-  window_cov_ = belief.marginal(kept_at);
-  window_first_ += static_cast<std::size_t>(dropped);
-  graph_->hold_before(window_first_);
-}
-
-std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,
-                                                        std::size_t k) {
-  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
-  // The old nodes, most recently used first (this scan's first uses are used now).
-  std::vector<std::pair<std::size_t, Eigen::Index>> old;  // (last used, index in the belief)
-  for (Eigen::Index b = 0; b < window_at; ++b) {
-    old.push_back({old_used_[static_cast<std::size_t>(b)], b});
-  }
-  const auto size = static_cast<Eigen::Index>(belief.nodes.size());
-  for (Eigen::Index b = belief.newest + 1; b < size; ++b) old.push_back({k, b});
-  std::stable_sort(old.begin(), old.end(),
-                   [](const auto& a, const auto& b) { return a.first > b.first; });
-  const std::size_t keep_old =
-      std::min(old.size(), static_cast<std::size_t>(std::max(0, config_.online_old_nodes)));
-  for (std::size_t o = keep_old; o < old.size(); ++o) {
-    left_window_cov_.at(belief.nodes[static_cast<std::size_t>(old[o].second)]) =
-        belief.node_cov(old[o].second);
-  }
-  old.resize(keep_old);
-  std::sort(old.begin(), old.end(),
-            [](const auto& a, const auto& b) { return a.second < b.second; });
-  std::vector<Eigen::Index> kept_at;
-  old_nodes_.clear();
-  old_used_.clear();
-  for (const auto& [used, b] : old) {
-    kept_at.push_back(b);
-    old_nodes_.push_back(belief.nodes[static_cast<std::size_t>(b)]);
-    old_used_.push_back(used);
-  }
-  return kept_at;
 }
 
 void PoseGraphSlam::solve(bool count_downweighted) const {
@@ -310,6 +284,11 @@ void PoseGraphSlam::smooth() const {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     smoothed_.push_back({graph_->pose(nodes[i]), covariances[i]});
   }
+}
+
+std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
+  if (!estimates_heading_bias() || motions_.empty()) return {};
+  return {{"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI}};
 }
 
 GaussianPose2 PoseGraphSlam::scan_pose_world(std::size_t i) const {

@@ -77,6 +77,9 @@ class PoseGraphSlam : public ScanSlam {
   std::optional<std::vector<GaussianPose2>> online_poses() const override { return online_; }
   /// Matches the robust loss set aside at the last solve (beyond the gate there).
   std::optional<int> matches_downweighted() const override { return downweighted_; }
+  /// With trajectory_slam.calibration.heading_bias: the compass's bias at the newest scan (the
+  /// graph's solution there) with the belief's standard deviation.
+  std::vector<CalibrationEstimate> calibration() const override;
   /// Windowed: the candidates so far that were older than the window.
   int matches_outside_window() const { return outside_window_matches_; }
   /// Windowed: the old nodes that joined the belief uncorrelated with it (no node of the belief
@@ -121,6 +124,13 @@ class PoseGraphSlam : public ScanSlam {
   /// nodes of a windowed belief are held in the online solves (as the whole graph's candidates
   /// start its solves from their updated means).
   void write_means(const PoseGraphBelief& belief);
+  bool estimates_heading_bias() const;
+  /// The node whose bias block scan node `node` reads the compass through: its own when the bias
+  /// walks, else the first scan's (a constant).
+  std::size_t bias_node(std::size_t node) const;
+  /// The bias block of scan node `node` at time t_s: the prior at the first scan, the walk from
+  /// the previous one after (the belief's bias variance grown by it).
+  void add_bias_block(std::size_t node, double t_s, PoseGraphBelief& belief);
 
   TrajectorySlamConfig front_end_;
   PoseGraphSlamConfig config_;
@@ -142,6 +152,10 @@ class PoseGraphSlam : public ScanSlam {
   mutable int downweighted_ = 0;
   int outside_window_matches_ = 0;               ///< candidates older than the window (windowed)
   mutable std::vector<GaussianPose2> smoothed_;  ///< filled by smooth(); cleared by add_scan
+  /// With the heading bias, whole-graph mode: the joint of the bias and the newest node.
+  Eigen::MatrixXd newest_joint_;
+  double previous_t_s_ = 0.0;                 ///< the last scan's time (the bias's walk)
+  std::pair<double, double> bias_{0.0, 0.0};  ///< the newest bias and its sd, rad
 };
 
 }  // namespace msislab

@@ -1,0 +1,111 @@
+// The pose-graph SLAM's online window (PoseGraphSlamConfig::online_window_scans > 0; the
+// header of slam/pose_graph_slam.hpp and docs/pose_graph.md, "Long missions"): the candidates
+// older than the window joining the belief, and the window kept from scan to scan.
+#include <algorithm>
+#include <limits>
+
+#include "slam/pose_graph_slam.hpp"
+
+namespace msislab {
+
+std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
+    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates,
+    std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
+  std::vector<Eigen::Index> in_belief;
+  for (const auto& candidate : candidates) {
+    const std::size_t i = candidate.second + 1;
+    if (i >= window_first_) {
+      in_belief.push_back(window_at + static_cast<Eigen::Index>(i - window_first_));
+      continue;
+    }
+    ++outside_window_matches_;
+    auto at = std::find(belief.nodes.begin(), belief.nodes.end(), i);
+    if (at == belief.nodes.end()) {
+      append_old(belief, i);
+      at = belief.nodes.end() - 1;
+    }
+    const auto index = static_cast<Eigen::Index>(at - belief.nodes.begin());
+    if (index < window_at) old_used_[static_cast<std::size_t>(index)] = k;
+    in_belief.push_back(index);
+  }
+  return in_belief;
+}
+
+void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
+  // The nearest node of the belief along the odometry chain.
+  Eigen::Index from = -1;
+  std::size_t chain = std::numeric_limits<std::size_t>::max();
+  for (std::size_t b = 0; b < belief.nodes.size(); ++b) {
+    const std::size_t n = belief.nodes[b];
+    const std::size_t d = n > i ? n - i : i - n;
+    if (d < chain) {
+      chain = d;
+      from = static_cast<Eigen::Index>(b);
+    }
+  }
+  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans)) {
+    const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
+    GaussianPose2 relative;  // node j to node i along the odometry: motions_[m] is node m to m + 1
+    for (std::size_t m = std::min(i, j); m < std::max(i, j); ++m) {
+      relative = compose(relative, motions_[m]);
+    }
+    if (j > i) relative = invert(relative);
+    relative.mean = belief.means[static_cast<std::size_t>(from)].between(graph_->pose(i));
+    belief.append_relative(i, from, relative);
+    return;
+  }
+  // Its correlation with the belief is not known: the window's one approximation left.
+  belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
+  ++old_uncorrelated_;
+}
+
+void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
+  const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
+  const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, config_.online_window_scans);
+  left_window_cov_.resize(window_first_ + static_cast<std::size_t>(dropped),
+                          Eigen::Matrix3d::Zero());
+  for (Eigen::Index d = 0; d < dropped; ++d) {
+    left_window_cov_[window_first_ + static_cast<std::size_t>(d)] = belief.node_cov(window_at + d);
+  }
+  std::vector<Eigen::Index> kept_at = keep_old_nodes(belief, k);
+  for (Eigen::Index b = window_at + dropped; b <= belief.newest; ++b) kept_at.push_back(b);
+  window_cov_ = belief.marginal(kept_at);
+  window_first_ += static_cast<std::size_t>(dropped);
+  graph_->hold_before(window_first_);
+}
+
+std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,
+                                                        std::size_t k) {
+  const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
+  // The old nodes, most recently used first (this scan's first uses are used now).
+  std::vector<std::pair<std::size_t, Eigen::Index>> old;  // (last used, index in the belief)
+  for (Eigen::Index b = 0; b < window_at; ++b) {
+    old.push_back({old_used_[static_cast<std::size_t>(b)], b});
+  }
+  const auto size = static_cast<Eigen::Index>(belief.nodes.size());
+  for (Eigen::Index b = belief.newest + 1; b < size; ++b) old.push_back({k, b});
+  std::stable_sort(old.begin(), old.end(),
+                   [](const auto& a, const auto& b) { return a.first > b.first; });
+  const std::size_t keep_old =
+      std::min(old.size(), static_cast<std::size_t>(std::max(0, config_.online_old_nodes)));
+  for (std::size_t o = keep_old; o < old.size(); ++o) {
+    left_window_cov_.at(belief.nodes[static_cast<std::size_t>(old[o].second)]) =
+        belief.node_cov(old[o].second);
+  }
+  old.resize(keep_old);
+  std::sort(old.begin(), old.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  std::vector<Eigen::Index> kept_at;
+  old_nodes_.clear();
+  old_used_.clear();
+  for (const auto& [used, b] : old) {
+    kept_at.push_back(b);
+    old_nodes_.push_back(belief.nodes[static_cast<std::size_t>(b)]);
+    old_used_.push_back(used);
+  }
+  return kept_at;
+}
+
+}  // namespace msislab

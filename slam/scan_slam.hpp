@@ -52,6 +52,9 @@ class ScanSlam {
   virtual std::optional<int> matches_downweighted() const { return std::nullopt; }
   /// The calibration parameters the back end estimates (none by default).
   virtual std::vector<CalibrationEstimate> calibration() const { return {}; }
+  /// Whether the back end carries the DVL's scale factor as a state (its scan motions must then
+  /// leave out the dead reckoning's considered scale uncertainty, which the state replaces).
+  virtual bool estimates_dvl_scale() const { return false; }
 };
 
 }  // namespace msislab

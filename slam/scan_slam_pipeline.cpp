@@ -35,6 +35,7 @@ SlamConfig scan_motion_config(const SlamConfig& config) {
 }  // namespace
 
 bool slam_scans_are_dead_reckonings(const SlamConfig& config) {
+  // (Conservative for the pose graph, whose scans are the dead reckoning's either way.)
   return scan_motion_config(config).dead_reckoning.dvl_scale_sigma ==
          config.dead_reckoning.dvl_scale_sigma;
 }
@@ -56,7 +57,10 @@ ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigatio
   // Dead reckoning (the paper's DVL + MRU EKF), and the scans it places (Sec. II).
   out.dead_reckoning =
       run_dead_reckoning(navigation, config.dead_reckoning, setup.p_vehicle_dvl_m, setup.start);
-  out.scans = build_placed_scans(navigation, beams, scan_motion_config(config), setup);
+  // A back end without the DVL-scale state (the pose graph) keeps the considered uncertainty.
+  out.scans = build_placed_scans(
+      navigation, beams, backend.estimates_dvl_scale() ? scan_motion_config(config) : config,
+      setup);
   // The back end, scan by scan (Sec. III-IV).
   for (const PlacedScan& placed : out.scans) {
     SlamStepStats step = backend.add_scan(placed.scan);

@@ -147,6 +147,7 @@ class TrajectorySlam : public ScanSlam {
   const SlamTotals& totals() const override { return totals_; }
   /// The calibration states switched on (range_scale, dvl_scale), with their standard deviations.
   std::vector<CalibrationEstimate> calibration() const override;
+  bool estimates_dvl_scale() const override { return config_.calibration.dvl_scale; }
 
   /// The world pose of scan i with its covariance.
   GaussianPose2 scan_pose_world(std::size_t i) const override = 0;

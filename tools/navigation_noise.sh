@@ -3,7 +3,8 @@
 # the navigation noise of the config (the defaults: St. Pere's figures) against the noise its
 # sensors have (`navigation_noise: dataset`, the scenario's navigation_noise.yaml), N Monte Carlo
 # runs each (default 10; the concrete basin 6), robocentric SLAM, the pose graph and dead
-# reckoning; and the replica again with a 2 deg beam (stpere_replica_beam2). The replica is read
+# reckoning; and the replica again with a 2 deg beam (stpere_replica_beam2); each also with the
+# sensors' noise and one match per scan (trajectory_slam.max_matches_per_scan: 1). The replica is read
 # through its detections (config/stpere_replica.yaml), the others with the default config. Prints a Markdown table: mean error, ANEES and the share of scan steps
 # whose run-averaged NEES lies inside the two-sided 95 % bounds. Writes under out/navigation_noise/.
 # Usage: tools/navigation_noise.sh [--runs N] [--msislab EXE]
@@ -51,9 +52,14 @@ cases=(
 )
 for c in "${cases[@]}"; do
   read -r name scenario config n <<<"$c"
-  for noise in config dataset; do
+  for noise in config dataset one_match; do
     cfg="$out/$name.$noise.yaml"
-    { [ "$config" = - ] || cat "$config"; echo "navigation_noise: $noise"; } >"$cfg"
+    { [ "$config" = - ] || cat "$config"
+      if [ $noise = one_match ]; then
+        printf 'navigation_noise: dataset\ntrajectory_slam:\n  max_matches_per_scan: 1\n'
+      else
+        echo "navigation_noise: $noise"
+      fi; } >"$cfg"
     run_fresh "$out/$name.$noise" "$msislab" montecarlo "$scenario" --runs "$n" \
       --out "$out/$name.$noise" --methods robocentric,posegraph,deadreckoning --config "$cfg" \
       --no-plot >/dev/null
@@ -69,10 +75,11 @@ print("| scenario (runs) | noise | " + " | ".join(
 print("| --- | --- |" + " ---: |" * len(methods))
 for case in sys.argv[2:]:
     name, _, _, n = case.split(" ")
-    for noise in ("config", "dataset"):
+    for noise in ("config", "dataset", "one_match"):
         s = json.load(open(os.path.join(out, f"{name}.{noise}", "summary.json")))
         cells = [f"{s[m]['mean_error_m']:.2f} m, {s[m]['anees']:.2f}, "
                  f"{100 * s[m]['nees_in_bounds_fraction']:.0f} %" for m in methods]
-        label = "the defaults" if noise == "config" else "the sensors' (dataset)"
+        label = {"config": "the defaults", "dataset": "the sensors' (dataset)",
+                 "one_match": "the sensors', one match per scan"}[noise]
         print(f"| {name} ({n}) | {label} | " + " | ".join(cells) + " |")
 PY

@@ -7,7 +7,8 @@
 // of a match covariance a few centimetres wide (docs/trajectory_slam.md, "Match validation at any
 // scale"). Seed 1, measured figures beside each bound. Then the dead reckoning with the sensors'
 // errors modelled (the compass's bias walk and the DVL's scale uncertainty,
-// docs/dead_reckoning.md): consistent over 6 runs, where with their white noise alone it is not.
+// docs/dead_reckoning.md): consistent over 6 runs, where with their white noise alone it is not;
+// and the same model taken from the dataset's own navigation_noise.yaml.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -81,6 +82,14 @@ TEST(ConcreteBasin, DeadReckoningModellingTheSensorsErrorsIsConsistent) {
   EXPECT_LT(modelled.anees.value_or(INFINITY), upper);              // 2.77
   EXPECT_GE(modelled.nees_in_bounds_fraction.value_or(0.0), 0.85);  // 1.00
   EXPECT_GT(white.anees.value_or(0.0), upper);                      // 10.3
+  // The same model from the dataset itself (navigation_noise.yaml, the scenario's sensors): the
+  // figures a user would have to find are the ones the run takes (the DVL scale's size comes out
+  // of 1.01 / 1 - 1 in floating point, 1e-15 off 0.01, hence a relative 1e-9).
+  const MethodSummary from_dataset =
+      dead_reckoning_over_runs(tmp, "dataset", "navigation_noise: dataset\n", 6);
+  EXPECT_NEAR(from_dataset.anees.value_or(0.0), modelled.anees.value_or(INFINITY),
+              1e-9 * modelled.anees.value_or(0.0));
+  EXPECT_EQ(from_dataset.nees_in_bounds_fraction, modelled.nees_in_bounds_fraction);
 }
 
 }  // namespace

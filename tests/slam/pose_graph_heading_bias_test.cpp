@@ -116,5 +116,27 @@ TEST(PoseGraphHeadingBias, WindowedGraphRecoversAWalkingCompassesBias) {
   EXPECT_GE(f.within, 8);
 }
 
+// The same code on a short stretch of one loop, whole graph and windowed: what the sanitizer build
+// runs (the ten-loop tests above take minutes under it; CMakePresets.json, docs/reliability.md).
+// The estimate is finite, its standard deviation grows from the prior by the walk and stays below
+// the walk's 30 scans alone, sqrt(0.5^2 + 30 x 0.3^2) = 1.7 deg.
+TEST(PoseGraphHeadingBias, AShortStretchInBothBackEnds) {
+  Loop loop = make_loop(4, false);
+  with_walking_compass(loop, 0.3, 0.1, 4);
+  TrajectorySlamConfig front = with_heading_bias(0.3);
+  front.calibration.heading_bias_sigma_deg = 0.5;
+  for (const int window : {0, 4}) {
+    PoseGraphSlamConfig graph;
+    graph.online_window_scans = window;
+    PoseGraphSlam slam(front, graph, GaussianPose2{});
+    for (std::size_t k = 0; k < 30; ++k) slam.add_scan(loop.scans[k]);
+    const CalibrationEstimate beta = slam.calibration().at(0);
+    EXPECT_TRUE(std::isfinite(beta.value)) << window;
+    EXPECT_GT(beta.sigma, 0.0) << window;
+    EXPECT_LT(beta.sigma, std::sqrt(0.25 + 30 * 0.09)) << window;
+    EXPECT_TRUE(slam.scan_pose_world(29).cov.allFinite()) << window;
+  }
+}
+
 }  // namespace
 }  // namespace msislab

@@ -95,6 +95,8 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"slam_config_yaml", "config.yaml", [](const std::string& p) { io::read_slam_config(p); }},
       {"calibration_yaml", "calibration.yaml",
        [](const std::string& p) { io::read_calibration(p); }},
+      {"navigation_noise_yaml", "navigation_noise.yaml",
+       [](const std::string& p) { io::read_navigation_noise(p); }},
       {"sweep_yaml", "sweep.yaml", read_sweep_cells},
       {"methods_yaml", "methods.yaml", read_methods},
       {"expectations_yaml", "expectations.yaml",

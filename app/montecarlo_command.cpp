@@ -18,6 +18,7 @@
 #include "app/montecarlo_runs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
+#include "app/run_method.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
@@ -89,6 +90,10 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   write_directory_header(options.out_dir, manifest, inputs);
   // Said once every input is checked (a bad input's message stays one line).
   if (!config.noise_note.empty()) std::cerr << "msislab: " << config.noise_note << '\n';
+  if (std::find(options.methods.begin(), options.methods.end(), "posegraph") !=
+      options.methods.end()) {
+    warn_ignored_calibration(ctx.config);
+  }
   ctx.dir = options.out_dir;
   ctx.keep_datasets = options.keep_datasets;
   return ctx;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iostream>
 #include <iterator>
 
 #include "app/eval_command.hpp"
@@ -10,6 +11,7 @@
 #include "report/methods.hpp"
 #include "slam/calibration_update.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/pose_graph_slam.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
 namespace msislab::app {
@@ -227,6 +229,14 @@ void score(const report::MethodInfo& method, const io::RunInputs& in, const Esti
 }
 
 }  // namespace
+
+void warn_ignored_calibration(const SlamConfig& config) {
+  for (const std::string& state :
+       pose_graph_ignored_calibration(config.trajectory_slam.calibration)) {
+    std::cerr << "msislab: posegraph does not estimate trajectory_slam.calibration." << state
+              << " (the filters do); it runs without it\n";
+  }
+}
 
 /// The library's pipeline settings from a dataset read already.
 ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar) {

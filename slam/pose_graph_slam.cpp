@@ -10,6 +10,17 @@
 
 namespace msislab {
 
+std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
+  std::vector<std::string> out;
+  for (const auto& [on, name] : {std::pair<bool, const char*>{c.range_scale, "range_scale"},
+                                 {c.dvl_scale, "dvl_scale"},
+                                 {c.clock_offset, "clock_offset"},
+                                 {c.compass_deviation, "compass_deviation"}}) {
+    if (on) out.emplace_back(name);
+  }
+  return out;
+}
+
 PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
                              const PoseGraphSlamConfig& config, const GaussianPose2& start_world)
     : front_end_(front_end),

@@ -35,6 +35,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "slam/pose_graph.hpp"
@@ -61,6 +62,11 @@ struct PoseGraphSlamConfig {
   /// latter.
   int online_old_chain_scans = 10;
 };
+
+/// The calibration states switched on in `c` that the pose graph does not estimate (it estimates
+/// the heading bias; the filters all of them), by their config names: what a run says it leaves
+/// out.
+std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c);
 
 class PoseGraphSlam : public ScanSlam {
  public:

@@ -16,7 +16,14 @@ namespace msislab {
 
 namespace {
 
-using namespace pose_graph_edges;  // NOLINT(google-build-using-namespace): the edges' own header
+using pose_graph_edges::BiasedHeadingCost;
+using pose_graph_edges::BiasPriorCost;
+using pose_graph_edges::BiasWalkCost;
+using pose_graph_edges::CauchyLoss;
+using pose_graph_edges::DynamicCovarianceScalingLoss;
+using pose_graph_edges::HeadingCost;
+using pose_graph_edges::PriorCost;
+using pose_graph_edges::RelativeCost;
 
 /// W with W S W^T = I for a positive definite S: the inverse of its lower Cholesky factor.
 Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {

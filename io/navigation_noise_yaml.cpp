@@ -18,14 +18,20 @@ struct NoiseKey {
   const char* name;
   double NavigationNoise::*value;
   bool white;  ///< a white-noise sigma: 0 leaves the filter's own (a filter needs one above 0)
+  void (*set)(DeadReckoningConfig&, double);  ///< the dead reckoning's key (units: the file's)
 };
 
 constexpr NoiseKey kNoiseKeys[] = {
-    {"dvl_sigma_mps", &NavigationNoise::dvl_sigma_mps, true},
-    {"heading_sigma_deg", &NavigationNoise::heading_sigma_deg, true},
-    {"heading_bias_walk_deg_per_sqrt_s", &NavigationNoise::heading_bias_walk_deg_per_sqrt_s, false},
-    {"heading_bias_sigma_deg", &NavigationNoise::heading_bias_sigma_deg, false},
-    {"dvl_scale_sigma", &NavigationNoise::dvl_scale_sigma, false},
+    {"dvl_sigma_mps", &NavigationNoise::dvl_sigma_mps, true,
+     [](DeadReckoningConfig& c, double v) { c.dvl_sigma_mps = v; }},
+    {"heading_sigma_deg", &NavigationNoise::heading_sigma_deg, true,
+     [](DeadReckoningConfig& c, double v) { c.heading_sigma_rad = v * M_PI / 180.0; }},
+    {"heading_bias_walk_deg_per_sqrt_s", &NavigationNoise::heading_bias_walk_deg_per_sqrt_s, false,
+     [](DeadReckoningConfig& c, double v) { c.heading_bias_walk_deg_per_sqrt_s = v; }},
+    {"heading_bias_sigma_deg", &NavigationNoise::heading_bias_sigma_deg, false,
+     [](DeadReckoningConfig& c, double v) { c.heading_bias_sigma_deg = v; }},
+    {"dvl_scale_sigma", &NavigationNoise::dvl_scale_sigma, false,
+     [](DeadReckoningConfig& c, double v) { c.dvl_scale_sigma = v; }},
 };
 
 NavigationNoise navigation_noise_from_yaml(const YAML::Node& node, const std::string& name) {
@@ -52,15 +58,6 @@ std::string navigation_noise_yaml(const NavigationNoise& noise) {
     text += std::string("  ") + key.name + ": " + format_number(noise.*key.value) + "\n";
   }
   return text;
-}
-
-/// Sets the dead-reckoning key `name` of c to value (the noise's units are the config file's).
-void set_dead_reckoning(DeadReckoningConfig& c, const std::string& name, double value) {
-  if (name == "dvl_sigma_mps") c.dvl_sigma_mps = value;
-  if (name == "heading_sigma_deg") c.heading_sigma_rad = value * M_PI / 180.0;
-  if (name == "heading_bias_walk_deg_per_sqrt_s") c.heading_bias_walk_deg_per_sqrt_s = value;
-  if (name == "heading_bias_sigma_deg") c.heading_bias_sigma_deg = value;
-  if (name == "dvl_scale_sigma") c.dvl_scale_sigma = value;
 }
 
 std::string short_number(double value) {
@@ -101,31 +98,24 @@ DatasetConfig slam_config_for_dataset(const std::string& config_path,
   // Read once as it is: whether it asks for the dataset's noise (and any error in it, first).
   const SlamConfig own = slam_config_of(node, name, SlamConfig{});
   DatasetConfig out;
-  if (!noise) {
-    out.config = own;
-    return out;
-  }
+  out.config = own;
+  if (!noise) return out;
   if (!own.navigation_noise_from_dataset) {
-    out.config = own;
     out.noise_note = noise_source + " states the sensors' noise (" + noise_values(*noise) +
                      "); `navigation_noise: dataset` in a config uses it";
     return out;
   }
+  // Each key the file does not have (whatever its value there: the reader checks it) comes from
+  // the dataset.
+  const YAML::Node section =
+      node.IsMap() && node["dead_reckoning"] ? node["dead_reckoning"] : YAML::Node();
   SlamConfig base;
   std::string taken;
-  {
-    // A key the file has, whatever its value: the reader below checks it.
-    const auto set_by_file = [&](const char* key) {
-      if (!node.IsMap() || !node["dead_reckoning"]) return false;
-      const YAML::Node section = node["dead_reckoning"];
-      return section.IsMap() && static_cast<bool>(section[key]);
-    };
-    for (const NoiseKey& key : kNoiseKeys) {
-      const double value = (*noise).*key.value;
-      if (set_by_file(key.name) || (key.white && !(value > 0.0))) continue;
-      set_dead_reckoning(base.dead_reckoning, key.name, value);
-      taken += std::string(taken.empty() ? "" : ", ") + key.name + " " + short_number(value);
-    }
+  for (const NoiseKey& key : kNoiseKeys) {
+    const double value = (*noise).*key.value;
+    if ((section.IsMap() && section[key.name]) || (key.white && !(value > 0.0))) continue;
+    key.set(base.dead_reckoning, value);
+    taken += std::string(taken.empty() ? "" : ", ") + key.name + " " + short_number(value);
   }
   out.config = slam_config_of(node, name, base);
   if (!taken.empty()) {

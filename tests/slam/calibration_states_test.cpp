@@ -472,13 +472,6 @@ TEST(CalibrationStates, RecoverTheSonarClockOffset) {
   EXPECT_GE(r.better, 4);
 }
 
-TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
-  TrajectorySlamConfig config;
-  config.calibration.heading_bias = true;
-  config.calibration.heading_bias_walk_deg_per_sqrt_s = walk_deg_per_sqrt_s;
-  return config;
-}
-
 // The compass residual z - (psi + beta + a cos(psi) + b sin(psi)): its Jacobian over the bias,
 // the deviation and the elements against central differences, in both filters.
 TEST(CalibrationStates, CompassResidualJacobianWithTheHeadingBias) {

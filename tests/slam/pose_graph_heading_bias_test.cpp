@@ -4,7 +4,6 @@
 // with a compass whose bias walks, the smoothed last yaw consistent and the bias found, in the
 // whole-graph and the windowed back end, where the same compass read as white noise is far
 // overconfident; switched off, no estimate.
-#include <ceres/ceres.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +12,7 @@
 
 #include "slam/pose_graph.hpp"
 #include "slam/pose_graph_slam.hpp"
+#include "tests/slam/residual_jacobian_check.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
 namespace msislab {
@@ -30,43 +30,22 @@ TEST(PoseGraphHeadingBias, EdgeJacobiansMatchCentralDifferences) {
   graph.add_heading_bias_walk(0, 1, 0.002);
   graph.add_biased_heading(1, 1, 2.5, 0.05);
   graph.add_biased_heading(0, 1, 0.6, 0.05);  // through another node's (a constant) bias
-  const ceres::Problem& problem = graph.problem_for_checks();
-  std::vector<ceres::ResidualBlockId> blocks;
-  problem.GetResidualBlocks(&blocks);
-  ASSERT_EQ(blocks.size(), 4u);
-  ceres::NumericDiffOptions numeric;
-  numeric.relative_step_size = 1e-7;
-  for (const ceres::ResidualBlockId id : blocks) {
-    const ceres::CostFunction* cost = problem.GetCostFunctionForResidualBlock(id);
-    std::vector<double*> parameters;
-    problem.GetParameterBlocksForResidualBlock(id, &parameters);
-    const std::vector<const ceres::Manifold*>* no_manifolds = nullptr;
-    ceres::GradientChecker checker(cost, no_manifolds, numeric);
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters.data(), 1e-6, &results)) << results.error_log;
-  }
+  expect_residual_jacobians_match(graph.problem_for_checks(), 4);
   EXPECT_THROW(graph.add_heading_bias(0, 0.0, false), std::invalid_argument);
   graph.add_node(Pose2());
   EXPECT_THROW(graph.add_biased_heading(2, 2, 0.0, 0.05), std::out_of_range);
 }
 
-TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
-  TrajectorySlamConfig config;
-  config.calibration.heading_bias = true;
-  config.calibration.heading_bias_walk_deg_per_sqrt_s = walk_deg_per_sqrt_s;
-  return config;
-}
-
-struct LoopFigures {
-  double nees_with = 0.0, nees_without = 0.0;
-  int within = 0;
-};
-
-/// Ten loops with a compass whose bias walks 0.3 deg / sqrt(s) under 0.1 deg of white noise; the
-/// smoothed last yaw's 1-DOF NEES averaged, with and without the state, and the loops whose
-/// estimated bias lies within two standard deviations of the truth.
-LoopFigures walking_compass_loops(int window) {
-  LoopFigures out;
+/// Ten loops with a compass whose bias walks 0.3 deg / sqrt(s) under 0.1 deg of white noise. The
+/// bounds are the filters' test's (tests/slam/calibration_states_test.cpp,
+/// RecoverTheHeadingBiasOfAWalkingCompass): the smoothed last yaw's 1-DOF NEES averaged over the
+/// ten loops inside the two-sided 99 % bounds of chi-square(10) / 10, [0.22, 2.52]; without the
+/// state far above (10); the bias within 2 sd in at least 8 of 10.
+void expect_walking_compass_recovered(int window) {
+  struct {
+    double nees_with = 0.0, nees_without = 0.0;
+    int within = 0;
+  } out;
   PoseGraphSlamConfig graph;
   graph.online_window_scans = window;
   for (unsigned seed = 1; seed <= 10; ++seed) {
@@ -93,27 +72,18 @@ LoopFigures walking_compass_loops(int window) {
   }
   std::cout << "window " << window << ": last scan's yaw NEES, 10 loops: " << out.nees_with
             << " with the state, " << out.nees_without << " without\n";
-  return out;
+  EXPECT_GT(out.nees_with, 0.22);
+  EXPECT_LT(out.nees_with, 2.52);
+  EXPECT_GT(out.nees_without, 10.0);
+  EXPECT_GE(out.within, 8);
 }
 
-// The bounds are the filters' test's (tests/slam/calibration_states_test.cpp,
-// RecoverTheHeadingBiasOfAWalkingCompass): the ten loops' average 1-DOF NEES inside the two-sided
-// 99 % bounds of chi-square(10) / 10, [0.22, 2.52]; without the state far above (10); the bias
-// within 2 sd in at least 8 of 10.
 TEST(PoseGraphHeadingBias, WholeGraphRecoversAWalkingCompassesBias) {
-  const LoopFigures f = walking_compass_loops(0);
-  EXPECT_GT(f.nees_with, 0.22);
-  EXPECT_LT(f.nees_with, 2.52);
-  EXPECT_GT(f.nees_without, 10.0);
-  EXPECT_GE(f.within, 8);
+  expect_walking_compass_recovered(0);
 }
 
 TEST(PoseGraphHeadingBias, WindowedGraphRecoversAWalkingCompassesBias) {
-  const LoopFigures f = walking_compass_loops(8);
-  EXPECT_GT(f.nees_with, 0.22);
-  EXPECT_LT(f.nees_with, 2.52);
-  EXPECT_GT(f.nees_without, 10.0);
-  EXPECT_GE(f.within, 8);
+  expect_walking_compass_recovered(8);
 }
 
 // The same code on a short stretch of one loop, whole graph and windowed: what the sanitizer build

@@ -19,6 +19,7 @@
 #include "slam/scan_matching.hpp"
 #include "stats/chi_square.hpp"
 #include "tests/draws.hpp"
+#include "tests/slam/residual_jacobian_check.hpp"
 
 namespace msislab {
 namespace {
@@ -90,21 +91,7 @@ TEST(PoseGraph, ResidualJacobiansMatchCentralDifferences) {
   graph.add_relative(0, 1, {Pose2(2.0, 3.0, 2.5), cov}, two_rows, false);
   graph.add_prior(1, {Pose2(3.5, 1.0, 3.1), cov});
   graph.add_heading(0, -3.0, 0.05);
-  const ceres::Problem& problem = graph.problem_for_checks();
-  std::vector<ceres::ResidualBlockId> blocks;
-  problem.GetResidualBlocks(&blocks);
-  ASSERT_EQ(blocks.size(), 4u);
-  ceres::NumericDiffOptions numeric;
-  numeric.relative_step_size = 1e-7;
-  for (const ceres::ResidualBlockId id : blocks) {
-    const ceres::CostFunction* cost = problem.GetCostFunctionForResidualBlock(id);
-    std::vector<double*> parameters;
-    problem.GetParameterBlocksForResidualBlock(id, &parameters);
-    const std::vector<const ceres::Manifold*>* no_manifolds = nullptr;
-    ceres::GradientChecker checker(cost, no_manifolds, numeric);
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_TRUE(checker.Probe(parameters.data(), 1e-6, &results)) << results.error_log;
-  }
+  expect_residual_jacobians_match(graph.problem_for_checks(), 4);
 }
 
 TEST(PoseGraph, OdometryAloneGivesThePropagatedCovariance) {

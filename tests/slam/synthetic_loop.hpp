@@ -8,6 +8,7 @@
 
 #include "geometry/se2.hpp"
 #include "slam/scan_builder.hpp"
+#include "slam/trajectory_slam.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
@@ -74,6 +75,14 @@ inline Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0)
     loop.scans.push_back(scan);
   }
   return loop;
+}
+
+/// The filters' config with the compass's heading-bias state on, walking at that density.
+inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
+  TrajectorySlamConfig config;
+  config.calibration.heading_bias = true;
+  config.calibration.heading_bias_walk_deg_per_sqrt_s = walk_deg_per_sqrt_s;
+  return config;
 }
 
 /// The loop with a compass whose bias walks (density walk_deg_per_sqrt_s from 0 at the first

@@ -27,14 +27,8 @@ done
 [ -x "$msislab" ] || { echo "tools/calibration_recovery.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/calibration_recovery
-# Scenarios and configs are written beside the results: only into a folder this script made.
-if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.calibration_recovery" ]; then
-  echo "tools/calibration_recovery.sh: $out exists and was not written by this script; refusing" >&2
-  exit 2
-fi
-mkdir -p "$out"
-touch "$out/.calibration_recovery"
 source tools/run_fresh.sh
+claim_out_folder tools/calibration_recovery.sh "$out"
 
 # CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)
 cases=(

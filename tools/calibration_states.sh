@@ -24,13 +24,8 @@ fi
 [ -x "$msislab" ] || { echo "tools/calibration_states.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/calibration_states
-# Its configs are written beside the results: only into a folder this script made (its marker).
-if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.calibration_states" ]; then
-  echo "tools/calibration_states.sh: $out exists and was not written by this script; refusing" >&2
-  exit 2
-fi
-mkdir -p "$out"  # msislab replaces only the result folders it wrote itself (docs/cli.md)
-touch "$out/.calibration_states"
+source tools/run_fresh.sh
+claim_out_folder tools/calibration_states.sh "$out"
 replica="$out/sim/stpere_replica"
 "$msislab" simulate scenarios/stpere_replica.yaml --out "$replica" >/dev/null
 

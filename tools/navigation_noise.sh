@@ -24,14 +24,8 @@ done
 [ -x "$msislab" ] || { echo "tools/navigation_noise.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/navigation_noise
-# Configs are written beside the results: only into a folder this script made (its marker).
-if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && [ ! -f "$out/.navigation_noise" ]; then
-  echo "tools/navigation_noise.sh: $out exists and was not written by this script; refusing" >&2
-  exit 2
-fi
-mkdir -p "$out"
-touch "$out/.navigation_noise"
 source tools/run_fresh.sh
+claim_out_folder tools/navigation_noise.sh "$out"
 
 # The replica with a 2 deg beam instead of its 6 deg one (whose matches shorten the motion,
 # docs/simulator.md, "Scan-match scale"): its relative paths made absolute.

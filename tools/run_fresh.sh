@@ -1,6 +1,5 @@
 # shellcheck shell=bash
-# Sourced by tools/results.sh, tools/robocentric_study.sh and tools/replica_verdict.sh (bash, set
-# -euo pipefail).
+# Sourced by the tools/ scripts that write under out/ (bash, set -euo pipefail).
 # run_fresh DIR COMMAND...: runs a resumable msislab command writing DIR (montecarlo, sweep),
 # its stderr shown and kept. When DIR was made by another msislab build or from another scenario
 # (or, for a sweep, from another sweep file), the directory is stale for the caller's page: it is
@@ -26,4 +25,20 @@ run_fresh() {
     exit 3
   fi
   [ "$status" -eq 0 ] || exit 2
+}
+
+# claim_out_folder SCRIPT DIR: makes DIR this script's folder (the marker DIR/.NAME, NAME the
+# folder's own name), refusing, exit 2, a non-empty DIR without that marker: a script writes its
+# scenarios and configs beside the results only into a folder it made (msislab itself replaces
+# only the result folders it wrote, docs/cli.md).
+claim_out_folder() {
+  local script="$1" dir="$2"
+  local marker
+  marker="$dir/.$(basename "$dir")"
+  if [ -d "$dir" ] && [ -n "$(ls -A "$dir")" ] && [ ! -f "$marker" ]; then
+    echo "$script: $dir exists and was not written by this script; refusing" >&2
+    exit 2
+  fi
+  mkdir -p "$dir"
+  touch "$marker"
 }

@@ -3,27 +3,27 @@
 #include <ceres/ceres.h>
 
 #include <Eigen/Cholesky>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "slam/pose_graph_edges.hpp"
+#include "slam/pose_graph_problem.hpp"
 
 namespace msislab {
 
 namespace {
 
 using pose_graph_edges::BiasedHeadingCost;
-using pose_graph_edges::BiasPriorCost;
 using pose_graph_edges::BiasWalkCost;
 using pose_graph_edges::CauchyLoss;
 using pose_graph_edges::DynamicCovarianceScalingLoss;
 using pose_graph_edges::HeadingCost;
 using pose_graph_edges::PriorCost;
 using pose_graph_edges::RelativeCost;
+using pose_graph_edges::ScalarPriorCost;
+using pose_graph_edges::ScaledRelativeCost;
 
 /// W with W S W^T = I for a positive definite S: the inverse of its lower Cholesky factor.
 Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
@@ -35,14 +35,6 @@ Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
 }
 
 }  // namespace
-
-struct PoseGraph::Problem {
-  ceres::Problem problem;
-  /// The robust edges, to count the down-weighted ones after a solve.
-  std::vector<ceres::ResidualBlockId> robust;
-  /// c^2 of the robust losses now: the configured one, or more during a graduated start.
-  double c2 = 0.0;
-};
 
 PoseGraph::PoseGraph(const PoseGraphConfig& config)
     : config_(config), problem_(std::make_unique<Problem>()) {
@@ -95,16 +87,37 @@ void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& 
   const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
   double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
   const Eigen::MatrixXd W = whitening(S) * observed;
-  ceres::LossFunction* loss = nullptr;
-  if (robust && config_.robust_scale_chi2 > 0.0) {
-    if (config_.robust_loss == RobustLoss::kCauchy) {
-      loss = new CauchyLoss(&problem_->c2);
-    } else {
-      loss = new DynamicCovarianceScalingLoss(&problem_->c2);
-    }
-  }
+  ceres::LossFunction* loss = robust_loss(robust);
   const ceres::ResidualBlockId id =
       problem_->problem.AddResidualBlock(new RelativeCost(z.mean, W), loss, pose_i, pose_j);
+  if (loss) problem_->robust.push_back(id);
+}
+
+ceres::LossFunction* PoseGraph::robust_loss(bool robust) {
+  if (!robust || !(config_.robust_scale_chi2 > 0.0)) return nullptr;
+  if (config_.robust_loss == RobustLoss::kCauchy) return new CauchyLoss(&problem_->c2);
+  return new DynamicCovarianceScalingLoss(&problem_->c2);
+}
+
+void PoseGraph::add_range_scale(double initial, double prior_mean, double prior_sigma) {
+  if (has_range_scale_) throw std::invalid_argument("pose graph: a range scale exists already");
+  if (!(prior_sigma > 0.0)) throw std::invalid_argument("pose graph: scale sigma must be > 0");
+  range_scale_ = initial;
+  problem_->problem.AddParameterBlock(&range_scale_, 1);
+  problem_->problem.AddResidualBlock(new ScalarPriorCost(prior_mean, prior_sigma), nullptr,
+                                     &range_scale_);
+  has_range_scale_ = true;
+}
+
+void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
+                                    const Eigen::MatrixXd& observed, bool robust) {
+  if (!has_range_scale_) throw std::out_of_range("pose graph: no range scale");
+  const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
+  double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
+  const Eigen::MatrixXd W = whitening(S) * observed;
+  ceres::LossFunction* loss = robust_loss(robust);
+  const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
+      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &range_scale_);
   if (loss) problem_->robust.push_back(id);
 }
 
@@ -135,7 +148,7 @@ double* PoseGraph::bias_block(std::size_t i) {
 void PoseGraph::add_heading_bias_prior(std::size_t i, double mean_rad, double sigma_rad) {
   if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: bias sigma must be > 0");
   double* bias = bias_block(i);
-  problem_->problem.AddResidualBlock(new BiasPriorCost(mean_rad, sigma_rad), nullptr, bias);
+  problem_->problem.AddResidualBlock(new ScalarPriorCost(mean_rad, sigma_rad), nullptr, bias);
 }
 
 void PoseGraph::add_heading_bias_walk(std::size_t i, std::size_t j, double sigma_rad) {
@@ -194,125 +207,6 @@ PoseGraphSolve PoseGraph::solve(bool count_downweighted) {
 Pose2 PoseGraph::pose(std::size_t i) const { return Pose2(poses_.at(i)); }
 
 const ceres::Problem& PoseGraph::problem_for_checks() const { return problem_->problem; }
-
-namespace {
-
-using Poses = std::vector<Eigen::Vector3d>;
-
-/// The graph's information J^T J at the current estimate, over every edge (robust ones at their
-/// weight there, as the solver sees them: Problem::Evaluate applies the losses), factored once by
-/// Eigen's sparse Cholesky (AMD ordering), J's columns the free nodes in index order, then the
-/// free heading-bias blocks in theirs. A fixed node's covariance blocks are zero.
-///
-/// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its
-/// sparse QR (SuiteSparse over BLAS) gives other last bits with another memory layout, against
-/// "same seed, same bytes" (docs/pose_graph.md). This depends only on the values.
-class Information {
- public:
-  Information(ceres::Problem& problem, Poses& poses, std::vector<double>& biases,
-              const std::vector<bool>& has_bias)
-      : problem_(problem), poses_(poses) {
-    std::vector<double*> free_blocks;
-    Eigen::Index columns = 0;
-    column_.assign(poses.size(), -1);
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      if (problem.IsParameterBlockConstant(poses[i].data())) continue;
-      column_[i] = columns;
-      columns += 3;
-      free_blocks.push_back(poses[i].data());
-    }
-    bias_column_.assign(poses.size(), -1);
-    for (std::size_t i = 0; i < poses.size(); ++i) {
-      if (!has_bias[i] || problem.IsParameterBlockConstant(&biases[i])) continue;
-      bias_column_[i] = columns++;
-      free_blocks.push_back(&biases[i]);
-    }
-    if (free_blocks.empty()) return;
-    ceres::Problem::EvaluateOptions options;
-    options.parameter_blocks = free_blocks;  // the other blocks are held constant
-    options.num_threads = 1;
-    ceres::CRSMatrix J;
-    problem.Evaluate(options, nullptr, nullptr, nullptr, &J);
-    const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor, int>> J_map(
-        J.num_rows, J.num_cols, static_cast<Eigen::Index>(J.values.size()), J.rows.data(),
-        J.cols.data(), J.values.data());
-    llt_.compute(Eigen::SparseMatrix<double>(J_map.transpose() * J_map));
-    singular_ = llt_.info() != Eigen::Success;
-  }
-
-  /// The joint marginal covariance of the heading biases of `bias_nodes`, then of the poses of
-  /// `nodes` (b + 3n square, in that order): the information's inverse, solved for those columns
-  /// only.
-  Eigen::MatrixXd joint(const std::vector<std::size_t>& nodes,
-                        const std::vector<std::size_t>& bias_nodes) const {
-    for (const std::size_t i : nodes) {
-      std::vector<ceres::ResidualBlockId> edges;
-      problem_.GetResidualBlocksForParameterBlock(poses_.at(i).data(), &edges);
-      if (edges.empty() && column_[i] >= 0) {
-        throw std::runtime_error("pose graph: node " + std::to_string(i) + " has no edge");
-      }
-    }
-    if (singular_) {
-      throw std::runtime_error("pose graph: the covariance is singular (a node without a prior)");
-    }
-    // Each wanted row of the result: its column of the information (-1: held, zero covariance).
-    std::vector<Eigen::Index> wanted;
-    for (const std::size_t i : bias_nodes) wanted.push_back(bias_column_.at(i));
-    for (const std::size_t i : nodes) {
-      for (Eigen::Index r = 0; r < 3; ++r) wanted.push_back(column_[i] < 0 ? -1 : column_[i] + r);
-    }
-    const auto m = static_cast<Eigen::Index>(wanted.size());
-    Eigen::MatrixXd C = Eigen::MatrixXd::Zero(m, m);
-    if (llt_.rows() == 0) return C;
-    Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(llt_.rows(), m);
-    for (Eigen::Index a = 0; a < m; ++a) {
-      if (wanted[static_cast<std::size_t>(a)] >= 0)
-        unit(wanted[static_cast<std::size_t>(a)], a) = 1;
-    }
-    const Eigen::MatrixXd solved = llt_.solve(unit);
-    for (Eigen::Index a = 0; a < m; ++a) {
-      if (wanted[static_cast<std::size_t>(a)] >= 0) {
-        C.row(a) = solved.row(wanted[static_cast<std::size_t>(a)]);
-      }
-    }
-    return 0.5 * (C + C.transpose());  // exactly symmetric
-  }
-
- private:
-  ceres::Problem& problem_;
-  const Poses& poses_;
-  std::vector<Eigen::Index> column_;       ///< a node's first pose column, -1 when held
-  std::vector<Eigen::Index> bias_column_;  ///< its bias's column, -1 when none or held
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
-  bool singular_ = false;
-};
-
-}  // namespace
-
-std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
-  hold_before(0);
-  const Information information(problem_->problem, poses_, biases_, has_bias_);
-  std::vector<Eigen::Matrix3d> out;
-  // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
-  constexpr std::size_t kBatch = 64;
-  for (std::size_t first = 0; first < nodes.size(); first += kBatch) {
-    const std::vector<std::size_t> batch(
-        nodes.begin() + static_cast<long>(first),
-        nodes.begin() + static_cast<long>(std::min(first + kBatch, nodes.size())));
-    const Eigen::MatrixXd joint = information.joint(batch, {});
-    for (std::size_t k = 0; k < batch.size(); ++k) {
-      out.emplace_back(
-          joint.block<3, 3>(3 * static_cast<Eigen::Index>(k), 3 * static_cast<Eigen::Index>(k)));
-    }
-  }
-  return out;
-}
-
-Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes,
-                                            const std::vector<std::size_t>& bias_nodes) {
-  hold_before(0);
-  return Information(problem_->problem, poses_, biases_, has_bias_).joint(nodes, bias_nodes);
-}
 
 void PoseGraph::set_pose(std::size_t i, const Pose2& world) { poses_.at(i) = world.vector(); }
 

@@ -27,7 +27,8 @@
 
 namespace ceres {
 class Problem;
-}
+class LossFunction;
+}  // namespace ceres
 
 namespace msislab {
 
@@ -103,6 +104,17 @@ class PoseGraph {
   /// the one a constant bias lives in), standard deviation sigma_rad.
   void add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
                           double sigma_rad);
+  /// The sonar's range scale s, one block for the whole graph, at `initial`, with the prior
+  /// s ~ N(prior_mean, prior_sigma^2). Throws std::invalid_argument when it exists already.
+  void add_range_scale(double initial, double prior_mean, double prior_sigma);
+  bool has_range_scale() const { return has_range_scale_; }
+  double range_scale() const { return range_scale_; }
+  /// Moves the range scale (a warm start for the next solve).
+  void set_range_scale(double s) { range_scale_ = s; }
+  /// As add_relative, z observing h through the range scale, (s t_h, yaw_h) (a match: the scans'
+  /// geometry is s times the true one). Throws std::out_of_range without a range scale.
+  void add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
+                           const Eigen::MatrixXd& observed, bool robust);
   double heading_bias(std::size_t i) const;
   /// Moves a bias (a warm start for the next solve).
   void set_heading_bias(std::size_t i, double bias_rad);
@@ -122,9 +134,11 @@ class PoseGraph {
   /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph
   /// knows of the pose of one node seen from another, which the odometry chain alone overstates
   /// once loops close. Throws as covariances() does.
-  /// bias_nodes: first, the heading biases of these nodes (b + 3n square, the biases leading).
+  /// bias_nodes: first, the heading biases of these nodes, then with range_scale (and a range
+  /// scale in the graph) the range scale ((b + r + 3n) square, the parameters leading).
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes,
-                                   const std::vector<std::size_t>& bias_nodes = {});
+                                   const std::vector<std::size_t>& bias_nodes = {},
+                                   bool range_scale = false);
   /// Moves a node (a warm start for the next solve).
   void set_pose(std::size_t i, const Pose2& world);
 
@@ -145,9 +159,13 @@ class PoseGraph {
   std::vector<bool> has_bias_;    ///< per node: it has a heading-bias block
   std::vector<bool> bias_fixed_;  ///< per node: that block held for good
   std::size_t held_before_ = 0;   ///< nodes before this are held for now (hold_before)
+  double range_scale_ = 1.0;      ///< a block when has_range_scale_ (the object never moves)
+  bool has_range_scale_ = false;
   std::unique_ptr<Problem> problem_;
 
   double* bias_block(std::size_t i);  ///< node i's bias block; throws when it has none
+  /// The configured robust loss for a match edge (robust), else none.
+  ceres::LossFunction* robust_loss(bool robust);
 };
 
 }  // namespace msislab

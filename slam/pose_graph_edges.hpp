@@ -44,6 +44,47 @@ class RelativeCost : public ceres::CostFunction {
   Eigen::MatrixXd WA_;
 };
 
+/// A match through the sonar's range scale s (the scans' geometry is s times the true one, as the
+/// filters' range-scale state): h = (-)x_i (+) x_j, h_s = (s t_h, yaw_h), r = W A (z (-) h_s);
+/// dr/dx = -W A D J (D = diag(s, s, 1)), dr/ds = -W A (t_h, 0).
+class ScaledRelativeCost : public ceres::CostFunction {
+ public:
+  ScaledRelativeCost(const Pose2& z, const Eigen::MatrixXd& WA) : z_(z), WA_(WA) {
+    set_num_residuals(static_cast<int>(WA.rows()));
+    mutable_parameter_block_sizes()->assign({3, 3, 1});
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
+    const double s = parameters[2][0];
+    Eigen::Matrix3d J_i, J_j;
+    const Pose2 h = x_i.between(x_j, &J_i, &J_j);
+    const Pose2 h_s(s * h.x(), s * h.y(), h.yaw());
+    const Eigen::Index d = WA_.rows();
+    Eigen::Map<Eigen::VectorXd> r(residuals, d);
+    r = WA_ * pose_difference(z_, h_s);
+    if (jacobians) {
+      const Eigen::Matrix3d D = Eigen::Vector3d(s, s, 1.0).asDiagonal();
+      for (int b = 0; b < 2; ++b) {
+        if (!jacobians[b]) continue;
+        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(jacobians[b], d, 3);
+        J = -WA_ * D * (b == 0 ? J_i : J_j);
+      }
+      if (jacobians[2]) {
+        Eigen::Map<Eigen::VectorXd> J(jacobians[2], d);
+        J = -WA_ * Eigen::Vector3d(h.x(), h.y(), 0.0);
+      }
+    }
+    return true;
+  }
+
+ private:
+  Pose2 z_;
+  Eigen::MatrixXd WA_;
+};
+
 /// r = W (z (-) x_i); dr/dx_i = -W.
 class PriorCost : public ceres::SizedCostFunction<3, 3> {
  public:
@@ -168,21 +209,21 @@ class BiasWalkCost : public ceres::SizedCostFunction<1, 1, 1> {
   double sigma_rad_;
 };
 
-/// The bias's prior: r = (b_i - z) / sigma; dr/db_i = 1 / sigma.
-class BiasPriorCost : public ceres::SizedCostFunction<1, 1> {
+/// A scalar's prior (a heading bias, the range scale): r = (b_i - z) / sigma; dr/db_i = 1 / sigma.
+class ScalarPriorCost : public ceres::SizedCostFunction<1, 1> {
  public:
-  BiasPriorCost(double mean_rad, double sigma_rad) : mean_rad_(mean_rad), sigma_rad_(sigma_rad) {}
+  ScalarPriorCost(double mean, double sigma) : mean_(mean), sigma_(sigma) {}
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
-    residuals[0] = (parameters[0][0] - mean_rad_) / sigma_rad_;
-    if (jacobians && jacobians[0]) jacobians[0][0] = 1.0 / sigma_rad_;
+    residuals[0] = (parameters[0][0] - mean_) / sigma_;
+    if (jacobians && jacobians[0]) jacobians[0][0] = 1.0 / sigma_;
     return true;
   }
 
  private:
-  double mean_rad_;
-  double sigma_rad_;
+  double mean_;
+  double sigma_;
 };
 
 }  // namespace msislab::pose_graph_edges

@@ -10,17 +10,6 @@
 
 namespace msislab {
 
-std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
-  std::vector<std::string> out;
-  for (const auto& [on, name] : {std::pair<bool, const char*>{c.range_scale, "range_scale"},
-                                 {c.dvl_scale, "dvl_scale"},
-                                 {c.clock_offset, "clock_offset"},
-                                 {c.compass_deviation, "compass_deviation"}}) {
-    if (on) out.emplace_back(name);
-  }
-  return out;
-}
-
 PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
                              const PoseGraphSlamConfig& config, const GaussianPose2& start_world)
     : front_end_(front_end),
@@ -35,44 +24,21 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
     graph_->fix_node(0);
     start_cov_.setZero();
   }
-  window_cov_ = start_cov_;
-  if (front_end.calibration.heading_bias) {
-    // The compass's bias leads the belief from the start (its prior); the scans' nodes carry it
-    // in the graph (the first with the prior, the later ones through the walk).
-    const double sigma_rad = front_end.calibration.heading_bias_sigma_deg * M_PI / 180.0;
-    window_cov_ = Eigen::MatrixXd::Zero(4, 4);
-    window_cov_(0, 0) = sigma_rad * sigma_rad;
-    window_cov_.bottomRightCorner<3, 3>() = start_cov_;
+  // The calibration leads the belief from the start with its priors: the compass's bias (the
+  // scans' nodes carry it in the graph, the first with the prior, the later ones through the
+  // walk), then the range scale (one block in the graph).
+  const CalibrationStatesConfig& c = front_end.calibration;
+  std::vector<double> prior_sd;
+  if (c.heading_bias) prior_sd.push_back(c.heading_bias_sigma_deg * M_PI / 180.0);
+  if (c.range_scale) {
+    prior_sd.push_back(c.range_scale_sigma);
+    graph_->add_range_scale(c.range_scale_prior, c.range_scale_prior, c.range_scale_sigma);
   }
+  const auto p = static_cast<Eigen::Index>(prior_sd.size());
+  window_cov_ = Eigen::MatrixXd::Zero(p + 3, p + 3);
+  for (Eigen::Index i = 0; i < p; ++i) window_cov_(i, i) = std::pow(prior_sd[i], 2);
+  window_cov_.bottomRightCorner<3, 3>() = start_cov_;
   newest_joint_ = window_cov_;
-}
-
-bool PoseGraphSlam::estimates_heading_bias() const { return front_end_.calibration.heading_bias; }
-
-std::size_t PoseGraphSlam::bias_node(std::size_t node) const {
-  // A bias that does not walk is one constant: the first scan's block.
-  return front_end_.calibration.heading_bias_walk_deg_per_sqrt_s > 0.0 ? node : 1;
-}
-
-void PoseGraphSlam::add_bias_block(std::size_t node, double t_s, PoseGraphBelief& belief) {
-  const CalibrationStatesConfig& c = front_end_.calibration;
-  const double walk_rad = c.heading_bias_walk_deg_per_sqrt_s * M_PI / 180.0;
-  if (node == 1) {
-    const double sigma_rad = c.heading_bias_sigma_deg * M_PI / 180.0;
-    graph_->add_heading_bias(1, belief.parameters(0), !(sigma_rad > 0.0));
-    if (sigma_rad > 0.0) graph_->add_heading_bias_prior(1, 0.0, sigma_rad);
-  } else if (walk_rad > 0.0) {
-    const double dt_s = std::max(0.0, t_s - previous_t_s_);
-    // The walk over the scans' interval (paper-free: the filters' model, docs/pose_graph.md).
-    belief.cov(0, 0) += walk_rad * walk_rad * dt_s;
-    graph_->add_heading_bias(node, belief.parameters(0), false);
-    if (dt_s > 0.0) {
-      graph_->add_heading_bias_walk(node - 1, node, walk_rad * std::sqrt(dt_s));
-    } else {
-      graph_->add_heading_bias_walk(node - 1, node, 1e-9);  // the same instant: the same bias
-    }
-  }
-  previous_t_s_ = t_s;
 }
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
@@ -88,10 +54,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
   // the kept old nodes and the window.
   PoseGraphBelief belief;
-  if (estimates_heading_bias()) {
-    belief.parameters =
-        Eigen::VectorXd::Constant(1, k == 0 ? 0.0 : graph_->heading_bias(bias_node(node - 1)));
-  }
+  belief.parameters = graph_parameters(k == 0 ? std::nullopt : std::optional(node - 1));
   if (windowed) {
     for (const std::size_t i : old_nodes_) {
       belief.nodes.push_back(i);
@@ -103,8 +66,8 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     }
     belief.cov = window_cov_;
     belief.append_composed(node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
-  } else if (estimates_heading_bias()) {
-    // The bias's joint with the newest node, carried from scan to scan; the previous node
+  } else if (belief.parameters.size() > 0) {
+    // The calibration's joint with the newest node, carried from scan to scan; the previous node
     // marginalised once the new one is composed onto it.
     PoseGraphBelief chain{
         {node - 1}, {graph_->pose(node - 1)}, newest_joint_, 0, belief.parameters};
@@ -171,7 +134,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
                  scan.t_s, "compass and match updates");
   if (windowed) {
     keep_window(belief, k);
-  } else if (estimates_heading_bias()) {
+  } else if (belief.parameters.size() > 0) {
     newest_joint_ = belief.marginal({t});
   }
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
@@ -182,6 +145,10 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   if (estimates_heading_bias()) {
     bias_ = {graph_->heading_bias(bias_node(node)), std::sqrt(belief.cov(0, 0))};
   }
+  if (estimates_range_scale()) {
+    const Eigen::Index r = range_scale_at();
+    range_scale_ = {graph_->range_scale(), std::sqrt(belief.cov(r, r))};
+  }
   return stats;
 }
 
@@ -191,9 +158,9 @@ bool PoseGraphSlam::update_compass(double yaw_world_rad, double sigma_rad,
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     H->setZero(1, belief.cov.cols());
     (*H)(0, belief.at(t) + 2) = 1.0;
-    // Through the bias when the belief carries it: h = yaw + b.
-    const double bias_rad = belief.parameters.size() > 0 ? belief.parameters(0) : 0.0;
-    if (belief.parameters.size() > 0) (*H)(0, 0) = 1.0;
+    // Through the bias when the belief carries it (its first parameter): h = yaw + b.
+    const double bias_rad = estimates_heading_bias() ? belief.parameters(0) : 0.0;
+    if (estimates_heading_bias()) (*H)(0, 0) = 1.0;
     return Eigen::VectorXd::Constant(
         1, normalize_angle(yaw_world_rad - belief.means[static_cast<std::size_t>(t)].yaw() -
                            bias_rad));
@@ -214,12 +181,10 @@ PoseGraphBelief PoseGraphSlam::whole_graph_belief(
   belief.nodes.push_back(node);
   belief.means.push_back(newest_mean);
   belief.newest = static_cast<Eigen::Index>(candidates.size());
-  if (estimates_heading_bias()) {
-    belief.parameters = Eigen::VectorXd::Constant(1, graph_->heading_bias(bias_node(node)));
-    belief.cov = graph_->joint_covariance(belief.nodes, {bias_node(node)});
-  } else {
-    belief.cov = graph_->joint_covariance(belief.nodes);
-  }
+  belief.parameters = graph_parameters(node);
+  std::vector<std::size_t> bias_nodes;
+  if (estimates_heading_bias()) bias_nodes.push_back(bias_node(node));
+  belief.cov = graph_->joint_covariance(belief.nodes, bias_nodes, estimates_range_scale());
   return belief;
 }
 
@@ -233,12 +198,12 @@ void PoseGraphSlam::match(std::size_t k,
   std::vector<GaussianPose2> joint_predictions;
   Eigen::MatrixXd H;
   for (std::size_t c = 0; front_end_.joint_update && c < candidates.size(); ++c) {
-    joint_predictions.push_back(belief.predict(in_belief[c], &H));
+    joint_predictions.push_back(predict_match(belief, in_belief[c], &H));
   }
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     const std::size_t j = candidates[c].second;
     const GaussianPose2 predicted =
-        front_end_.joint_update ? joint_predictions[c] : belief.predict(in_belief[c], &H);
+        front_end_.joint_update ? joint_predictions[c] : predict_match(belief, in_belief[c], &H);
     ValidatedMatch m = match_and_validate(points_[j], points_[k], predicted, front_end_.matching,
                                           front_end_.validation);
     stats.matched += m.match.valid;
@@ -252,11 +217,15 @@ void PoseGraphSlam::match(std::size_t k,
       if (nis > gate) {
         m.rejection = MatchRejection::kInnovation;
       } else {
-        graph_->add_relative(j + 1, node, m.match.estimate, A, true);
+        if (estimates_range_scale()) {
+          graph_->add_scaled_relative(j + 1, node, m.match.estimate, A, true);
+        } else {
+          graph_->add_relative(j + 1, node, m.match.estimate, A, true);
+        }
         ++stats.accepted;
         // The update (Eq. 6-10).
         const auto residual = [&](Eigen::MatrixXd* H_match) -> Eigen::VectorXd {
-          const Pose2 h = belief.predict(in_belief[c], &H).mean;
+          const Pose2 h = predict_match(belief, in_belief[c], &H).mean;
           *H_match = A * H;
           return A * pose_difference(m.match.estimate.mean, h);
         };
@@ -275,10 +244,11 @@ void PoseGraphSlam::write_means(const PoseGraphBelief& belief) {
   for (std::size_t i = 0; i < belief.nodes.size(); ++i) {
     graph_->set_pose(belief.nodes[i], belief.means[i]);
   }
-  if (belief.parameters.size() > 0) {
+  if (estimates_heading_bias()) {
     graph_->set_heading_bias(bias_node(belief.nodes[static_cast<std::size_t>(belief.newest)]),
                              belief.parameters(0));
   }
+  if (estimates_range_scale()) graph_->set_range_scale(belief.parameters(range_scale_at()));
 }
 
 void PoseGraphSlam::solve(bool count_downweighted) const {
@@ -295,11 +265,11 @@ void PoseGraphSlam::smooth() const {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     smoothed_.push_back({graph_->pose(nodes[i]), covariances[i]});
   }
-}
-
-std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
-  if (!estimates_heading_bias() || motions_.empty()) return {};
-  return {{"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI}};
+  if (estimates_range_scale()) {
+    // The constant as the whole graph knows it: the smoothed value, the information's sd.
+    smoothed_range_scale_ = {graph_->range_scale(),
+                             std::sqrt(graph_->joint_covariance({}, {}, true)(0, 0))};
+  }
 }
 
 GaussianPose2 PoseGraphSlam::scan_pose_world(std::size_t i) const {

@@ -64,8 +64,8 @@ struct PoseGraphSlamConfig {
 };
 
 /// The calibration states switched on in `c` that the pose graph does not estimate (it estimates
-/// the heading bias; the filters all of them), by their config names: what a run says it leaves
-/// out.
+/// the heading bias and the range scale; the filters all of them), by their config names: what a
+/// run says it leaves out.
 std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c);
 
 class PoseGraphSlam : public ScanSlam {
@@ -131,6 +131,16 @@ class PoseGraphSlam : public ScanSlam {
   /// start its solves from their updated means).
   void write_means(const PoseGraphBelief& belief);
   bool estimates_heading_bias() const;
+  bool estimates_range_scale() const;
+  /// The range scale's index in the belief's parameters (after the heading bias).
+  Eigen::Index range_scale_at() const { return estimates_heading_bias() ? 1 : 0; }
+  /// The belief's parameters as the graph holds them: the heading bias of node bias_of's block
+  /// (none: 0, before the first scan's), the range scale.
+  Eigen::VectorXd graph_parameters(std::optional<std::size_t> bias_of) const;
+  /// What a match of the newest node against the belief's node c observes: its pose seen from c,
+  /// through the range scale when estimated, with H and H P H^T.
+  GaussianPose2 predict_match(const PoseGraphBelief& belief, Eigen::Index c,
+                              Eigen::MatrixXd* H) const;
   /// The node whose bias block scan node `node` reads the compass through: its own when the bias
   /// walks, else the first scan's (a constant).
   std::size_t bias_node(std::size_t node) const;
@@ -160,8 +170,10 @@ class PoseGraphSlam : public ScanSlam {
   mutable std::vector<GaussianPose2> smoothed_;  ///< filled by smooth(); cleared by add_scan
   /// With the heading bias, whole-graph mode: the joint of the bias and the newest node.
   Eigen::MatrixXd newest_joint_;
-  double previous_t_s_ = 0.0;                 ///< the last scan's time (the bias's walk)
-  std::pair<double, double> bias_{0.0, 0.0};  ///< the newest bias and its sd, rad
+  double previous_t_s_ = 0.0;                        ///< the last scan's time (the bias's walk)
+  std::pair<double, double> bias_{0.0, 0.0};         ///< the newest bias and its sd, rad
+  std::pair<double, double> range_scale_{1.0, 0.0};  ///< online: the range scale and its sd
+  mutable std::pair<double, double> smoothed_range_scale_{1.0, 0.0};  ///< after smooth()
 };
 
 }  // namespace msislab

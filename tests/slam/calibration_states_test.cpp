@@ -133,19 +133,6 @@ Loop dvl_scaled(Loop loop, double k) {
   return loop;
 }
 
-/// The loop's scans seeing the world s times its size (a sonar whose ranges are s times true).
-Loop scaled(Loop loop, double s) {
-  for (Scan& scan : loop.scans) {
-    for (ScanPoint& p : scan.points) {
-      p.p_m *= s;
-      p.p_vehicle_m *= s;
-      p.cov *= s * s;
-      p.cov_reading *= s * s;
-    }
-  }
-  return loop;
-}
-
 /// Checks H of observed_relative_pose(a, b) against central differences over the calibration
 /// parameters (the first c columns) and the elements a+1..b (the next 3(b-a) columns).
 template <class Filter>

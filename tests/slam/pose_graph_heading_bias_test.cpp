@@ -108,16 +108,16 @@ TEST(PoseGraphHeadingBias, AShortStretchInBothBackEnds) {
   }
 }
 
-// What a posegraph run says it leaves out: every calibration state on but the heading bias.
+// What a posegraph run says it leaves out: every calibration state on but the heading bias and
+// the range scale.
 TEST(PoseGraphHeadingBias, TheStatesThePoseGraphLeavesOutAreNamed) {
   CalibrationStatesConfig c;
   EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.heading_bias = true;
+  c.heading_bias = c.range_scale = true;
   EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.range_scale = c.dvl_scale = c.clock_offset = c.compass_deviation = true;
-  EXPECT_EQ(
-      pose_graph_ignored_calibration(c),
-      (std::vector<std::string>{"range_scale", "dvl_scale", "clock_offset", "compass_deviation"}));
+  c.dvl_scale = c.clock_offset = c.compass_deviation = true;
+  EXPECT_EQ(pose_graph_ignored_calibration(c),
+            (std::vector<std::string>{"dvl_scale", "clock_offset", "compass_deviation"}));
 }
 
 }  // namespace

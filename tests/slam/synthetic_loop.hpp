@@ -77,6 +77,19 @@ inline Loop make_loop(unsigned seed, bool empty_scans, double noise_scale = 1.0)
   return loop;
 }
 
+/// The loop's scans seeing the world s times its size (a sonar whose ranges are s times true).
+inline Loop scaled(Loop loop, double s) {
+  for (Scan& scan : loop.scans) {
+    for (ScanPoint& p : scan.points) {
+      p.p_m *= s;
+      p.p_vehicle_m *= s;
+      p.cov *= s * s;
+      p.cov_reading *= s * s;
+    }
+  }
+  return loop;
+}
+
 /// The filters' config with the compass's heading-bias state on, walking at that density.
 inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
   TrajectorySlamConfig config;

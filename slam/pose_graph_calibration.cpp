@@ -1,0 +1,93 @@
+// The pose-graph SLAM's calibration (docs/pose_graph.md): the heading bias's scalar blocks (one per
+// scan node, walking, or one constant) and the range scale's one block, how they lead the belief's
+// parameters, what a match observes through the range scale, the estimates read out, and the
+// states the graph leaves to the filters. The scan step is in pose_graph_slam.cpp.
+#include <cmath>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "slam/pose_graph_slam.hpp"
+
+namespace msislab {
+
+std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
+  std::vector<std::string> out;
+  for (const auto& [on, name] : {std::pair<bool, const char*>{c.dvl_scale, "dvl_scale"},
+                                 {c.clock_offset, "clock_offset"},
+                                 {c.compass_deviation, "compass_deviation"}}) {
+    if (on) out.emplace_back(name);
+  }
+  return out;
+}
+
+bool PoseGraphSlam::estimates_heading_bias() const { return front_end_.calibration.heading_bias; }
+
+bool PoseGraphSlam::estimates_range_scale() const { return front_end_.calibration.range_scale; }
+
+Eigen::VectorXd PoseGraphSlam::graph_parameters(std::optional<std::size_t> bias_of) const {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(estimates_heading_bias()) +
+                      static_cast<Eigen::Index>(estimates_range_scale()));
+  if (estimates_heading_bias()) out(0) = bias_of ? graph_->heading_bias(bias_node(*bias_of)) : 0.0;
+  if (estimates_range_scale()) out(range_scale_at()) = graph_->range_scale();
+  return out;
+}
+
+GaussianPose2 PoseGraphSlam::predict_match(const PoseGraphBelief& belief, Eigen::Index c,
+                                           Eigen::MatrixXd* H) const {
+  GaussianPose2 h = belief.predict(c, H);
+  if (!estimates_range_scale()) return h;
+  // A match sees the scans' geometry s times the true one (the filters' model): h_s = (s t, yaw),
+  // dh_s/ds = (t, 0), dh_s/d(poses) = diag(s, s, 1) dh/d(poses).
+  const double s = belief.parameters(range_scale_at());
+  H->topRows<2>() *= s;
+  H->block<2, 1>(0, range_scale_at()) = h.mean.translation();
+  h.mean = Pose2(s * h.mean.x(), s * h.mean.y(), h.mean.yaw());
+  const Eigen::MatrixXd P = *H * belief.cov * H->transpose();
+  h.cov = 0.5 * (P + P.transpose());
+  return h;
+}
+
+std::size_t PoseGraphSlam::bias_node(std::size_t node) const {
+  // A bias that does not walk is one constant: the first scan's block.
+  return front_end_.calibration.heading_bias_walk_deg_per_sqrt_s > 0.0 ? node : 1;
+}
+
+void PoseGraphSlam::add_bias_block(std::size_t node, double t_s, PoseGraphBelief& belief) {
+  const CalibrationStatesConfig& c = front_end_.calibration;
+  const double walk_rad = c.heading_bias_walk_deg_per_sqrt_s * M_PI / 180.0;
+  if (node == 1) {
+    const double sigma_rad = c.heading_bias_sigma_deg * M_PI / 180.0;
+    graph_->add_heading_bias(1, belief.parameters(0), !(sigma_rad > 0.0));
+    if (sigma_rad > 0.0) graph_->add_heading_bias_prior(1, 0.0, sigma_rad);
+  } else if (walk_rad > 0.0) {
+    const double dt_s = std::max(0.0, t_s - previous_t_s_);
+    // The walk over the scans' interval (paper-free: the filters' model, docs/pose_graph.md).
+    belief.cov(0, 0) += walk_rad * walk_rad * dt_s;
+    graph_->add_heading_bias(node, belief.parameters(0), false);
+    if (dt_s > 0.0) {
+      graph_->add_heading_bias_walk(node - 1, node, walk_rad * std::sqrt(dt_s));
+    } else {
+      graph_->add_heading_bias_walk(node - 1, node, 1e-9);  // the same instant: the same bias
+    }
+  }
+  previous_t_s_ = t_s;
+}
+
+std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
+  std::vector<CalibrationEstimate> out;
+  if (motions_.empty()) return out;
+  // The filters' order (TrajectorySlam::calibration): the range scale first.
+  if (estimates_range_scale()) {
+    // After the smoothing solve (scan_pose_world), the smoothed graph's; before, the online one.
+    const auto& [value, sd] = smoothed_.empty() ? range_scale_ : smoothed_range_scale_;
+    out.push_back({"range_scale", value, sd});
+  }
+  if (estimates_heading_bias()) {
+    out.push_back({"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI});
+  }
+  return out;
+}
+
+}  // namespace msislab

@@ -99,25 +99,34 @@ ceres::LossFunction* PoseGraph::robust_loss(bool robust) {
   return new DynamicCovarianceScalingLoss(&problem_->c2);
 }
 
-void PoseGraph::add_range_scale(double initial, double prior_mean, double prior_sigma) {
-  if (has_range_scale_) throw std::invalid_argument("pose graph: a range scale exists already");
+void PoseGraph::add_scale(GraphScale which, double initial, double prior_mean, double prior_sigma) {
+  if (has_scale(which)) throw std::invalid_argument("pose graph: that scale exists already");
   if (!(prior_sigma > 0.0)) throw std::invalid_argument("pose graph: scale sigma must be > 0");
-  range_scale_ = initial;
-  problem_->problem.AddParameterBlock(&range_scale_, 1);
-  problem_->problem.AddResidualBlock(new ScalarPriorCost(prior_mean, prior_sigma), nullptr,
-                                     &range_scale_);
-  has_range_scale_ = true;
+  double* s = &scales_[index(which)];
+  *s = initial;
+  problem_->problem.AddParameterBlock(s, 1);
+  problem_->problem.AddResidualBlock(new ScalarPriorCost(prior_mean, prior_sigma), nullptr, s);
+  has_scale_[index(which)] = true;
+}
+
+std::vector<double*> PoseGraph::scale_blocks() {
+  std::vector<double*> out;
+  for (std::size_t i = 0; i < scales_.size(); ++i) {
+    if (has_scale_[i]) out.push_back(&scales_[i]);
+  }
+  return out;
 }
 
 void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
-                                    const Eigen::MatrixXd& observed, bool robust) {
-  if (!has_range_scale_) throw std::out_of_range("pose graph: no range scale");
+                                    const Eigen::MatrixXd& observed, bool robust,
+                                    GraphScale which) {
+  if (!has_scale(which)) throw std::out_of_range("pose graph: no such scale");
   const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
   double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
   const Eigen::MatrixXd W = whitening(S) * observed;
   ceres::LossFunction* loss = robust_loss(robust);
   const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
-      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &range_scale_);
+      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &scales_[index(which)]);
   if (loss) problem_->robust.push_back(id);
 }
 

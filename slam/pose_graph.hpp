@@ -19,6 +19,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -42,6 +43,9 @@ namespace msislab {
 ///   outlier in proportion to the log of the residual it removes, and it discounts consistent
 ///   matches too (tests/slam/pose_graph_test.cpp measures both).
 enum class RobustLoss { kDynamicCovarianceScaling, kCauchy };
+
+/// The graph's scale factors (one block each): the sonar's range scale, the DVL's.
+enum class GraphScale { kRange = 0, kDvl = 1 };
 
 struct PoseGraphConfig {
   RobustLoss robust_loss = RobustLoss::kDynamicCovarianceScaling;
@@ -104,17 +108,19 @@ class PoseGraph {
   /// the one a constant bias lives in), standard deviation sigma_rad.
   void add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
                           double sigma_rad);
-  /// The sonar's range scale s, one block for the whole graph, at `initial`, with the prior
-  /// s ~ N(prior_mean, prior_sigma^2). Throws std::invalid_argument when it exists already.
-  void add_range_scale(double initial, double prior_mean, double prior_sigma);
-  bool has_range_scale() const { return has_range_scale_; }
-  double range_scale() const { return range_scale_; }
-  /// Moves the range scale (a warm start for the next solve).
-  void set_range_scale(double s) { range_scale_ = s; }
-  /// As add_relative, z observing h through the range scale, (s t_h, yaw_h) (a match: the scans'
-  /// geometry is s times the true one). Throws std::out_of_range without a range scale.
+  /// A scale factor, one block for the whole graph, at `initial`, with the prior
+  /// s ~ N(prior_mean, prior_sigma^2): the sonar's range scale (the scans' geometry is s times
+  /// the true one, so a match sees it) or the DVL's (its velocities are s times the true ones, so
+  /// an odometry edge sees it). Throws std::invalid_argument when it exists already.
+  void add_scale(GraphScale which, double initial, double prior_mean, double prior_sigma);
+  bool has_scale(GraphScale which) const { return has_scale_[index(which)]; }
+  double scale(GraphScale which) const { return scales_[index(which)]; }
+  /// Moves a scale (a warm start for the next solve).
+  void set_scale(GraphScale which, double s) { scales_[index(which)] = s; }
+  /// As add_relative, z observing h through the scale `which`, (s t_h, yaw_h). Throws
+  /// std::out_of_range when the graph has no such scale.
   void add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
-                           const Eigen::MatrixXd& observed, bool robust);
+                           const Eigen::MatrixXd& observed, bool robust, GraphScale which);
   double heading_bias(std::size_t i) const;
   /// Moves a bias (a warm start for the next solve).
   void set_heading_bias(std::size_t i, double bias_rad);
@@ -134,11 +140,11 @@ class PoseGraph {
   /// factorisation, as covariances()). With between() of geometry/gaussian_pose, what the graph
   /// knows of the pose of one node seen from another, which the odometry chain alone overstates
   /// once loops close. Throws as covariances() does.
-  /// bias_nodes: first, the heading biases of these nodes, then with range_scale (and a range
-  /// scale in the graph) the range scale ((b + r + 3n) square, the parameters leading).
+  /// bias_nodes: first, the heading biases of these nodes, then the given scales (each must
+  /// exist) ((b + s + 3n) square, the parameters leading).
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes,
                                    const std::vector<std::size_t>& bias_nodes = {},
-                                   bool range_scale = false);
+                                   const std::vector<GraphScale>& scales = {});
   /// Moves a node (a warm start for the next solve).
   void set_pose(std::size_t i, const Pose2& world);
 
@@ -159,8 +165,11 @@ class PoseGraph {
   std::vector<bool> has_bias_;    ///< per node: it has a heading-bias block
   std::vector<bool> bias_fixed_;  ///< per node: that block held for good
   std::size_t held_before_ = 0;   ///< nodes before this are held for now (hold_before)
-  double range_scale_ = 1.0;      ///< a block when has_range_scale_ (the object never moves)
-  bool has_range_scale_ = false;
+  std::array<double, 2> scales_{1.0, 1.0};  ///< blocks where has_scale_ (the object never moves)
+  std::array<bool, 2> has_scale_{false, false};
+  static std::size_t index(GraphScale which) { return static_cast<std::size_t>(which); }
+  /// The scales' blocks that exist, in GraphScale order, for the information's columns.
+  std::vector<double*> scale_blocks();
   std::unique_ptr<Problem> problem_;
 
   double* bias_block(std::size_t i);  ///< node i's bias block; throws when it has none

@@ -45,6 +45,33 @@ struct PoseGraphBelief {
     newest = static_cast<Eigen::Index>(nodes.size()) - 1;
   }
 
+  /// Appends node `node` as `previous (+) (t / k, yaw)`, (t, yaw) the odometry's motion and k the
+  /// DVL's scale, the parameter at index k_at (the DVL measured k times the true velocity; the
+  /// filters' model): J1+ on the previous pose, J2+ (-t / k^2, 0) on k, J2+ diag(1/k, 1/k, 1) on
+  /// the motion's noise. It becomes the newest.
+  void append_composed_scaled(std::size_t node, Eigen::Index previous, const GaussianPose2& motion,
+                              Eigen::Index k_at) {
+    const double k = parameters(k_at);
+    const Pose2 m(motion.mean.x() / k, motion.mean.y() / k, motion.mean.yaw());
+    const Eigen::Matrix3d J_m = Eigen::Vector3d(1.0 / k, 1.0 / k, 1.0).asDiagonal();
+    Eigen::Matrix3d J_from, J_relative;
+    const Pose2 mean = means[previous].compose(m, &J_from, &J_relative);
+    const Eigen::Index n = cov.rows();
+    Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3, n);  // d(new node)/d(belief)
+    G.middleCols<3>(at(previous)) = J_from;
+    G.col(k_at) = J_relative * Eigen::Vector3d(-m.x() / k, -m.y() / k, 0.0);
+    const Eigen::MatrixXd cross = G * cov;
+    const Eigen::Matrix3d P = cross * G.transpose() + J_relative * J_m * motion.cov *
+                                                          J_m.transpose() * J_relative.transpose();
+    cov.conservativeResize(n + 3, n + 3);
+    cov.bottomRows<3>().leftCols(n) = cross;
+    cov.rightCols<3>().topRows(n) = cross.transpose();
+    cov.bottomRightCorner<3, 3>() = 0.5 * (P + P.transpose());
+    nodes.push_back(node);
+    means.push_back(mean);
+    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
   /// Appends node `node` as `from (+) relative`, the relative pose independent of the belief:
   /// P_node = J1+ P_from J1+^T + J2+ P_relative J2+^T, its cross-covariances J1+ P_from,*. The
   /// newest stays the newest.

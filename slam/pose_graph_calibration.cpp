@@ -2,6 +2,7 @@
 // scan node, walking, or one constant) and the range scale's one block, how they lead the belief's
 // parameters, what a match observes through the range scale, the estimates read out, and the
 // states the graph leaves to the filters. The scan step is in pose_graph_slam.cpp.
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -14,8 +15,7 @@ namespace msislab {
 
 std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
   std::vector<std::string> out;
-  for (const auto& [on, name] : {std::pair<bool, const char*>{c.dvl_scale, "dvl_scale"},
-                                 {c.clock_offset, "clock_offset"},
+  for (const auto& [on, name] : {std::pair<bool, const char*>{c.clock_offset, "clock_offset"},
                                  {c.compass_deviation, "compass_deviation"}}) {
     if (on) out.emplace_back(name);
   }
@@ -26,11 +26,28 @@ bool PoseGraphSlam::estimates_heading_bias() const { return front_end_.calibrati
 
 bool PoseGraphSlam::estimates_range_scale() const { return front_end_.calibration.range_scale; }
 
+bool PoseGraphSlam::estimates_dvl_scale() const { return front_end_.calibration.dvl_scale; }
+
+std::vector<GraphScale> PoseGraphSlam::estimated_scales() const {
+  std::vector<GraphScale> out;
+  if (estimates_range_scale()) out.push_back(GraphScale::kRange);
+  if (estimates_dvl_scale()) out.push_back(GraphScale::kDvl);
+  return out;
+}
+
+Eigen::Index PoseGraphSlam::scale_at(GraphScale which) const {
+  const std::vector<GraphScale> scales = estimated_scales();
+  const auto it = std::find(scales.begin(), scales.end(), which);
+  return static_cast<Eigen::Index>(estimates_heading_bias()) +
+         static_cast<Eigen::Index>(it - scales.begin());
+}
+
 Eigen::VectorXd PoseGraphSlam::graph_parameters(std::optional<std::size_t> bias_of) const {
+  const std::vector<GraphScale> scales = estimated_scales();
   Eigen::VectorXd out(static_cast<Eigen::Index>(estimates_heading_bias()) +
-                      static_cast<Eigen::Index>(estimates_range_scale()));
+                      static_cast<Eigen::Index>(scales.size()));
   if (estimates_heading_bias()) out(0) = bias_of ? graph_->heading_bias(bias_node(*bias_of)) : 0.0;
-  if (estimates_range_scale()) out(range_scale_at()) = graph_->range_scale();
+  for (const GraphScale which : scales) out(scale_at(which)) = graph_->scale(which);
   return out;
 }
 
@@ -40,9 +57,10 @@ GaussianPose2 PoseGraphSlam::predict_match(const PoseGraphBelief& belief, Eigen:
   if (!estimates_range_scale()) return h;
   // A match sees the scans' geometry s times the true one (the filters' model): h_s = (s t, yaw),
   // dh_s/ds = (t, 0), dh_s/d(poses) = diag(s, s, 1) dh/d(poses).
-  const double s = belief.parameters(range_scale_at());
+  const Eigen::Index r = scale_at(GraphScale::kRange);
+  const double s = belief.parameters(r);
   H->topRows<2>() *= s;
-  H->block<2, 1>(0, range_scale_at()) = h.mean.translation();
+  H->block<2, 1>(0, r) = h.mean.translation();
   h.mean = Pose2(s * h.mean.x(), s * h.mean.y(), h.mean.yaw());
   const Eigen::MatrixXd P = *H * belief.cov * H->transpose();
   h.cov = 0.5 * (P + P.transpose());
@@ -78,11 +96,12 @@ void PoseGraphSlam::add_bias_block(std::size_t node, double t_s, PoseGraphBelief
 std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
   std::vector<CalibrationEstimate> out;
   if (motions_.empty()) return out;
-  // The filters' order (TrajectorySlam::calibration): the range scale first.
-  if (estimates_range_scale()) {
-    // After the smoothing solve (scan_pose_world), the smoothed graph's; before, the online one.
-    const auto& [value, sd] = smoothed_.empty() ? range_scale_ : smoothed_range_scale_;
-    out.push_back({"range_scale", value, sd});
+  // The filters' order (TrajectorySlam::calibration): the range scale, the DVL scale, the bias.
+  // A scale after the smoothing solve (scan_pose_world): the smoothed graph's; before, online.
+  for (const GraphScale which : estimated_scales()) {
+    const std::size_t i = static_cast<std::size_t>(which);
+    const auto& [value, sd] = smoothed_.empty() ? scale_estimates_[i] : smoothed_scales_[i];
+    out.push_back({which == GraphScale::kRange ? "range_scale" : "dvl_scale", value, sd});
   }
   if (estimates_heading_bias()) {
     out.push_back({"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI});

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "slam/pose_graph.hpp"
@@ -31,7 +32,7 @@ using Poses = std::vector<Eigen::Vector3d>;
 class Information {
  public:
   Information(ceres::Problem& problem, Poses& poses, std::vector<double>& biases,
-              const std::vector<bool>& has_bias, double* range_scale)
+              const std::vector<bool>& has_bias, const std::vector<double*>& scales)
       : problem_(problem), poses_(poses) {
     std::vector<double*> free_blocks;
     Eigen::Index columns = 0;
@@ -48,9 +49,9 @@ class Information {
       bias_column_[i] = columns++;
       free_blocks.push_back(&biases[i]);
     }
-    if (range_scale) {
-      range_scale_column_ = columns++;
-      free_blocks.push_back(range_scale);
+    for (double* s : scales) {
+      scale_column_.emplace_back(s, columns++);
+      free_blocks.push_back(s);
     }
     if (free_blocks.empty()) return;
     ceres::Problem::EvaluateOptions options;
@@ -69,7 +70,8 @@ class Information {
   /// `nodes` (b + 3n square, in that order): the information's inverse, solved for those columns
   /// only.
   Eigen::MatrixXd joint(const std::vector<std::size_t>& nodes,
-                        const std::vector<std::size_t>& bias_nodes, bool range_scale) const {
+                        const std::vector<std::size_t>& bias_nodes,
+                        const std::vector<const double*>& scales) const {
     for (const std::size_t i : nodes) {
       std::vector<ceres::ResidualBlockId> edges;
       problem_.GetResidualBlocksForParameterBlock(poses_.at(i).data(), &edges);
@@ -83,7 +85,11 @@ class Information {
     // Each wanted row of the result: its column of the information (-1: held, zero covariance).
     std::vector<Eigen::Index> wanted;
     for (const std::size_t i : bias_nodes) wanted.push_back(bias_column_.at(i));
-    if (range_scale) wanted.push_back(range_scale_column_);
+    for (const double* s : scales) {
+      for (const auto& [block, column] : scale_column_) {
+        if (block == s) wanted.push_back(column);
+      }
+    }
     for (const std::size_t i : nodes) {
       for (Eigen::Index r = 0; r < 3; ++r) wanted.push_back(column_[i] < 0 ? -1 : column_[i] + r);
     }
@@ -109,7 +115,7 @@ class Information {
   const Poses& poses_;
   std::vector<Eigen::Index> column_;       ///< a node's first pose column, -1 when held
   std::vector<Eigen::Index> bias_column_;  ///< its bias's column, -1 when none or held
-  Eigen::Index range_scale_column_ = -1;   ///< -1 when the graph has none
+  std::vector<std::pair<const double*, Eigen::Index>> scale_column_;  ///< each scale's column
   Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> llt_;
   bool singular_ = false;
 };
@@ -118,8 +124,7 @@ class Information {
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
   hold_before(0);
-  const Information information(problem_->problem, poses_, biases_, has_bias_,
-                                has_range_scale_ ? &range_scale_ : nullptr);
+  const Information information(problem_->problem, poses_, biases_, has_bias_, scale_blocks());
   std::vector<Eigen::Matrix3d> out;
   // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
   constexpr std::size_t kBatch = 64;
@@ -127,7 +132,7 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
     const std::vector<std::size_t> batch(
         nodes.begin() + static_cast<long>(first),
         nodes.begin() + static_cast<long>(std::min(first + kBatch, nodes.size())));
-    const Eigen::MatrixXd joint = information.joint(batch, {}, false);
+    const Eigen::MatrixXd joint = information.joint(batch, {}, {});
     for (std::size_t k = 0; k < batch.size(); ++k) {
       out.emplace_back(
           joint.block<3, 3>(3 * static_cast<Eigen::Index>(k), 3 * static_cast<Eigen::Index>(k)));
@@ -138,11 +143,15 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
 
 Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes,
                                             const std::vector<std::size_t>& bias_nodes,
-                                            bool range_scale) {
+                                            const std::vector<GraphScale>& scales) {
   hold_before(0);
-  return Information(problem_->problem, poses_, biases_, has_bias_,
-                     has_range_scale_ ? &range_scale_ : nullptr)
-      .joint(nodes, bias_nodes, range_scale && has_range_scale_);
+  std::vector<const double*> wanted;
+  for (const GraphScale which : scales) {
+    if (!has_scale(which)) throw std::out_of_range("pose graph: no such scale");
+    wanted.push_back(&scales_[index(which)]);
+  }
+  return Information(problem_->problem, poses_, biases_, has_bias_, scale_blocks())
+      .joint(nodes, bias_nodes, wanted);
 }
 
 }  // namespace msislab

@@ -26,19 +26,33 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
   }
   // The calibration leads the belief from the start with its priors: the compass's bias (the
   // scans' nodes carry it in the graph, the first with the prior, the later ones through the
-  // walk), then the range scale (one block in the graph).
+  // walk), then the range scale and the DVL's (one block each in the graph).
   const CalibrationStatesConfig& c = front_end.calibration;
   std::vector<double> prior_sd;
   if (c.heading_bias) prior_sd.push_back(c.heading_bias_sigma_deg * M_PI / 180.0);
   if (c.range_scale) {
     prior_sd.push_back(c.range_scale_sigma);
-    graph_->add_range_scale(c.range_scale_prior, c.range_scale_prior, c.range_scale_sigma);
+    graph_->add_scale(GraphScale::kRange, c.range_scale_prior, c.range_scale_prior,
+                      c.range_scale_sigma);
+  }
+  if (c.dvl_scale) {
+    prior_sd.push_back(c.dvl_scale_sigma);
+    graph_->add_scale(GraphScale::kDvl, c.dvl_scale_prior, c.dvl_scale_prior, c.dvl_scale_sigma);
   }
   const auto p = static_cast<Eigen::Index>(prior_sd.size());
   window_cov_ = Eigen::MatrixXd::Zero(p + 3, p + 3);
   for (Eigen::Index i = 0; i < p; ++i) window_cov_(i, i) = std::pow(prior_sd[i], 2);
   window_cov_.bottomRightCorner<3, 3>() = start_cov_;
   newest_joint_ = window_cov_;
+}
+
+void PoseGraphSlam::append_odometry(PoseGraphBelief& belief, std::size_t node,
+                                    Eigen::Index previous, const GaussianPose2& motion) const {
+  if (estimates_dvl_scale()) {
+    belief.append_composed_scaled(node, previous, motion, scale_at(GraphScale::kDvl));
+  } else {
+    belief.append_composed(node, previous, motion);
+  }
 }
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
@@ -65,13 +79,13 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
       belief.means.push_back(graph_->pose(i));
     }
     belief.cov = window_cov_;
-    belief.append_composed(node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
+    append_odometry(belief, node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
   } else if (belief.parameters.size() > 0) {
     // The calibration's joint with the newest node, carried from scan to scan; the previous node
     // marginalised once the new one is composed onto it.
     PoseGraphBelief chain{
         {node - 1}, {graph_->pose(node - 1)}, newest_joint_, 0, belief.parameters};
-    chain.append_composed(node, 0, motion);
+    append_odometry(chain, node, 0, motion);
     belief = {{node}, {chain.means[1]}, chain.marginal({1}), 0, chain.parameters};
   } else {
     const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
@@ -79,7 +93,12 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     belief = {{node}, {newest.mean}, newest.cov, 0, {}};
   }
   graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
-  graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
+  if (estimates_dvl_scale()) {
+    graph_->add_scaled_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false,
+                                GraphScale::kDvl);
+  } else {
+    graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
+  }
   if (estimates_heading_bias()) add_bias_block(node, scan.t_s, belief);
   motions_.push_back(motion);
   points_.push_back(finite_points(scan.points));
@@ -145,9 +164,10 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   if (estimates_heading_bias()) {
     bias_ = {graph_->heading_bias(bias_node(node)), std::sqrt(belief.cov(0, 0))};
   }
-  if (estimates_range_scale()) {
-    const Eigen::Index r = range_scale_at();
-    range_scale_ = {graph_->range_scale(), std::sqrt(belief.cov(r, r))};
+  for (const GraphScale which : estimated_scales()) {
+    const Eigen::Index r = scale_at(which);
+    scale_estimates_[static_cast<std::size_t>(which)] = {graph_->scale(which),
+                                                         std::sqrt(belief.cov(r, r))};
   }
   return stats;
 }
@@ -184,7 +204,7 @@ PoseGraphBelief PoseGraphSlam::whole_graph_belief(
   belief.parameters = graph_parameters(node);
   std::vector<std::size_t> bias_nodes;
   if (estimates_heading_bias()) bias_nodes.push_back(bias_node(node));
-  belief.cov = graph_->joint_covariance(belief.nodes, bias_nodes, estimates_range_scale());
+  belief.cov = graph_->joint_covariance(belief.nodes, bias_nodes, estimated_scales());
   return belief;
 }
 
@@ -218,7 +238,7 @@ void PoseGraphSlam::match(std::size_t k,
         m.rejection = MatchRejection::kInnovation;
       } else {
         if (estimates_range_scale()) {
-          graph_->add_scaled_relative(j + 1, node, m.match.estimate, A, true);
+          graph_->add_scaled_relative(j + 1, node, m.match.estimate, A, true, GraphScale::kRange);
         } else {
           graph_->add_relative(j + 1, node, m.match.estimate, A, true);
         }
@@ -248,7 +268,9 @@ void PoseGraphSlam::write_means(const PoseGraphBelief& belief) {
     graph_->set_heading_bias(bias_node(belief.nodes[static_cast<std::size_t>(belief.newest)]),
                              belief.parameters(0));
   }
-  if (estimates_range_scale()) graph_->set_range_scale(belief.parameters(range_scale_at()));
+  for (const GraphScale which : estimated_scales()) {
+    graph_->set_scale(which, belief.parameters(scale_at(which)));
+  }
 }
 
 void PoseGraphSlam::solve(bool count_downweighted) const {
@@ -265,10 +287,15 @@ void PoseGraphSlam::smooth() const {
   for (std::size_t i = 0; i < nodes.size(); ++i) {
     smoothed_.push_back({graph_->pose(nodes[i]), covariances[i]});
   }
-  if (estimates_range_scale()) {
-    // The constant as the whole graph knows it: the smoothed value, the information's sd.
-    smoothed_range_scale_ = {graph_->range_scale(),
-                             std::sqrt(graph_->joint_covariance({}, {}, true)(0, 0))};
+  // The scales as the whole graph knows them: the smoothed values, the information's sd.
+  const std::vector<GraphScale> scales = estimated_scales();
+  if (!scales.empty()) {
+    const Eigen::MatrixXd C = graph_->joint_covariance({}, {}, scales);
+    for (std::size_t i = 0; i < scales.size(); ++i) {
+      const auto r = static_cast<Eigen::Index>(i);
+      smoothed_scales_[static_cast<std::size_t>(scales[i])] = {graph_->scale(scales[i]),
+                                                               std::sqrt(C(r, r))};
+    }
   }
 }
 

@@ -33,6 +33,7 @@
 // the smoothing solve frees them all.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -83,9 +84,14 @@ class PoseGraphSlam : public ScanSlam {
   std::optional<std::vector<GaussianPose2>> online_poses() const override { return online_; }
   /// Matches the robust loss set aside at the last solve (beyond the gate there).
   std::optional<int> matches_downweighted() const override { return downweighted_; }
-  /// With trajectory_slam.calibration.heading_bias: the compass's bias at the newest scan (the
-  /// graph's solution there) with the belief's standard deviation.
+  /// The calibration switched on in trajectory_slam.calibration that the graph estimates: the
+  /// range scale and the DVL's (after the smoothing solve, scan_pose_world, the smoothed graph's
+  /// values with the whole graph's standard deviations; before, the online solution's with the
+  /// belief's), the compass's bias at the newest scan (the graph's solution there, the belief's
+  /// standard deviation).
   std::vector<CalibrationEstimate> calibration() const override;
+  /// With trajectory_slam.calibration.dvl_scale: the odometry edges read the DVL's scale block.
+  bool estimates_dvl_scale() const override;
   /// Windowed: the candidates so far that were older than the window.
   int matches_outside_window() const { return outside_window_matches_; }
   /// Windowed: the old nodes that joined the belief uncorrelated with it (no node of the belief
@@ -132,8 +138,14 @@ class PoseGraphSlam : public ScanSlam {
   void write_means(const PoseGraphBelief& belief);
   bool estimates_heading_bias() const;
   bool estimates_range_scale() const;
-  /// The range scale's index in the belief's parameters (after the heading bias).
-  Eigen::Index range_scale_at() const { return estimates_heading_bias() ? 1 : 0; }
+  /// The graph's scale blocks switched on, in their order (the range scale, the DVL's).
+  std::vector<GraphScale> estimated_scales() const;
+  /// A scale's index in the belief's parameters (after the heading bias, in that order).
+  Eigen::Index scale_at(GraphScale which) const;
+  /// The odometry edge in the belief (Eq. 2): node `node` appended as the previous one composed
+  /// with the motion, through the DVL's scale when estimated; it becomes the newest.
+  void append_odometry(PoseGraphBelief& belief, std::size_t node, Eigen::Index previous,
+                       const GaussianPose2& motion) const;
   /// The belief's parameters as the graph holds them: the heading bias of node bias_of's block
   /// (none: 0, before the first scan's), the range scale.
   Eigen::VectorXd graph_parameters(std::optional<std::size_t> bias_of) const;
@@ -170,10 +182,11 @@ class PoseGraphSlam : public ScanSlam {
   mutable std::vector<GaussianPose2> smoothed_;  ///< filled by smooth(); cleared by add_scan
   /// With the heading bias, whole-graph mode: the joint of the bias and the newest node.
   Eigen::MatrixXd newest_joint_;
-  double previous_t_s_ = 0.0;                        ///< the last scan's time (the bias's walk)
-  std::pair<double, double> bias_{0.0, 0.0};         ///< the newest bias and its sd, rad
-  std::pair<double, double> range_scale_{1.0, 0.0};  ///< online: the range scale and its sd
-  mutable std::pair<double, double> smoothed_range_scale_{1.0, 0.0};  ///< after smooth()
+  double previous_t_s_ = 0.0;                 ///< the last scan's time (the bias's walk)
+  std::pair<double, double> bias_{0.0, 0.0};  ///< the newest bias and its sd, rad
+  /// Per GraphScale: online, the scale and its sd; after smooth(), the smoothed graph's.
+  std::array<std::pair<double, double>, 2> scale_estimates_{};
+  mutable std::array<std::pair<double, double>, 2> smoothed_scales_{};
 };
 
 }  // namespace msislab

@@ -121,18 +121,6 @@ TrajectorySlamConfig with_dvl_scale() {
   return config;
 }
 
-/// The loop's dead-reckoning motions as a DVL with scale factor k measures them: k times the true
-/// translation (and its noise).
-Loop dvl_scaled(Loop loop, double k) {
-  for (Scan& scan : loop.scans) {
-    scan.motion.mean =
-        Pose2(k * scan.motion.mean.x(), k * scan.motion.mean.y(), scan.motion.mean.yaw());
-    scan.motion.cov.topRows<2>() *= k;
-    scan.motion.cov.leftCols<2>() *= k;
-  }
-  return loop;
-}
-
 /// Checks H of observed_relative_pose(a, b) against central differences over the calibration
 /// parameters (the first c columns) and the elements a+1..b (the next 3(b-a) columns).
 template <class Filter>

@@ -108,16 +108,16 @@ TEST(PoseGraphHeadingBias, AShortStretchInBothBackEnds) {
   }
 }
 
-// What a posegraph run says it leaves out: every calibration state on but the heading bias and
-// the range scale.
+// What a posegraph run says it leaves out: every calibration state on but the heading bias, the
+// range scale and the DVL scale.
 TEST(PoseGraphHeadingBias, TheStatesThePoseGraphLeavesOutAreNamed) {
   CalibrationStatesConfig c;
   EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.heading_bias = c.range_scale = true;
+  c.heading_bias = c.range_scale = c.dvl_scale = true;
   EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.dvl_scale = c.clock_offset = c.compass_deviation = true;
+  c.clock_offset = c.compass_deviation = true;
   EXPECT_EQ(pose_graph_ignored_calibration(c),
-            (std::vector<std::string>{"dvl_scale", "clock_offset", "compass_deviation"}));
+            (std::vector<std::string>{"clock_offset", "compass_deviation"}));
 }
 
 }  // namespace

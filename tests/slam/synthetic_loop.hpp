@@ -90,6 +90,18 @@ inline Loop scaled(Loop loop, double s) {
   return loop;
 }
 
+/// The loop's dead-reckoning motions as a DVL with scale factor k measures them: k times the true
+/// translation (and its noise).
+inline Loop dvl_scaled(Loop loop, double k) {
+  for (Scan& scan : loop.scans) {
+    scan.motion.mean =
+        Pose2(k * scan.motion.mean.x(), k * scan.motion.mean.y(), scan.motion.mean.yaw());
+    scan.motion.cov.topRows<2>() *= k;
+    scan.motion.cov.leftCols<2>() *= k;
+  }
+  return loop;
+}
+
 /// The filters' config with the compass's heading-bias state on, walking at that density.
 inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
   TrajectorySlamConfig config;

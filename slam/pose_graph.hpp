@@ -4,7 +4,9 @@
 // geometry/se2, docs/pose_algebra.md):
 //   relative:  r = W A (z (-) h),  h = (-)x_i (+) x_j  (the pose of j seen from i), W A R A^T W^T =
 //   I
-//              (A: the observed directions as orthonormal rows, as in trajectory SLAM's matches);
+//              (A: the observed directions as orthonormal rows, as in trajectory SLAM's matches),
+//              or through a scale block s (the sonar's range scale on matches, the DVL's on
+//              odometry): h_s = (s t_h, yaw_h) in place of h, with the prior r = (s - s_0) / sigma;
 //   prior:     r = W (z (-) x_i);
 //   heading:   r = (yaw_z - yaw_i) / sigma   (the compass), or (yaw_z - yaw_i - b_i) / sigma
 //              through node i's heading bias b_i (a scalar block; the compass's walking bias,

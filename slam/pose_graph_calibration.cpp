@@ -1,7 +1,8 @@
 // The pose-graph SLAM's calibration (docs/pose_graph.md): the heading bias's scalar blocks (one per
-// scan node, walking, or one constant) and the range scale's one block, how they lead the belief's
-// parameters, what a match observes through the range scale, the estimates read out, and the
-// states the graph leaves to the filters. The scan step is in pose_graph_slam.cpp.
+// scan node, walking, or one constant) and the scale blocks (the sonar's range scale, the DVL's;
+// one each), how they lead the belief's parameters, what a match observes through the range scale,
+// the estimates read out, and the states the graph leaves to the filters. The scan step, with the
+// odometry through the DVL's scale, is in pose_graph_slam.cpp.
 #include <algorithm>
 #include <cmath>
 #include <optional>

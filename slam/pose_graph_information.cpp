@@ -1,6 +1,6 @@
 // The pose graph's information and the covariances read from it (PoseGraph::covariances,
 // joint_covariance; docs/pose_graph.md): one sparse Cholesky factorisation of J^T J over the free
-// nodes, heading biases and range scale.
+// nodes, heading biases and scale blocks.
 #include <ceres/ceres.h>
 
 #include <Eigen/SparseCholesky>
@@ -23,7 +23,7 @@ using Poses = std::vector<Eigen::Vector3d>;
 /// The graph's information J^T J at the current estimate, over every edge (robust ones at their
 /// weight there, as the solver sees them: Problem::Evaluate applies the losses), factored once by
 /// Eigen's sparse Cholesky (AMD ordering), J's columns the free nodes in index order, then the
-/// free heading-bias blocks in theirs, then the range scale. A fixed node's covariance blocks are
+/// free heading-bias blocks in theirs, then the scale blocks. A fixed node's covariance blocks are
 /// zero.
 ///
 /// Not ceres::Covariance: it orders its columns by the parameter blocks' addresses, and its

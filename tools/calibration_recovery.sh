@@ -15,19 +15,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=20
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
-    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-    *) echo "tools/calibration_recovery.sh: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
-       exit 2 ;;
-  esac
-done
-[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "tools/calibration_recovery.sh: --runs '$runs' is not a count" >&2; exit 2; }
-[ -x "$msislab" ] || { echo "tools/calibration_recovery.sh: no $msislab (build first)" >&2; exit 2; }
+source tools/run_fresh.sh
+parse_runs_msislab tools/calibration_recovery.sh "$@"
 
 out=out/calibration_recovery
-source tools/run_fresh.sh
 claim_out_folder tools/calibration_recovery.sh "$out"
 
 # CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)

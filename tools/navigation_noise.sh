@@ -12,19 +12,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=10
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
-    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-    *) echo "tools/navigation_noise.sh: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
-       exit 2 ;;
-  esac
-done
-[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "tools/navigation_noise.sh: --runs '$runs' is not a count" >&2; exit 2; }
-[ -x "$msislab" ] || { echo "tools/navigation_noise.sh: no $msislab (build first)" >&2; exit 2; }
+source tools/run_fresh.sh
+parse_runs_msislab tools/navigation_noise.sh "$@"
 
 out=out/navigation_noise
-source tools/run_fresh.sh
 claim_out_folder tools/navigation_noise.sh "$out"
 
 # The replica with a 2 deg beam instead of its 6 deg one (whose matches shorten the motion,

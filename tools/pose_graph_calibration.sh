@@ -12,24 +12,16 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=10
-while [ $# -gt 0 ]; do
-  case "$1" in
-    --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
-    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-    *) echo "tools/pose_graph_calibration.sh: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
-       exit 2 ;;
-  esac
-done
-[[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "tools/pose_graph_calibration.sh: --runs '$runs' is not a count" >&2; exit 2; }
-[ -x "$msislab" ] || { echo "tools/pose_graph_calibration.sh: no $msislab (build first)" >&2; exit 2; }
+source tools/run_fresh.sh
+parse_runs_msislab tools/pose_graph_calibration.sh "$@"
 
 out=out/pose_graph_calibration
-source tools/run_fresh.sh
 claim_out_folder tools/pose_graph_calibration.sh "$out"
 
 # CONFIG (- : none) WINDOW STATE(off|range_scale) -> the config's path
 config_of() {
-  local cfg="$out/config.$(basename "${1%.yaml}").w$2.$3.yaml"
+  local cfg
+  cfg="$out/config.$(basename "${1%.yaml}").w$2.$3.yaml"
   { [ "$1" = - ] || cat "$1"
     [ "$2" = 0 ] || printf 'pose_graph:\n  online_window_scans: %s\n' "$2"
     [ "$3" = off ] || printf 'trajectory_slam:\n  calibration:\n    %s: true\n' "$3"; } >"$cfg"

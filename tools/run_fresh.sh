@@ -42,3 +42,22 @@ claim_out_folder() {
   mkdir -p "$dir"
   touch "$marker"
 }
+
+# parse_runs_msislab SCRIPT ARGS...: the options of a Monte Carlo table script, --runs N and
+# --msislab EXE, into the caller's `runs` and `msislab` (set to their defaults before the call);
+# anything else, a --runs that is not a count or an msislab that is not there: one line naming
+# SCRIPT, exit 2.
+parse_runs_msislab() {
+  local script="$1"
+  shift
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
+      --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
+      *) echo "$script: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
+         exit 2 ;;
+    esac
+  done
+  [[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "$script: --runs '$runs' is not a count" >&2; exit 2; }
+  [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
+}

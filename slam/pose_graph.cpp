@@ -20,6 +20,7 @@ using pose_graph_edges::BiasWalkCost;
 using pose_graph_edges::CauchyLoss;
 using pose_graph_edges::DynamicCovarianceScalingLoss;
 using pose_graph_edges::HeadingCost;
+using pose_graph_edges::MatchCost;
 using pose_graph_edges::PriorCost;
 using pose_graph_edges::RelativeCost;
 using pose_graph_edges::ScalarPriorCost;
@@ -93,40 +94,57 @@ void PoseGraph::add_relative(std::size_t i, std::size_t j, const GaussianPose2& 
   if (loss) problem_->robust.push_back(id);
 }
 
+void PoseGraph::add_match(std::size_t i, std::size_t j, const GaussianPose2& z,
+                          const Eigen::MatrixXd& observed, const Eigen::Vector3d& u_i,
+                          const Eigen::Vector3d& u_j) {
+  const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
+  std::vector<double*> blocks = {poses_.at(i).data(), poses_.at(j).data()};  // checked first
+  const Eigen::MatrixXd W = whitening(S) * observed;
+  const bool scale = has_constant(GraphConstant::kRangeScale);
+  const bool clock = has_constant(GraphConstant::kClockOffset);
+  if (scale) blocks.push_back(&constants_[index(GraphConstant::kRangeScale)]);
+  if (clock) blocks.push_back(&constants_[index(GraphConstant::kClockOffset)]);
+  ceres::LossFunction* loss = robust_loss(true);
+  const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
+      new MatchCost(z.mean, W, scale, clock, u_i, u_j), loss, blocks);
+  if (loss) problem_->robust.push_back(id);
+}
+
 ceres::LossFunction* PoseGraph::robust_loss(bool robust) {
   if (!robust || !(config_.robust_scale_chi2 > 0.0)) return nullptr;
   if (config_.robust_loss == RobustLoss::kCauchy) return new CauchyLoss(&problem_->c2);
   return new DynamicCovarianceScalingLoss(&problem_->c2);
 }
 
-void PoseGraph::add_scale(GraphScale which, double initial, double prior_mean, double prior_sigma) {
-  if (has_scale(which)) throw std::invalid_argument("pose graph: that scale exists already");
+void PoseGraph::add_constant(GraphConstant which, double initial, double prior_mean,
+                             double prior_sigma) {
+  if (has_constant(which)) throw std::invalid_argument("pose graph: that scale exists already");
   if (!(prior_sigma > 0.0)) throw std::invalid_argument("pose graph: scale sigma must be > 0");
-  double* s = &scales_[index(which)];
+  double* s = &constants_[index(which)];
   *s = initial;
   problem_->problem.AddParameterBlock(s, 1);
   problem_->problem.AddResidualBlock(new ScalarPriorCost(prior_mean, prior_sigma), nullptr, s);
-  has_scale_[index(which)] = true;
+  has_constant_[index(which)] = true;
 }
 
-std::vector<double*> PoseGraph::scale_blocks() {
+std::vector<double*> PoseGraph::constant_blocks() {
   std::vector<double*> out;
-  for (std::size_t i = 0; i < scales_.size(); ++i) {
-    if (has_scale_[i]) out.push_back(&scales_[i]);
+  for (std::size_t i = 0; i < constants_.size(); ++i) {
+    if (has_constant_[i]) out.push_back(&constants_[i]);
   }
   return out;
 }
 
 void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
                                     const Eigen::MatrixXd& observed, bool robust,
-                                    GraphScale which) {
-  if (!has_scale(which)) throw std::out_of_range("pose graph: no such scale");
+                                    GraphConstant which) {
+  if (!has_constant(which)) throw std::out_of_range("pose graph: no such scale");
   const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
   double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
   const Eigen::MatrixXd W = whitening(S) * observed;
   ceres::LossFunction* loss = robust_loss(robust);
   const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
-      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &scales_[index(which)]);
+      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &constants_[index(which)]);
   if (loss) problem_->robust.push_back(id);
 }
 

@@ -46,8 +46,9 @@ namespace msislab {
 ///   matches too (tests/slam/pose_graph_test.cpp measures both).
 enum class RobustLoss { kDynamicCovarianceScaling, kCauchy };
 
-/// The graph's scale factors (one block each): the sonar's range scale, the DVL's.
-enum class GraphScale { kRange = 0, kDvl = 1 };
+/// The graph's constants (one scalar block each): the sonar's range scale, the DVL's scale factor,
+/// the sonar clock's offset (s).
+enum class GraphConstant { kRangeScale = 0, kDvlScale = 1, kClockOffset = 2 };
 
 struct PoseGraphConfig {
   RobustLoss robust_loss = RobustLoss::kDynamicCovarianceScaling;
@@ -110,19 +111,26 @@ class PoseGraph {
   /// the one a constant bias lives in), standard deviation sigma_rad.
   void add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
                           double sigma_rad);
-  /// A scale factor, one block for the whole graph, at `initial`, with the prior
-  /// s ~ N(prior_mean, prior_sigma^2): the sonar's range scale (the scans' geometry is s times
-  /// the true one, so a match sees it) or the DVL's (its velocities are s times the true ones, so
-  /// an odometry edge sees it). Throws std::invalid_argument when it exists already.
-  void add_scale(GraphScale which, double initial, double prior_mean, double prior_sigma);
-  bool has_scale(GraphScale which) const { return has_scale_[index(which)]; }
-  double scale(GraphScale which) const { return scales_[index(which)]; }
-  /// Moves a scale (a warm start for the next solve).
-  void set_scale(GraphScale which, double s) { scales_[index(which)] = s; }
-  /// As add_relative, z observing h through the scale `which`, (s t_h, yaw_h). Throws
-  /// std::out_of_range when the graph has no such scale.
+  /// A constant, one block for the whole graph, at `initial`, with the prior
+  /// c ~ N(prior_mean, prior_sigma^2): the sonar's range scale (the scans' geometry is s times
+  /// the true one, so a match sees it), the DVL's (its velocities are k times the true ones, so
+  /// an odometry edge sees it), the sonar clock's offset tau (a match sees scans moved by tau times
+  /// their velocities). Throws std::invalid_argument when it exists already.
+  void add_constant(GraphConstant which, double initial, double prior_mean, double prior_sigma);
+  bool has_constant(GraphConstant which) const { return has_constant_[index(which)]; }
+  double constant(GraphConstant which) const { return constants_[index(which)]; }
+  /// Moves a constant (a warm start for the next solve).
+  void set_constant(GraphConstant which, double c) { constants_[index(which)] = c; }
+  /// As add_relative, z observing h through the scale `which` (the range or the DVL scale),
+  /// (s t_h, yaw_h). Throws std::out_of_range when the graph has no such constant.
   void add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
-                           const Eigen::MatrixXd& observed, bool robust, GraphScale which);
+                           const Eigen::MatrixXd& observed, bool robust, GraphConstant which);
+  /// A match: as add_relative, through the graph's clock offset tau and range scale s where it has
+  /// them: h_tau = (-)(tau u_i) (+) h (+) (tau u_j), u_i and u_j the two scans' velocities
+  /// (Scan::velocity_vehicle), then (s t, yaw) of that.
+  void add_match(std::size_t i, std::size_t j, const GaussianPose2& z,
+                 const Eigen::MatrixXd& observed, const Eigen::Vector3d& u_i,
+                 const Eigen::Vector3d& u_j);
   double heading_bias(std::size_t i) const;
   /// Moves a bias (a warm start for the next solve).
   void set_heading_bias(std::size_t i, double bias_rad);
@@ -146,7 +154,7 @@ class PoseGraph {
   /// exist) ((b + s + 3n) square, the parameters leading).
   Eigen::MatrixXd joint_covariance(const std::vector<std::size_t>& nodes,
                                    const std::vector<std::size_t>& bias_nodes = {},
-                                   const std::vector<GraphScale>& scales = {});
+                                   const std::vector<GraphConstant>& scales = {});
   /// Moves a node (a warm start for the next solve).
   void set_pose(std::size_t i, const Pose2& world);
 
@@ -167,11 +175,12 @@ class PoseGraph {
   std::vector<bool> has_bias_;    ///< per node: it has a heading-bias block
   std::vector<bool> bias_fixed_;  ///< per node: that block held for good
   std::size_t held_before_ = 0;   ///< nodes before this are held for now (hold_before)
-  std::array<double, 2> scales_{1.0, 1.0};  ///< blocks where has_scale_ (the object never moves)
-  std::array<bool, 2> has_scale_{false, false};
-  static std::size_t index(GraphScale which) { return static_cast<std::size_t>(which); }
-  /// The scales' blocks that exist, in GraphScale order, for the information's columns.
-  std::vector<double*> scale_blocks();
+  /// Blocks where has_constant_ (the object never moves).
+  std::array<double, 3> constants_{1.0, 1.0, 0.0};
+  std::array<bool, 3> has_constant_{false, false, false};
+  static std::size_t index(GraphConstant which) { return static_cast<std::size_t>(which); }
+  /// The scales' blocks that exist, in GraphConstant order, for the information's columns.
+  std::vector<double*> constant_blocks();
   std::unique_ptr<Problem> problem_;
 
   double* bias_block(std::size_t i);  ///< node i's bias block; throws when it has none

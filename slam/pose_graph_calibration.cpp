@@ -16,10 +16,7 @@ namespace msislab {
 
 std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
   std::vector<std::string> out;
-  for (const auto& [on, name] : {std::pair<bool, const char*>{c.clock_offset, "clock_offset"},
-                                 {c.compass_deviation, "compass_deviation"}}) {
-    if (on) out.emplace_back(name);
-  }
+  if (c.compass_deviation) out.emplace_back("compass_deviation");
   return out;
 }
 
@@ -29,40 +26,59 @@ bool PoseGraphSlam::estimates_range_scale() const { return front_end_.calibratio
 
 bool PoseGraphSlam::estimates_dvl_scale() const { return front_end_.calibration.dvl_scale; }
 
-std::vector<GraphScale> PoseGraphSlam::estimated_scales() const {
-  std::vector<GraphScale> out;
-  if (estimates_range_scale()) out.push_back(GraphScale::kRange);
-  if (estimates_dvl_scale()) out.push_back(GraphScale::kDvl);
+std::vector<GraphConstant> PoseGraphSlam::estimated_constants() const {
+  std::vector<GraphConstant> out;
+  if (estimates_range_scale()) out.push_back(GraphConstant::kRangeScale);
+  if (estimates_dvl_scale()) out.push_back(GraphConstant::kDvlScale);
+  if (front_end_.calibration.clock_offset) out.push_back(GraphConstant::kClockOffset);
   return out;
 }
 
-Eigen::Index PoseGraphSlam::scale_at(GraphScale which) const {
-  const std::vector<GraphScale> scales = estimated_scales();
+Eigen::Index PoseGraphSlam::constant_at(GraphConstant which) const {
+  const std::vector<GraphConstant> scales = estimated_constants();
   const auto it = std::find(scales.begin(), scales.end(), which);
   return static_cast<Eigen::Index>(estimates_heading_bias()) +
          static_cast<Eigen::Index>(it - scales.begin());
 }
 
 Eigen::VectorXd PoseGraphSlam::graph_parameters(std::optional<std::size_t> bias_of) const {
-  const std::vector<GraphScale> scales = estimated_scales();
+  const std::vector<GraphConstant> scales = estimated_constants();
   Eigen::VectorXd out(static_cast<Eigen::Index>(estimates_heading_bias()) +
                       static_cast<Eigen::Index>(scales.size()));
   if (estimates_heading_bias()) out(0) = bias_of ? graph_->heading_bias(bias_node(*bias_of)) : 0.0;
-  for (const GraphScale which : scales) out(scale_at(which)) = graph_->scale(which);
+  for (const GraphConstant which : scales) out(constant_at(which)) = graph_->constant(which);
   return out;
 }
 
 GaussianPose2 PoseGraphSlam::predict_match(const PoseGraphBelief& belief, Eigen::Index c,
                                            Eigen::MatrixXd* H) const {
   GaussianPose2 h = belief.predict(c, H);
-  if (!estimates_range_scale()) return h;
-  // A match sees the scans' geometry s times the true one (the filters' model): h_s = (s t, yaw),
-  // dh_s/ds = (t, 0), dh_s/d(poses) = diag(s, s, 1) dh/d(poses).
-  const Eigen::Index r = scale_at(GraphScale::kRange);
-  const double s = belief.parameters(r);
-  H->topRows<2>() *= s;
-  H->block<2, 1>(0, r) = h.mean.translation();
-  h.mean = Pose2(s * h.mean.x(), s * h.mean.y(), h.mean.yaw());
+  const bool clock = front_end_.calibration.clock_offset;
+  if (!estimates_range_scale() && !clock) return h;
+  if (clock) {
+    // The scans show the frames at t + tau (the filters' model): h_tau = (-)(tau u_a) (+) h (+)
+    // (tau u_b), dh_tau/dh = J1 J2', dh_tau/dtau = J1 J1' J- u_a + J2 u_b.
+    const Eigen::Index t = constant_at(GraphConstant::kClockOffset);
+    const double tau = belief.parameters(t);
+    const Eigen::Vector3d& u_a = velocities_.at(belief.nodes.at(static_cast<std::size_t>(c)) - 1);
+    const Eigen::Vector3d& u_b =
+        velocities_.at(belief.nodes.at(static_cast<std::size_t>(belief.newest)) - 1);
+    Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
+    const Pose2 back = Pose2(Eigen::Vector3d(tau * u_a)).inverse(&J_inverse);
+    const Pose2 inner = back.compose(h.mean, &J1_inner, &J2_inner);
+    h.mean = inner.compose(Pose2(Eigen::Vector3d(tau * u_b)), &J1, &J2);
+    *H = J1 * J2_inner * *H;
+    H->col(t) = J1 * J1_inner * J_inverse * u_a + J2 * u_b;
+  }
+  if (estimates_range_scale()) {
+    // A match sees the scans' geometry s times the true one (the filters' model): h_s = (s t,
+    // yaw), dh_s/ds = (t, 0), dh_s/d(the rest) = diag(s, s, 1) dh/d(the rest).
+    const Eigen::Index r = constant_at(GraphConstant::kRangeScale);
+    const double s = belief.parameters(r);
+    H->topRows<2>() *= s;
+    H->block<2, 1>(0, r) = h.mean.translation();
+    h.mean = Pose2(s * h.mean.x(), s * h.mean.y(), h.mean.yaw());
+  }
   const Eigen::MatrixXd P = *H * belief.cov * H->transpose();
   h.cov = 0.5 * (P + P.transpose());
   return h;
@@ -99,10 +115,11 @@ std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
   if (motions_.empty()) return out;
   // The filters' order (TrajectorySlam::calibration): the range scale, the DVL scale, the bias.
   // A scale after the smoothing solve (scan_pose_world): the smoothed graph's; before, online.
-  for (const GraphScale which : estimated_scales()) {
+  for (const GraphConstant which : estimated_constants()) {
     const std::size_t i = static_cast<std::size_t>(which);
-    const auto& [value, sd] = smoothed_.empty() ? scale_estimates_[i] : smoothed_scales_[i];
-    out.push_back({which == GraphScale::kRange ? "range_scale" : "dvl_scale", value, sd});
+    const auto& [value, sd] = smoothed_.empty() ? constant_estimates_[i] : smoothed_constants_[i];
+    constexpr const char* kNames[] = {"range_scale", "dvl_scale", "clock_offset_s"};
+    out.push_back({kNames[i], value, sd});
   }
   if (estimates_heading_bias()) {
     out.push_back({"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI});

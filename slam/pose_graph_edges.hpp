@@ -6,6 +6,8 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "geometry/se2.hpp"
 
@@ -83,6 +85,70 @@ class ScaledRelativeCost : public ceres::CostFunction {
  private:
   Pose2 z_;
   Eigen::MatrixXd WA_;
+};
+
+/// A match through the clock offset tau and the range scale s, each where the graph has it (the
+/// filters' model, slam/trajectory_observations.cpp): h = (-)x_i (+) x_j, h_tau = (-)(tau u_i) (+)
+/// h (+) (tau u_j) (u_i, u_j the scans' velocities), h_s = (s t, yaw) of h_tau, r = W A (z (-)
+/// h_s). Blocks: x_i, x_j, then s, then tau. With J1, J2 of the outer composition, J1', J2' of the
+/// inner one and J- of the inversion: dh_tau/dh = J1 J2', dh_tau/dtau = J1 J1' J- u_i + J2 u_j;
+/// D = diag(s, s, 1) on both; dh_s/ds = (t_tau, 0).
+class MatchCost : public ceres::CostFunction {
+ public:
+  MatchCost(const Pose2& z, const Eigen::MatrixXd& WA, bool scale, bool clock,
+            const Eigen::Vector3d& u_i, const Eigen::Vector3d& u_j)
+      : z_(z), WA_(WA), scale_(scale), clock_(clock), u_i_(u_i), u_j_(u_j) {
+    set_num_residuals(static_cast<int>(WA.rows()));
+    std::vector<int32_t>& sizes = *mutable_parameter_block_sizes();
+    sizes = {3, 3};
+    if (scale) sizes.push_back(1);
+    if (clock) sizes.push_back(1);
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
+    const double s = scale_ ? parameters[2][0] : 1.0;
+    const int tau_block = scale_ ? 3 : 2;
+    Eigen::Matrix3d J_i, J_j;
+    Pose2 h = x_i.between(x_j, &J_i, &J_j);
+    Eigen::Matrix3d dh = Eigen::Matrix3d::Identity();  // d(h_tau)/d(h)
+    Eigen::Vector3d dtau = Eigen::Vector3d::Zero();    // d(h_tau)/d(tau)
+    if (clock_) {
+      const double tau = parameters[tau_block][0];
+      Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
+      const Pose2 back = Pose2(Eigen::Vector3d(tau * u_i_)).inverse(&J_inverse);
+      const Pose2 inner = back.compose(h, &J1_inner, &J2_inner);
+      h = inner.compose(Pose2(Eigen::Vector3d(tau * u_j_)), &J1, &J2);
+      dh = J1 * J2_inner;
+      dtau = J1 * J1_inner * J_inverse * u_i_ + J2 * u_j_;
+    }
+    const Eigen::Matrix3d D = Eigen::Vector3d(s, s, 1.0).asDiagonal();
+    const Pose2 h_s(s * h.x(), s * h.y(), h.yaw());
+    const Eigen::Index d = WA_.rows();
+    Eigen::Map<Eigen::VectorXd> r(residuals, d);
+    r = WA_ * pose_difference(z_, h_s);
+    if (!jacobians) return true;
+    for (int b = 0; b < 2; ++b) {
+      if (!jacobians[b]) continue;
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(jacobians[b], d, 3);
+      J = -WA_ * D * dh * (b == 0 ? J_i : J_j);
+    }
+    if (scale_ && jacobians[2]) {
+      Eigen::Map<Eigen::VectorXd>(jacobians[2], d) = -WA_ * Eigen::Vector3d(h.x(), h.y(), 0.0);
+    }
+    if (clock_ && jacobians[tau_block]) {
+      Eigen::Map<Eigen::VectorXd>(jacobians[tau_block], d) = -WA_ * D * dtau;
+    }
+    return true;
+  }
+
+ private:
+  Pose2 z_;
+  Eigen::MatrixXd WA_;
+  bool scale_, clock_;
+  Eigen::Vector3d u_i_, u_j_;
 };
 
 /// r = W (z (-) x_i); dr/dx_i = -W.

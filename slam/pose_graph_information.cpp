@@ -124,7 +124,7 @@ class Information {
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
   hold_before(0);
-  const Information information(problem_->problem, poses_, biases_, has_bias_, scale_blocks());
+  const Information information(problem_->problem, poses_, biases_, has_bias_, constant_blocks());
   std::vector<Eigen::Matrix3d> out;
   // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
   constexpr std::size_t kBatch = 64;
@@ -143,14 +143,14 @@ std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_
 
 Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& nodes,
                                             const std::vector<std::size_t>& bias_nodes,
-                                            const std::vector<GraphScale>& scales) {
+                                            const std::vector<GraphConstant>& scales) {
   hold_before(0);
   std::vector<const double*> wanted;
-  for (const GraphScale which : scales) {
-    if (!has_scale(which)) throw std::out_of_range("pose graph: no such scale");
-    wanted.push_back(&scales_[index(which)]);
+  for (const GraphConstant which : scales) {
+    if (!has_constant(which)) throw std::out_of_range("pose graph: no such scale");
+    wanted.push_back(&constants_[index(which)]);
   }
-  return Information(problem_->problem, poses_, biases_, has_bias_, scale_blocks())
+  return Information(problem_->problem, poses_, biases_, has_bias_, constant_blocks())
       .joint(nodes, bias_nodes, wanted);
 }
 

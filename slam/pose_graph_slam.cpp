@@ -32,12 +32,18 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
   if (c.heading_bias) prior_sd.push_back(c.heading_bias_sigma_deg * M_PI / 180.0);
   if (c.range_scale) {
     prior_sd.push_back(c.range_scale_sigma);
-    graph_->add_scale(GraphScale::kRange, c.range_scale_prior, c.range_scale_prior,
-                      c.range_scale_sigma);
+    graph_->add_constant(GraphConstant::kRangeScale, c.range_scale_prior, c.range_scale_prior,
+                         c.range_scale_sigma);
   }
   if (c.dvl_scale) {
     prior_sd.push_back(c.dvl_scale_sigma);
-    graph_->add_scale(GraphScale::kDvl, c.dvl_scale_prior, c.dvl_scale_prior, c.dvl_scale_sigma);
+    graph_->add_constant(GraphConstant::kDvlScale, c.dvl_scale_prior, c.dvl_scale_prior,
+                         c.dvl_scale_sigma);
+  }
+  if (c.clock_offset) {
+    prior_sd.push_back(c.clock_offset_sigma_s);
+    graph_->add_constant(GraphConstant::kClockOffset, c.clock_offset_prior_s,
+                         c.clock_offset_prior_s, c.clock_offset_sigma_s);
   }
   const auto p = static_cast<Eigen::Index>(prior_sd.size());
   window_cov_ = Eigen::MatrixXd::Zero(p + 3, p + 3);
@@ -49,7 +55,7 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
 void PoseGraphSlam::append_odometry(PoseGraphBelief& belief, std::size_t node,
                                     Eigen::Index previous, const GaussianPose2& motion) const {
   if (estimates_dvl_scale()) {
-    belief.append_composed_scaled(node, previous, motion, scale_at(GraphScale::kDvl));
+    belief.append_composed_scaled(node, previous, motion, constant_at(GraphConstant::kDvlScale));
   } else {
     belief.append_composed(node, previous, motion);
   }
@@ -95,12 +101,14 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
   if (estimates_dvl_scale()) {
     graph_->add_scaled_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false,
-                                GraphScale::kDvl);
+                                GraphConstant::kDvlScale);
   } else {
     graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
   }
   if (estimates_heading_bias()) add_bias_block(node, scan.t_s, belief);
   motions_.push_back(motion);
+  velocities_.push_back(scan.velocity_vehicle.allFinite() ? scan.velocity_vehicle
+                                                          : Eigen::Vector3d::Zero());
   points_.push_back(finite_points(scan.points));
   ++totals_.scans;
 
@@ -164,10 +172,10 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   if (estimates_heading_bias()) {
     bias_ = {graph_->heading_bias(bias_node(node)), std::sqrt(belief.cov(0, 0))};
   }
-  for (const GraphScale which : estimated_scales()) {
-    const Eigen::Index r = scale_at(which);
-    scale_estimates_[static_cast<std::size_t>(which)] = {graph_->scale(which),
-                                                         std::sqrt(belief.cov(r, r))};
+  for (const GraphConstant which : estimated_constants()) {
+    const Eigen::Index r = constant_at(which);
+    constant_estimates_[static_cast<std::size_t>(which)] = {graph_->constant(which),
+                                                            std::sqrt(belief.cov(r, r))};
   }
   return stats;
 }
@@ -204,7 +212,7 @@ PoseGraphBelief PoseGraphSlam::whole_graph_belief(
   belief.parameters = graph_parameters(node);
   std::vector<std::size_t> bias_nodes;
   if (estimates_heading_bias()) bias_nodes.push_back(bias_node(node));
-  belief.cov = graph_->joint_covariance(belief.nodes, bias_nodes, estimated_scales());
+  belief.cov = graph_->joint_covariance(belief.nodes, bias_nodes, estimated_constants());
   return belief;
 }
 
@@ -237,8 +245,8 @@ void PoseGraphSlam::match(std::size_t k,
       if (nis > gate) {
         m.rejection = MatchRejection::kInnovation;
       } else {
-        if (estimates_range_scale()) {
-          graph_->add_scaled_relative(j + 1, node, m.match.estimate, A, true, GraphScale::kRange);
+        if (estimates_range_scale() || front_end_.calibration.clock_offset) {
+          graph_->add_match(j + 1, node, m.match.estimate, A, velocities_.at(j), velocities_.at(k));
         } else {
           graph_->add_relative(j + 1, node, m.match.estimate, A, true);
         }
@@ -268,8 +276,8 @@ void PoseGraphSlam::write_means(const PoseGraphBelief& belief) {
     graph_->set_heading_bias(bias_node(belief.nodes[static_cast<std::size_t>(belief.newest)]),
                              belief.parameters(0));
   }
-  for (const GraphScale which : estimated_scales()) {
-    graph_->set_scale(which, belief.parameters(scale_at(which)));
+  for (const GraphConstant which : estimated_constants()) {
+    graph_->set_constant(which, belief.parameters(constant_at(which)));
   }
 }
 
@@ -288,13 +296,13 @@ void PoseGraphSlam::smooth() const {
     smoothed_.push_back({graph_->pose(nodes[i]), covariances[i]});
   }
   // The scales as the whole graph knows them: the smoothed values, the information's sd.
-  const std::vector<GraphScale> scales = estimated_scales();
+  const std::vector<GraphConstant> scales = estimated_constants();
   if (!scales.empty()) {
     const Eigen::MatrixXd C = graph_->joint_covariance({}, {}, scales);
     for (std::size_t i = 0; i < scales.size(); ++i) {
       const auto r = static_cast<Eigen::Index>(i);
-      smoothed_scales_[static_cast<std::size_t>(scales[i])] = {graph_->scale(scales[i]),
-                                                               std::sqrt(C(r, r))};
+      smoothed_constants_[static_cast<std::size_t>(scales[i])] = {graph_->constant(scales[i]),
+                                                                  std::sqrt(C(r, r))};
     }
   }
 }

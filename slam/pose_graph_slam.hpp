@@ -139,9 +139,9 @@ class PoseGraphSlam : public ScanSlam {
   bool estimates_heading_bias() const;
   bool estimates_range_scale() const;
   /// The graph's scale blocks switched on, in their order (the range scale, the DVL's).
-  std::vector<GraphScale> estimated_scales() const;
+  std::vector<GraphConstant> estimated_constants() const;
   /// A scale's index in the belief's parameters (after the heading bias, in that order).
-  Eigen::Index scale_at(GraphScale which) const;
+  Eigen::Index constant_at(GraphConstant which) const;
   /// The odometry edge in the belief (Eq. 2): node `node` appended as the previous one composed
   /// with the motion, through the DVL's scale when estimated; it becomes the newest.
   void append_odometry(PoseGraphBelief& belief, std::size_t node, Eigen::Index previous,
@@ -184,9 +184,10 @@ class PoseGraphSlam : public ScanSlam {
   Eigen::MatrixXd newest_joint_;
   double previous_t_s_ = 0.0;                 ///< the last scan's time (the bias's walk)
   std::pair<double, double> bias_{0.0, 0.0};  ///< the newest bias and its sd, rad
-  /// Per GraphScale: online, the scale and its sd; after smooth(), the smoothed graph's.
-  std::array<std::pair<double, double>, 2> scale_estimates_{};
-  mutable std::array<std::pair<double, double>, 2> smoothed_scales_{};
+  /// Per GraphConstant: online, the constant and its sd; after smooth(), the smoothed graph's.
+  std::array<std::pair<double, double>, 3> constant_estimates_{};
+  mutable std::array<std::pair<double, double>, 3> smoothed_constants_{};
+  std::vector<Eigen::Vector3d> velocities_;  ///< each scan's Scan::velocity_vehicle (the clock)
 };
 
 }  // namespace msislab

@@ -86,35 +86,6 @@ TrajectorySlamConfig with_clock_offset() {
   return config;
 }
 
-/// The loop's scans as a sonar whose clock is tau_s behind shows them: scan k sees the basin from
-/// truth_k (+) tau u_k, u_k its velocity (the last motion over its second; points and noise as
-/// make_loop's), and carries u_k.
-Loop with_clock_offset(unsigned seed, double tau_s) {
-  Loop loop = make_loop(seed, false);
-  std::mt19937 rng(seed + 2000);
-  std::normal_distribution<double> n01(0.0, 1.0);
-  const std::vector<Eigen::Vector2d> world = basin();
-  for (std::size_t k = 0; k < loop.scans.size(); ++k) {
-    Scan& scan = loop.scans[k];
-    const std::size_t from = k == 0 ? 0 : k - 1;
-    scan.velocity_vehicle = loop.truth[from].between(loop.truth[from + 1]).vector();  // per 1 s
-    const Pose2 seen_from =
-        loop.truth[k].compose(Pose2(Eigen::Vector3d(tau_s * scan.velocity_vehicle)));
-    scan.points.clear();
-    for (const Eigen::Vector2d& p_world : world) {
-      const Eigen::Vector2d p = seen_from.inverse().transform(p_world);
-      if (p.norm() > 25.0) continue;
-      ScanPoint point;
-      point.p_m = p + 0.05 * draws_last_first<2>([&] { return n01(rng); });
-      point.cov = 0.05 * 0.05 * Eigen::Matrix2d::Identity();
-      point.cov_reading = point.cov;
-      point.p_vehicle_m = point.p_m;
-      scan.points.push_back(point);
-    }
-  }
-  return loop;
-}
-
 TrajectorySlamConfig with_dvl_scale() {
   TrajectorySlamConfig config;
   config.calibration.dvl_scale = true;
@@ -172,7 +143,7 @@ TEST(CalibrationStates, RangeScaleObservationJacobians) {
 // The clock offset moves both scans' frames: its column and the elements' against central
 // differences, with the range scale on too (the scale applied after the move).
 TEST(CalibrationStates, ObservationJacobiansWithTheClockOffset) {
-  const Loop loop = scaled(with_clock_offset(2, 0.1), 0.97);
+  const Loop loop = scaled(clock_offset_loop(2, 0.1), 0.97);
   TrajectorySlamConfig both = with_clock_offset();
   both.calibration.range_scale = true;
   Open<WorldCentricSlam> world(with_clock_offset(), GaussianPose2{});
@@ -441,7 +412,7 @@ TEST(CalibrationStates, RecoverTheSonarClockOffset) {
   // Scans seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the estimate within two
   // standard deviations of 0.1 s in at least 4 of 5 loops, the mean error below the filter's
   // without the state in at least 4.
-  const Recovery r = recover(5, [](unsigned seed) { return with_clock_offset(seed, 0.1); },
+  const Recovery r = recover(5, [](unsigned seed) { return clock_offset_loop(seed, 0.1); },
                              with_clock_offset(), {{"clock_offset_s", 0.1, 0.05}});
   EXPECT_GE(r.within, 4);
   EXPECT_GE(r.better, 4);

@@ -1,9 +1,10 @@
-// The pose graph's scale blocks (trajectory_slam.calibration.range_scale and dvl_scale;
-// docs/pose_graph.md, "The scale factors"): one scalar block each for the graph, with its prior;
-// every match edge reads the range scale, every odometry edge the DVL's. The scaled edge's
-// Jacobians against Ceres' numeric ones; on synthetic loops whose scans see the world 4 % small,
-// or whose DVL reads 3 % long, the scale found and the trajectory better than without the block,
-// in the whole-graph and the windowed back end (the filters' recovery tests, on the graph).
+// The pose graph's constants (trajectory_slam.calibration.range_scale, dvl_scale, clock_offset;
+// docs/pose_graph.md, "The scale factors and the clock offset"): one scalar block each for the
+// graph, with its prior; every match edge reads the range scale and the clock offset, every
+// odometry edge the DVL's scale. The edges' Jacobians against Ceres' numeric ones; on synthetic
+// loops whose scans see the world 4 % small, whose DVL reads 3 % long or whose scans are seen
+// 0.1 s late, the constant found and the trajectory better than without the block, in the
+// whole-graph and the windowed back end (the filters' recovery tests, on the graph).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,23 +25,41 @@ TEST(PoseGraphScale, EdgeJacobiansMatchCentralDifferences) {
   PoseGraph graph;
   graph.add_node(Pose2(1.0, -2.0, 0.7));
   graph.add_node(Pose2(4.0, 1.5, 2.9));
-  EXPECT_THROW(
-      graph.add_scaled_relative(0, 1, {}, Eigen::Matrix3d::Identity(), true, GraphScale::kRange),
-      std::out_of_range);
-  graph.add_scale(GraphScale::kRange, 0.97, 1.0, 0.05);
-  graph.add_scale(GraphScale::kDvl, 1.02, 1.0, 0.02);
-  EXPECT_THROW(graph.add_scale(GraphScale::kRange, 1.0, 1.0, 0.05), std::invalid_argument);
-  EXPECT_THROW(graph.add_scale(GraphScale::kDvl, 1.0, 1.0, 0.0), std::invalid_argument);
+  EXPECT_THROW(graph.add_scaled_relative(0, 1, {}, Eigen::Matrix3d::Identity(), true,
+                                         GraphConstant::kRangeScale),
+               std::out_of_range);
+  graph.add_constant(GraphConstant::kRangeScale, 0.97, 1.0, 0.05);
+  graph.add_constant(GraphConstant::kDvlScale, 1.02, 1.0, 0.02);
+  EXPECT_THROW(graph.add_constant(GraphConstant::kRangeScale, 1.0, 1.0, 0.05),
+               std::invalid_argument);
+  EXPECT_THROW(graph.add_constant(GraphConstant::kDvlScale, 1.0, 1.0, 0.0), std::invalid_argument);
   GaussianPose2 z{Pose2(3.5, 2.0, 2.0), Eigen::Vector3d(0.04, 0.09, 0.001).asDiagonal()};
   z.cov(0, 1) = z.cov(1, 0) = 0.01;
-  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), true, GraphScale::kRange);
+  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), true, GraphConstant::kRangeScale);
   // A match that leaves a direction out (2 orthonormal rows), not robust.
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2, 3);
   A(0, 0) = A(0, 1) = std::sqrt(0.5);
   A(1, 2) = 1.0;
-  graph.add_scaled_relative(1, 0, z, A, false, GraphScale::kRange);
-  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), false, GraphScale::kDvl);
-  expect_residual_jacobians_match(graph.problem_for_checks(), 5);  // two priors, three edges
+  graph.add_scaled_relative(1, 0, z, A, false, GraphConstant::kRangeScale);
+  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), false, GraphConstant::kDvlScale);
+  // Matches through the range scale alone, then through it and the clock offset.
+  const Eigen::Vector3d u_0(0.6, 0.1, 0.05), u_1(0.4, -0.2, -0.1);
+  graph.add_match(0, 1, z, A, u_0, u_1);
+  graph.add_constant(GraphConstant::kClockOffset, 0.3, 0.0, 0.5);
+  graph.add_match(1, 0, z, Eigen::Matrix3d::Identity(), u_1, u_0);
+  // two priors, three scaled edges, two matches, the clock's prior
+  expect_residual_jacobians_match(graph.problem_for_checks(), 8);
+}
+
+TEST(PoseGraphScale, AMatchThroughTheClockAloneHasItsJacobians) {
+  PoseGraph graph;
+  graph.add_node(Pose2(1.0, -2.0, 0.7));
+  graph.add_node(Pose2(4.0, 1.5, 2.9));
+  graph.add_constant(GraphConstant::kClockOffset, -0.2, 0.0, 0.5);
+  const GaussianPose2 z{Pose2(3.5, 2.0, 2.0), Eigen::Vector3d(0.04, 0.09, 0.001).asDiagonal()};
+  graph.add_match(0, 1, z, Eigen::Matrix3d::Identity(), Eigen::Vector3d(0.6, 0.1, 0.05),
+                  Eigen::Vector3d(0.4, -0.2, -0.1));
+  expect_residual_jacobians_match(graph.problem_for_checks(), 2);
 }
 
 /// Loops 1..seeds made by loop_of, the graph with the state against the graph without: the
@@ -115,29 +134,52 @@ TEST(PoseGraphScale, WindowedGraphRecoversTheDvlScaleOfMotions3PercentLong) {
   expect_recovered(8, 5, long_dvl, with(false, true), "dvl_scale", 1.03, 0.015, 4, 4);
 }
 
-// The same code on a short stretch of one loop, whole graph and windowed, with the heading bias
-// and both scales leading the parameters: what the sanitizer build runs (the tests above take
-// minutes under it). Finite estimates, in the filters' order; each scale's sd below its prior's.
+// Five loops whose scans are seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the
+// filters' bounds, within two sd of 0.1 s in at least 4, sd below 0.05 s, better in at least 4.
+Loop late_clock(unsigned seed) { return clock_offset_loop(seed, 0.1); }
+
+TrajectorySlamConfig with_clock() {
+  TrajectorySlamConfig config;
+  config.calibration.clock_offset = true;
+  return config;
+}
+
+TEST(PoseGraphScale, WholeGraphRecoversTheSonarClockOffset) {
+  expect_recovered(0, 5, late_clock, with_clock(), "clock_offset_s", 0.1, 0.05, 4, 4);
+}
+
+TEST(PoseGraphScale, WindowedGraphRecoversTheSonarClockOffset) {
+  expect_recovered(8, 5, late_clock, with_clock(), "clock_offset_s", 0.1, 0.05, 4, 4);
+}
+
+// The same code on a short stretch of one loop, whole graph and windowed, with the heading bias,
+// both scales and the clock offset leading the parameters: what the sanitizer build runs (the
+// tests above take minutes under it). Finite estimates, in the filters' order; each scale's and
+// the clock's sd below its prior's.
 TEST(PoseGraphScale, AShortStretchInBothBackEndsWithEveryParameter) {
-  Loop loop = dvl_scaled(scaled(make_loop(4, false), 0.96), 1.03);
+  Loop loop = dvl_scaled(scaled(clock_offset_loop(4, 0.1), 0.96), 1.03);
   with_walking_compass(loop, 0.3, 0.1, 4);
   TrajectorySlamConfig front = with_heading_bias(0.3);
   front.calibration.range_scale = front.calibration.dvl_scale = true;
+  front.calibration.clock_offset = true;
   for (const int window : {0, 4}) {
     PoseGraphSlamConfig graph;
     graph.online_window_scans = window;
     PoseGraphSlam slam(front, graph, GaussianPose2{});
     for (std::size_t k = 0; k < 30; ++k) slam.add_scan(loop.scans[k]);
     const std::vector<CalibrationEstimate> c = slam.calibration();
-    ASSERT_EQ(c.size(), 3u);
+    ASSERT_EQ(c.size(), 4u);
     EXPECT_EQ(c[0].name, "range_scale");
     EXPECT_EQ(c[1].name, "dvl_scale");
-    EXPECT_EQ(c[2].name, "heading_bias_deg");
+    EXPECT_EQ(c[2].name, "clock_offset_s");
+    EXPECT_EQ(c[3].name, "heading_bias_deg");
     for (const CalibrationEstimate& e : c) EXPECT_TRUE(std::isfinite(e.value)) << window;
     EXPECT_GT(c[0].sigma, 0.0) << window;
     EXPECT_LT(c[0].sigma, 0.05) << window;
     EXPECT_GT(c[1].sigma, 0.0) << window;
     EXPECT_LT(c[1].sigma, 0.02) << window;
+    EXPECT_GT(c[2].sigma, 0.0) << window;
+    EXPECT_LT(c[2].sigma, 0.5) << window;
     EXPECT_TRUE(slam.scan_pose_world(29).cov.allFinite()) << window;
   }
 }

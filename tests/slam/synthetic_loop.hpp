@@ -102,6 +102,35 @@ inline Loop dvl_scaled(Loop loop, double k) {
   return loop;
 }
 
+/// The loop's scans as a sonar whose clock is tau_s behind shows them: scan k sees the basin from
+/// truth_k (+) tau u_k, u_k its velocity (the last motion over its second; points and noise as
+/// make_loop's), and carries u_k.
+inline Loop clock_offset_loop(unsigned seed, double tau_s) {
+  Loop loop = make_loop(seed, false);
+  std::mt19937 rng(seed + 2000);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const std::vector<Eigen::Vector2d> world = basin();
+  for (std::size_t k = 0; k < loop.scans.size(); ++k) {
+    Scan& scan = loop.scans[k];
+    const std::size_t from = k == 0 ? 0 : k - 1;
+    scan.velocity_vehicle = loop.truth[from].between(loop.truth[from + 1]).vector();  // per 1 s
+    const Pose2 seen_from =
+        loop.truth[k].compose(Pose2(Eigen::Vector3d(tau_s * scan.velocity_vehicle)));
+    scan.points.clear();
+    for (const Eigen::Vector2d& p_world : world) {
+      const Eigen::Vector2d p = seen_from.inverse().transform(p_world);
+      if (p.norm() > 25.0) continue;
+      ScanPoint point;
+      point.p_m = p + 0.05 * draws_last_first<2>([&] { return n01(rng); });
+      point.cov = 0.05 * 0.05 * Eigen::Matrix2d::Identity();
+      point.cov_reading = point.cov;
+      point.p_vehicle_m = point.p_m;
+      scan.points.push_back(point);
+    }
+  }
+  return loop;
+}
+
 /// The filters' config with the compass's heading-bias state on, walking at that density.
 inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
   TrajectorySlamConfig config;

@@ -24,7 +24,6 @@ using pose_graph_edges::MatchCost;
 using pose_graph_edges::PriorCost;
 using pose_graph_edges::RelativeCost;
 using pose_graph_edges::ScalarPriorCost;
-using pose_graph_edges::ScaledRelativeCost;
 
 /// W with W S W^T = I for a positive definite S: the inverse of its lower Cholesky factor.
 Eigen::MatrixXd whitening(const Eigen::MatrixXd& S) {
@@ -144,7 +143,8 @@ void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const Gaussian
   const Eigen::MatrixXd W = whitening(S) * observed;
   ceres::LossFunction* loss = robust_loss(robust);
   const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
-      new ScaledRelativeCost(z.mean, W), loss, pose_i, pose_j, &constants_[index(which)]);
+      new MatchCost(z.mean, W, true, false, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), loss,
+      pose_i, pose_j, &constants_[index(which)]);
   if (loss) problem_->robust.push_back(id);
 }
 

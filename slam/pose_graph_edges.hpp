@@ -46,53 +46,13 @@ class RelativeCost : public ceres::CostFunction {
   Eigen::MatrixXd WA_;
 };
 
-/// A match through the sonar's range scale s (the scans' geometry is s times the true one, as the
-/// filters' range-scale state): h = (-)x_i (+) x_j, h_s = (s t_h, yaw_h), r = W A (z (-) h_s);
-/// dr/dx = -W A D J (D = diag(s, s, 1)), dr/ds = -W A (t_h, 0).
-class ScaledRelativeCost : public ceres::CostFunction {
- public:
-  ScaledRelativeCost(const Pose2& z, const Eigen::MatrixXd& WA) : z_(z), WA_(WA) {
-    set_num_residuals(static_cast<int>(WA.rows()));
-    mutable_parameter_block_sizes()->assign({3, 3, 1});
-  }
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
-    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
-    const double s = parameters[2][0];
-    Eigen::Matrix3d J_i, J_j;
-    const Pose2 h = x_i.between(x_j, &J_i, &J_j);
-    const Pose2 h_s(s * h.x(), s * h.y(), h.yaw());
-    const Eigen::Index d = WA_.rows();
-    Eigen::Map<Eigen::VectorXd> r(residuals, d);
-    r = WA_ * pose_difference(z_, h_s);
-    if (jacobians) {
-      const Eigen::Matrix3d D = Eigen::Vector3d(s, s, 1.0).asDiagonal();
-      for (int b = 0; b < 2; ++b) {
-        if (!jacobians[b]) continue;
-        Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> J(jacobians[b], d, 3);
-        J = -WA_ * D * (b == 0 ? J_i : J_j);
-      }
-      if (jacobians[2]) {
-        Eigen::Map<Eigen::VectorXd> J(jacobians[2], d);
-        J = -WA_ * Eigen::Vector3d(h.x(), h.y(), 0.0);
-      }
-    }
-    return true;
-  }
-
- private:
-  Pose2 z_;
-  Eigen::MatrixXd WA_;
-};
-
 /// A match through the clock offset tau and the range scale s, each where the graph has it (the
 /// filters' model, slam/trajectory_observations.cpp): h = (-)x_i (+) x_j, h_tau = (-)(tau u_i) (+)
 /// h (+) (tau u_j) (u_i, u_j the scans' velocities), h_s = (s t, yaw) of h_tau, r = W A (z (-)
 /// h_s). Blocks: x_i, x_j, then s, then tau. With J1, J2 of the outer composition, J1', J2' of the
 /// inner one and J- of the inversion: dh_tau/dh = J1 J2', dh_tau/dtau = J1 J1' J- u_i + J2 u_j;
-/// D = diag(s, s, 1) on both; dh_s/ds = (t_tau, 0).
+/// D = diag(s, s, 1) on both; dh_s/ds = (t_tau, 0). Without the clock it is the scaled edge of
+/// PoseGraph::add_scaled_relative too (the DVL's scale k in place of s on an odometry edge).
 class MatchCost : public ceres::CostFunction {
  public:
   MatchCost(const Pose2& z, const Eigen::MatrixXd& WA, bool scale, bool clock,

@@ -90,10 +90,6 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
   write_directory_header(options.out_dir, manifest, inputs);
   // Said once every input is checked (a bad input's message stays one line).
   if (!config.noise_note.empty()) std::cerr << "msislab: " << config.noise_note << '\n';
-  if (std::find(options.methods.begin(), options.methods.end(), "posegraph") !=
-      options.methods.end()) {
-    warn_ignored_calibration(ctx.config);
-  }
   ctx.dir = options.out_dir;
   ctx.keep_datasets = options.keep_datasets;
   return ctx;

@@ -105,7 +105,6 @@ RunOutcome run(const RunOptions& options) {
   const io::RunInputs in =
       io::load_run_inputs(options.dataset_dir, options.config_path, options.calibration_path);
   if (!in.noise_note.empty()) std::cerr << "msislab: " << in.noise_note << '\n';
-  if (options.method == "posegraph") warn_ignored_calibration(in.config);
   const MethodResult result = external ? run_external(options, in) : run_method(options.method, in);
   io::StagedFolder staged(out);
   // An external method's scans carry no points: no map.

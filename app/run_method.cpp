@@ -230,14 +230,6 @@ void score(const report::MethodInfo& method, const io::RunInputs& in, const Esti
 
 }  // namespace
 
-void warn_ignored_calibration(const SlamConfig& config) {
-  for (const std::string& state :
-       pose_graph_ignored_calibration(config.trajectory_slam.calibration)) {
-    std::cerr << "msislab: posegraph does not estimate trajectory_slam.calibration." << state
-              << " (the filters do); it runs without it\n";
-  }
-}
-
 /// The library's pipeline settings from a dataset read already.
 ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar) {
   ScanSlamSetup setup;

@@ -51,10 +51,6 @@ struct SharedInputs {
 /// start, the DVL and sonar mounts, the sonar's beams per revolution.
 ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar);
 
-/// Says on stderr, a line each, the calibration states the config switches on that the pose graph
-/// does not estimate (pose_graph_ignored_calibration): a posegraph run leaves them out.
-void warn_ignored_calibration(const SlamConfig& config);
-
 struct ExternalSetup;  // app/external_method.hpp
 
 /// Runs a method on a dataset read already (from a directory or held in memory), sharing with

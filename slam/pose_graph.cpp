@@ -15,12 +15,12 @@ namespace msislab {
 
 namespace {
 
-using pose_graph_edges::BiasedHeadingCost;
 using pose_graph_edges::BiasWalkCost;
 using pose_graph_edges::CauchyLoss;
+using pose_graph_edges::CompassCost;
 using pose_graph_edges::DynamicCovarianceScalingLoss;
-using pose_graph_edges::HeadingCost;
 using pose_graph_edges::MatchCost;
+using pose_graph_edges::OdometryCost;
 using pose_graph_edges::PriorCost;
 using pose_graph_edges::RelativeCost;
 using pose_graph_edges::ScalarPriorCost;
@@ -76,6 +76,18 @@ void PoseGraph::hold_before(std::size_t first_free) {
   held_before_ = first_free;
 }
 
+void PoseGraph::hold_constants(bool held) {
+  if (held == constants_held_) return;
+  for (double* c : constant_blocks()) {
+    if (held) {
+      problem_->problem.SetParameterBlockConstant(c);
+    } else {
+      problem_->problem.SetParameterBlockVariable(c);
+    }
+  }
+  constants_held_ = held;
+}
+
 void PoseGraph::add_prior(std::size_t i, const GaussianPose2& z_world) {
   double* pose = poses_.at(i).data();
   problem_->problem.AddResidualBlock(new PriorCost(z_world.mean, whitening(z_world.cov)), nullptr,
@@ -124,6 +136,7 @@ void PoseGraph::add_constant(GraphConstant which, double initial, double prior_m
   problem_->problem.AddParameterBlock(s, 1);
   problem_->problem.AddResidualBlock(new ScalarPriorCost(prior_mean, prior_sigma), nullptr, s);
   has_constant_[index(which)] = true;
+  if (constants_held_) problem_->problem.SetParameterBlockConstant(s);
 }
 
 std::vector<double*> PoseGraph::constant_blocks() {
@@ -148,10 +161,36 @@ void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const Gaussian
   if (loss) problem_->robust.push_back(id);
 }
 
+bool PoseGraph::has_deviation() const {
+  return has_constant(GraphConstant::kDeviationCos) && has_constant(GraphConstant::kDeviationSin);
+}
+
+void PoseGraph::append_deviation(std::vector<double*>& blocks) {
+  blocks.push_back(&constants_[index(GraphConstant::kDeviationCos)]);
+  blocks.push_back(&constants_[index(GraphConstant::kDeviationSin)]);
+}
+
 void PoseGraph::add_heading(std::size_t i, double yaw_world_rad, double sigma_rad) {
   if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
-  double* pose = poses_.at(i).data();
-  problem_->problem.AddResidualBlock(new HeadingCost(yaw_world_rad, sigma_rad), nullptr, pose);
+  std::vector<double*> blocks = {poses_.at(i).data()};
+  if (has_deviation()) append_deviation(blocks);
+  problem_->problem.AddResidualBlock(
+      new CompassCost(yaw_world_rad, sigma_rad, false, has_deviation()), nullptr, blocks);
+}
+
+void PoseGraph::add_odometry(std::size_t i, std::size_t j, const GaussianPose2& z,
+                             bool start_deviated) {
+  const bool scale = has_constant(GraphConstant::kDvlScale);
+  if (!scale && !has_deviation()) {
+    add_relative(i, j, z, Eigen::Matrix3d::Identity(), false);
+    return;
+  }
+  std::vector<double*> blocks = {poses_.at(i).data(), poses_.at(j).data()};  // checked first
+  const Eigen::Matrix3d W = whitening(z.cov);
+  if (scale) blocks.push_back(&constants_[index(GraphConstant::kDvlScale)]);
+  if (has_deviation()) append_deviation(blocks);
+  problem_->problem.AddResidualBlock(
+      new OdometryCost(z.mean, W, scale, has_deviation(), start_deviated), nullptr, blocks);
 }
 
 void PoseGraph::add_heading_bias(std::size_t i, double initial_rad, bool fixed) {
@@ -187,9 +226,10 @@ void PoseGraph::add_heading_bias_walk(std::size_t i, std::size_t j, double sigma
 void PoseGraph::add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
                                    double sigma_rad) {
   if (!(sigma_rad > 0.0)) throw std::invalid_argument("pose graph: heading sigma must be > 0");
-  double *pose = poses_.at(i).data(), *bias = bias_block(bias_node);
-  problem_->problem.AddResidualBlock(new BiasedHeadingCost(yaw_world_rad, sigma_rad), nullptr, pose,
-                                     bias);
+  std::vector<double*> blocks = {poses_.at(i).data(), bias_block(bias_node)};
+  if (has_deviation()) append_deviation(blocks);
+  problem_->problem.AddResidualBlock(
+      new CompassCost(yaw_world_rad, sigma_rad, true, has_deviation()), nullptr, blocks);
 }
 
 double PoseGraph::heading_bias(std::size_t i) const {

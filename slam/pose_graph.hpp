@@ -47,8 +47,15 @@ namespace msislab {
 enum class RobustLoss { kDynamicCovarianceScaling, kCauchy };
 
 /// The graph's constants (one scalar block each): the sonar's range scale, the DVL's scale factor,
-/// the sonar clock's offset (s).
-enum class GraphConstant { kRangeScale = 0, kDvlScale = 1, kClockOffset = 2 };
+/// the sonar clock's offset (s), the compass's one-cycle deviation d(psi) = a cos(psi) + b sin(psi)
+/// (a and b, rad).
+enum class GraphConstant {
+  kRangeScale = 0,
+  kDvlScale = 1,
+  kClockOffset = 2,
+  kDeviationCos = 3,
+  kDeviationSin = 4
+};
 
 struct PoseGraphConfig {
   RobustLoss robust_loss = RobustLoss::kDynamicCovarianceScaling;
@@ -86,6 +93,10 @@ class PoseGraph {
   /// Holds the nodes before `first_free` where they are in the following solves (a windowed
   /// online solve); 0 frees them all again. Fixed nodes stay fixed.
   void hold_before(std::size_t first_free);
+  /// Holds the constants where they are in the following solves (held: a windowed online solve,
+  /// whose held nodes would inform them as if exact), or frees them again. covariances() and
+  /// joint_covariance() free them, as they free the held nodes.
+  void hold_constants(bool held);
   /// The add_* below throw std::out_of_range for a node that does not exist and
   /// std::invalid_argument for a covariance that is not positive definite, before anything is
   /// allocated or added (a refused input leaks nothing).
@@ -96,8 +107,14 @@ class PoseGraph {
   /// the robust loss of the config (the matches; odometry is not).
   void add_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
                     const Eigen::MatrixXd& observed, bool robust);
-  /// The compass: yaw_world_rad ~ yaw_i with standard deviation sigma_rad.
+  /// The compass: yaw_world_rad ~ yaw_i with standard deviation sigma_rad; through the deviation,
+  /// yaw_i + a cos(yaw_i) + b sin(yaw_i), where the graph has its two constants.
   void add_heading(std::size_t i, double yaw_world_rad, double sigma_rad);
+  /// The dead-reckoning motion z from node i to node j (not robust): as add_relative, through the
+  /// DVL's scale and the compass's deviation where the graph has them (its heading change carries
+  /// d(yaw_j) - d(yaw_i), or d(yaw_j) alone when start_deviated is false: node i's heading was not
+  /// read from the compass, an exact start; slam/pose_graph_edges.hpp, OdometryCost).
+  void add_odometry(std::size_t i, std::size_t j, const GaussianPose2& z, bool start_deviated);
 
   /// Gives node i a heading-bias block at initial_rad (held there when fixed: known). Throws
   /// std::invalid_argument when it has one already.
@@ -108,14 +125,16 @@ class PoseGraph {
   /// b_j - b_i ~ N(0, sigma_rad^2): the bias's walk from node i to node j.
   void add_heading_bias_walk(std::size_t i, std::size_t j, double sigma_rad);
   /// The compass through a bias: yaw_world_rad ~ yaw_i + b_k (k = bias_node: node i's own, or
-  /// the one a constant bias lives in), standard deviation sigma_rad.
+  /// the one a constant bias lives in), standard deviation sigma_rad; through the deviation too
+  /// where the graph has it, as add_heading.
   void add_biased_heading(std::size_t i, std::size_t bias_node, double yaw_world_rad,
                           double sigma_rad);
   /// A constant, one block for the whole graph, at `initial`, with the prior
   /// c ~ N(prior_mean, prior_sigma^2): the sonar's range scale (the scans' geometry is s times
   /// the true one, so a match sees it), the DVL's (its velocities are k times the true ones, so
   /// an odometry edge sees it), the sonar clock's offset tau (a match sees scans moved by tau times
-  /// their velocities). Throws std::invalid_argument when it exists already.
+  /// their velocities), the compass deviation's a and b (the compass and odometry edges added
+  /// after both see them). Throws std::invalid_argument when it exists already.
   void add_constant(GraphConstant which, double initial, double prior_mean, double prior_sigma);
   bool has_constant(GraphConstant which) const { return has_constant_[index(which)]; }
   double constant(GraphConstant which) const { return constants_[index(which)]; }
@@ -176,11 +195,16 @@ class PoseGraph {
   std::vector<bool> bias_fixed_;  ///< per node: that block held for good
   std::size_t held_before_ = 0;   ///< nodes before this are held for now (hold_before)
   /// Blocks where has_constant_ (the object never moves).
-  std::array<double, 3> constants_{1.0, 1.0, 0.0};
-  std::array<bool, 3> has_constant_{false, false, false};
+  std::array<double, 5> constants_{1.0, 1.0, 0.0, 0.0, 0.0};
+  std::array<bool, 5> has_constant_{false, false, false, false, false};
+  bool constants_held_ = false;
   static std::size_t index(GraphConstant which) { return static_cast<std::size_t>(which); }
   /// The scales' blocks that exist, in GraphConstant order, for the information's columns.
   std::vector<double*> constant_blocks();
+  /// Both of the deviation's constants exist.
+  bool has_deviation() const;
+  /// The deviation's two blocks appended to an edge's.
+  void append_deviation(std::vector<double*>& blocks);
   std::unique_ptr<Problem> problem_;
 
   double* bias_block(std::size_t i);  ///< node i's bias block; throws when it has none

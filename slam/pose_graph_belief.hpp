@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "geometry/gaussian_pose.hpp"
+#include "slam/calibration_model.hpp"
 #include "slam/iterated_ekf.hpp"
 
 namespace msislab {
@@ -45,31 +46,52 @@ struct PoseGraphBelief {
     newest = static_cast<Eigen::Index>(nodes.size()) - 1;
   }
 
-  /// Appends node `node` as `previous (+) (t / k, yaw)`, (t, yaw) the odometry's motion and k the
-  /// DVL's scale, the parameter at index k_at (the DVL measured k times the true velocity; the
-  /// filters' model): J1+ on the previous pose, J2+ (-t / k^2, 0) on k, J2+ diag(1/k, 1/k, 1) on
-  /// the motion's noise. It becomes the newest.
-  void append_composed_scaled(std::size_t node, Eigen::Index previous, const GaussianPose2& motion,
-                              Eigen::Index k_at) {
-    const double k = parameters(k_at);
-    const Pose2 m(motion.mean.x() / k, motion.mean.y() / k, motion.mean.yaw());
-    const Eigen::Matrix3d J_m = Eigen::Vector3d(1.0 / k, 1.0 / k, 1.0).asDiagonal();
+  /// Appends node `node` as `previous (+) x`, x = g.x the true motion behind the odometry's
+  /// (slam/calibration_model.hpp: through the DVL's scale k, the parameter at index k_at, and the
+  /// compass's deviation (a, b) at ab_at, ab_at + 1; -1: not in the belief). It becomes the
+  /// newest.
+  void append_calibrated(std::size_t node, Eigen::Index previous, const GaussianPose2& motion,
+                         const CalibratedMotion& g, Eigen::Index k_at, Eigen::Index ab_at) {
+    append_through(node, previous, motion, g, k_at, ab_at, false);
+    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
+  /// Appends node `node` as `from (+) r`, r = g.x or, backward (the motion runs from the new node
+  /// to `from`), its inverse: J1+ on from's pose, J2+ dr/dk on k, J2+ dr/d(a, b) on (a, b), J2+
+  /// dr/dm on the motion's noise (dr/d. = J- dx/d. backward). The newest stays the newest.
+  void append_through(std::size_t node, Eigen::Index from, const GaussianPose2& motion,
+                      const CalibratedMotion& g, Eigen::Index k_at, Eigen::Index ab_at,
+                      bool backward) {
+    Eigen::Matrix3d J_inverse = Eigen::Matrix3d::Identity();
+    const Pose2 r = backward ? g.x.inverse(&J_inverse) : g.x;
     Eigen::Matrix3d J_from, J_relative;
-    const Pose2 mean = means[previous].compose(m, &J_from, &J_relative);
+    const Pose2 mean = means[from].compose(r, &J_from, &J_relative);
+    const Eigen::Matrix3d J_r = backward ? Eigen::Matrix3d(J_relative * J_inverse) : J_relative;
     const Eigen::Index n = cov.rows();
     Eigen::MatrixXd G = Eigen::MatrixXd::Zero(3, n);  // d(new node)/d(belief)
-    G.middleCols<3>(at(previous)) = J_from;
-    G.col(k_at) = J_relative * Eigen::Vector3d(-m.x() / k, -m.y() / k, 0.0);
+    G.middleCols<3>(at(from)) = J_from;
+    if (k_at >= 0) G.col(k_at) = J_r * g.d_k;
+    if (ab_at >= 0) G.middleCols<2>(ab_at) = J_r * g.d_ab;
     const Eigen::MatrixXd cross = G * cov;
-    const Eigen::Matrix3d P = cross * G.transpose() + J_relative * J_m * motion.cov *
-                                                          J_m.transpose() * J_relative.transpose();
+    const Eigen::Matrix3d P =
+        cross * G.transpose() + J_r * g.d_m * motion.cov * g.d_m.transpose() * J_r.transpose();
     cov.conservativeResize(n + 3, n + 3);
     cov.bottomRows<3>().leftCols(n) = cross;
     cov.rightCols<3>().topRows(n) = cross.transpose();
     cov.bottomRightCorner<3, 3>() = 0.5 * (P + P.transpose());
     nodes.push_back(node);
     means.push_back(mean);
-    newest = static_cast<Eigen::Index>(nodes.size()) - 1;
+  }
+
+  /// Drops (marginalises) the nodes at indices first..first + count - 1, after the newest.
+  void drop(Eigen::Index first, Eigen::Index count) {
+    std::vector<Eigen::Index> kept;
+    for (Eigen::Index i = 0; i < static_cast<Eigen::Index>(nodes.size()); ++i) {
+      if (i < first || i >= first + count) kept.push_back(i);
+    }
+    cov = marginal(kept);
+    nodes.erase(nodes.begin() + first, nodes.begin() + first + count);
+    means.erase(means.begin() + first, means.begin() + first + count);
   }
 
   /// Appends node `node` as `from (+) relative`, the relative pose independent of the belief:

@@ -1,8 +1,10 @@
 // The pose-graph SLAM's calibration (docs/pose_graph.md): the heading bias's scalar blocks (one per
-// scan node, walking, or one constant) and the scale blocks (the sonar's range scale, the DVL's;
-// one each), how they lead the belief's parameters, what a match observes through the range scale,
-// the estimates read out, and the states the graph leaves to the filters. The scan step, with the
-// odometry through the DVL's scale, is in pose_graph_slam.cpp.
+// scan node, walking, or one constant) and the constants' blocks (the sonar's range scale, the
+// DVL's, the sonar clock's offset, the compass deviation's a and b; one each), how they lead the
+// belief's parameters, the odometry appended to the belief through the DVL's scale and the
+// deviation, what a match observes through the range scale and the clock, and the estimates read
+// out. The scan step, with the compass through the bias and the deviation, is in
+// pose_graph_slam.cpp.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -10,15 +12,10 @@
 #include <utility>
 #include <vector>
 
+#include "slam/calibration_model.hpp"
 #include "slam/pose_graph_slam.hpp"
 
 namespace msislab {
-
-std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c) {
-  std::vector<std::string> out;
-  if (c.compass_deviation) out.emplace_back("compass_deviation");
-  return out;
-}
 
 bool PoseGraphSlam::estimates_heading_bias() const { return front_end_.calibration.heading_bias; }
 
@@ -31,6 +28,10 @@ std::vector<GraphConstant> PoseGraphSlam::estimated_constants() const {
   if (estimates_range_scale()) out.push_back(GraphConstant::kRangeScale);
   if (estimates_dvl_scale()) out.push_back(GraphConstant::kDvlScale);
   if (front_end_.calibration.clock_offset) out.push_back(GraphConstant::kClockOffset);
+  if (front_end_.calibration.compass_deviation) {
+    out.push_back(GraphConstant::kDeviationCos);
+    out.push_back(GraphConstant::kDeviationSin);
+  }
   return out;
 }
 
@@ -50,25 +51,77 @@ Eigen::VectorXd PoseGraphSlam::graph_parameters(std::optional<std::size_t> bias_
   return out;
 }
 
+void PoseGraphSlam::append_odometry(PoseGraphBelief& belief, std::size_t node,
+                                    Eigen::Index previous, const GaussianPose2& motion) const {
+  if (!calibrates_odometry()) {
+    belief.append_composed(node, previous, motion);
+    return;
+  }
+  // The new node's heading: the previous one's turned by the true motion, whose heading change
+  // depends on it through the deviation (one fixed-point step from the measured one).
+  const double psi_0 = belief.means[static_cast<std::size_t>(previous)].yaw();
+  const double psi_guess = psi_0 + calibrated_step(belief.parameters, motion.mean, psi_0,
+                                                   psi_0 + motion.mean.yaw(), node)
+                                       .x.yaw();
+  const CalibratedMotion g =
+      calibrated_step(belief.parameters, motion.mean, psi_0, psi_guess, node);
+  belief.append_calibrated(node, previous, motion, g, odometry_k_at(), odometry_ab_at());
+}
+
+bool PoseGraphSlam::calibrates_odometry() const {
+  return estimates_dvl_scale() || front_end_.calibration.compass_deviation;
+}
+
+Eigen::Index PoseGraphSlam::odometry_k_at() const {
+  return estimates_dvl_scale() ? constant_at(GraphConstant::kDvlScale) : -1;
+}
+
+Eigen::Index PoseGraphSlam::odometry_ab_at() const {
+  return front_end_.calibration.compass_deviation ? constant_at(GraphConstant::kDeviationCos) : -1;
+}
+
+CalibratedMotion PoseGraphSlam::calibrated_step(const Eigen::VectorXd& parameters,
+                                                const Pose2& motion, double psi_from_rad,
+                                                double psi_to_rad, std::size_t node_to) const {
+  const Eigen::Index k_at = odometry_k_at(), ab_at = odometry_ab_at();
+  std::optional<double> k;
+  if (k_at >= 0) k = parameters(k_at);
+  std::optional<Eigen::Vector2d> ab;
+  Eigen::Vector2d change = Eigen::Vector2d::Zero();
+  if (ab_at >= 0) {
+    // The deviation's change over the motion at its two headings (the filters' model).
+    ab = parameters.segment<2>(ab_at);
+    change = Eigen::Vector2d(std::cos(psi_to_rad), std::sin(psi_to_rad));
+    if (start_deviated(node_to)) {
+      change -= Eigen::Vector2d(std::cos(psi_from_rad), std::sin(psi_from_rad));
+    }
+  }
+  return calibrated_motion(motion, k, ab, change);
+}
+
+bool PoseGraphSlam::start_deviated(std::size_t node) const {
+  // The first motion starts from node 0, whose heading carries its reading's deviation when it
+  // was taken from the compass (a start yaw with a variance), none when it is exact (the
+  // filters' rule, slam/trajectory_calibration.cpp).
+  return node != 1 || start_cov_(2, 2) > 1e-6;
+}
+
 GaussianPose2 PoseGraphSlam::predict_match(const PoseGraphBelief& belief, Eigen::Index c,
                                            Eigen::MatrixXd* H) const {
   GaussianPose2 h = belief.predict(c, H);
   const bool clock = front_end_.calibration.clock_offset;
   if (!estimates_range_scale() && !clock) return h;
   if (clock) {
-    // The scans show the frames at t + tau (the filters' model): h_tau = (-)(tau u_a) (+) h (+)
-    // (tau u_b), dh_tau/dh = J1 J2', dh_tau/dtau = J1 J1' J- u_a + J2 u_b.
+    // The scans show the frames at t + tau (the filters' model, slam/calibration_model.hpp):
+    // h_tau = (-)(tau u_a) (+) h (+) (tau u_b).
     const Eigen::Index t = constant_at(GraphConstant::kClockOffset);
-    const double tau = belief.parameters(t);
-    const Eigen::Vector3d& u_a = velocities_.at(belief.nodes.at(static_cast<std::size_t>(c)) - 1);
-    const Eigen::Vector3d& u_b =
-        velocities_.at(belief.nodes.at(static_cast<std::size_t>(belief.newest)) - 1);
-    Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
-    const Pose2 back = Pose2(Eigen::Vector3d(tau * u_a)).inverse(&J_inverse);
-    const Pose2 inner = back.compose(h.mean, &J1_inner, &J2_inner);
-    h.mean = inner.compose(Pose2(Eigen::Vector3d(tau * u_b)), &J1, &J2);
-    *H = J1 * J2_inner * *H;
-    H->col(t) = J1 * J1_inner * J_inverse * u_a + J2 * u_b;
+    const ClockShifted shifted =
+        clock_shifted(h.mean, belief.parameters(t),
+                      velocities_.at(belief.nodes.at(static_cast<std::size_t>(c)) - 1),
+                      velocities_.at(belief.nodes.at(static_cast<std::size_t>(belief.newest)) - 1));
+    h.mean = shifted.h;
+    *H = shifted.d_h * *H;
+    H->col(t) = shifted.d_tau;
   }
   if (estimates_range_scale()) {
     // A match sees the scans' geometry s times the true one (the filters' model): h_s = (s t,
@@ -113,16 +166,30 @@ void PoseGraphSlam::add_bias_block(std::size_t node, double t_s, PoseGraphBelief
 std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
   std::vector<CalibrationEstimate> out;
   if (motions_.empty()) return out;
-  // The filters' order (TrajectorySlam::calibration): the range scale, the DVL scale, the bias.
-  // A scale after the smoothing solve (scan_pose_world): the smoothed graph's; before, online.
-  for (const GraphConstant which : estimated_constants()) {
+  // The filters' order (TrajectorySlam::calibration): the range scale, the DVL scale, the clock
+  // offset, the bias, the deviation's a and b (deg). A constant after the smoothing solve
+  // (scan_pose_world): the smoothed graph's; before, online.
+  const auto constant = [&](GraphConstant which, const char* name, double unit) {
     const std::size_t i = static_cast<std::size_t>(which);
     const auto& [value, sd] = smoothed_.empty() ? constant_estimates_[i] : smoothed_constants_[i];
-    constexpr const char* kNames[] = {"range_scale", "dvl_scale", "clock_offset_s"};
-    out.push_back({kNames[i], value, sd});
+    out.push_back({name, value * unit, sd * unit});
+  };
+  const std::vector<GraphConstant> constants = estimated_constants();
+  const auto has = [&](GraphConstant which) {
+    return std::find(constants.begin(), constants.end(), which) != constants.end();
+  };
+  if (has(GraphConstant::kRangeScale)) constant(GraphConstant::kRangeScale, "range_scale", 1.0);
+  if (has(GraphConstant::kDvlScale)) constant(GraphConstant::kDvlScale, "dvl_scale", 1.0);
+  if (has(GraphConstant::kClockOffset)) {
+    constant(GraphConstant::kClockOffset, "clock_offset_s", 1.0);
   }
+  constexpr double kRadToDeg = 180.0 / M_PI;
   if (estimates_heading_bias()) {
-    out.push_back({"heading_bias_deg", bias_.first * 180.0 / M_PI, bias_.second * 180.0 / M_PI});
+    out.push_back({"heading_bias_deg", bias_.first * kRadToDeg, bias_.second * kRadToDeg});
+  }
+  if (has(GraphConstant::kDeviationCos)) {
+    constant(GraphConstant::kDeviationCos, "compass_deviation_cos_deg", kRadToDeg);
+    constant(GraphConstant::kDeviationSin, "compass_deviation_sin_deg", kRadToDeg);
   }
   return out;
 }

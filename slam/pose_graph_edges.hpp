@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "geometry/se2.hpp"
+#include "slam/calibration_model.hpp"
 
 namespace msislab::pose_graph_edges {
 
@@ -48,10 +49,9 @@ class RelativeCost : public ceres::CostFunction {
 
 /// A match through the clock offset tau and the range scale s, each where the graph has it (the
 /// filters' model, slam/trajectory_observations.cpp): h = (-)x_i (+) x_j, h_tau = (-)(tau u_i) (+)
-/// h (+) (tau u_j) (u_i, u_j the scans' velocities), h_s = (s t, yaw) of h_tau, r = W A (z (-)
-/// h_s). Blocks: x_i, x_j, then s, then tau. With J1, J2 of the outer composition, J1', J2' of the
-/// inner one and J- of the inversion: dh_tau/dh = J1 J2', dh_tau/dtau = J1 J1' J- u_i + J2 u_j;
-/// D = diag(s, s, 1) on both; dh_s/ds = (t_tau, 0). Without the clock it is the scaled edge of
+/// h (+) (tau u_j) (u_i, u_j the scans' velocities; slam/calibration_model.hpp), h_s = (s t, yaw)
+/// of h_tau, r = W A (z (-) h_s). Blocks: x_i, x_j, then s, then tau. D = diag(s, s, 1) on
+/// dh_tau/dh and dh_tau/dtau; dh_s/ds = (t_tau, 0). Without the clock it is the scaled edge of
 /// PoseGraph::add_scaled_relative too (the DVL's scale k in place of s on an odometry edge).
 class MatchCost : public ceres::CostFunction {
  public:
@@ -76,13 +76,10 @@ class MatchCost : public ceres::CostFunction {
     Eigen::Matrix3d dh = Eigen::Matrix3d::Identity();  // d(h_tau)/d(h)
     Eigen::Vector3d dtau = Eigen::Vector3d::Zero();    // d(h_tau)/d(tau)
     if (clock_) {
-      const double tau = parameters[tau_block][0];
-      Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
-      const Pose2 back = Pose2(Eigen::Vector3d(tau * u_i_)).inverse(&J_inverse);
-      const Pose2 inner = back.compose(h, &J1_inner, &J2_inner);
-      h = inner.compose(Pose2(Eigen::Vector3d(tau * u_j_)), &J1, &J2);
-      dh = J1 * J2_inner;
-      dtau = J1 * J1_inner * J_inverse * u_i_ + J2 * u_j_;
+      const ClockShifted shifted = clock_shifted(h, parameters[tau_block][0], u_i_, u_j_);
+      h = shifted.h;
+      dh = shifted.d_h;
+      dtau = shifted.d_tau;
     }
     const Eigen::Matrix3d D = Eigen::Vector3d(s, s, 1.0).asDiagonal();
     const Pose2 h_s(s * h.x(), s * h.y(), h.yaw());
@@ -133,27 +130,6 @@ class PriorCost : public ceres::SizedCostFunction<3, 3> {
   Eigen::Matrix3d W_;
 };
 
-/// r = (yaw_z - yaw_i) / sigma, wrapped; dr/dx_i = [0, 0, -1 / sigma].
-class HeadingCost : public ceres::SizedCostFunction<1, 3> {
- public:
-  HeadingCost(double yaw_rad, double sigma_rad) : yaw_rad_(yaw_rad), sigma_rad_(sigma_rad) {}
-
-  bool Evaluate(double const* const* parameters, double* residuals,
-                double** jacobians) const override {
-    residuals[0] = normalize_angle(yaw_rad_ - parameters[0][2]) / sigma_rad_;
-    if (jacobians && jacobians[0]) {
-      jacobians[0][0] = 0.0;
-      jacobians[0][1] = 0.0;
-      jacobians[0][2] = -1.0 / sigma_rad_;
-    }
-    return true;
-  }
-
- private:
-  double yaw_rad_;
-  double sigma_rad_;
-};
-
 /// Dynamic covariance scaling's kernel: rho(s) = s for s <= c^2, else 3 c^2 - 4 c^4 / (c^2 + s)
 /// (rho' = 4 c^4 / (c^2 + s)^2, rho'' = -8 c^4 / (c^2 + s)^3): continuous with its derivative at
 /// the gate. c^2 is read from the graph at each evaluation (the graduated start changes it).
@@ -194,27 +170,131 @@ class CauchyLoss : public ceres::LossFunction {
   const double* c2_;
 };
 
-/// The compass through its bias: r = (yaw_z - yaw_i - b_i) / sigma, wrapped; dr/dx_i = [0, 0,
-/// -1 / sigma], dr/db_i = -1 / sigma.
-class BiasedHeadingCost : public ceres::SizedCostFunction<1, 3, 1> {
+/// The compass, through its bias beta and its deviation (a, b) where the graph has them:
+/// r = (yaw_z - psi - beta - a cos(psi) - b sin(psi)) / sigma, wrapped, psi = yaw_i. Blocks: x_i,
+/// then beta, then a, b (scalars). dr/dx_i = [0, 0, -(1 - a sin(psi) + b cos(psi)) / sigma],
+/// dr/dbeta = -1 / sigma, dr/da = -cos(psi) / sigma, dr/db = -sin(psi) / sigma.
+class CompassCost : public ceres::CostFunction {
  public:
-  BiasedHeadingCost(double yaw_rad, double sigma_rad) : yaw_rad_(yaw_rad), sigma_rad_(sigma_rad) {}
+  CompassCost(double yaw_rad, double sigma_rad, bool bias, bool deviation)
+      : yaw_rad_(yaw_rad), sigma_rad_(sigma_rad), bias_(bias), deviation_(deviation) {
+    set_num_residuals(1);
+    std::vector<int32_t>& sizes = *mutable_parameter_block_sizes();
+    sizes = {3};
+    if (bias) sizes.push_back(1);
+    if (deviation) sizes.insert(sizes.end(), {1, 1});
+  }
 
   bool Evaluate(double const* const* parameters, double* residuals,
                 double** jacobians) const override {
-    residuals[0] = normalize_angle(yaw_rad_ - parameters[0][2] - parameters[1][0]) / sigma_rad_;
-    if (jacobians && jacobians[0]) {
+    const double psi = parameters[0][2];
+    const int a_block = bias_ ? 2 : 1;
+    double r = yaw_rad_ - psi;
+    if (bias_) r -= parameters[1][0];
+    double slope = 0.0;  // d(deviation)/d(psi)
+    if (deviation_) {
+      const double a = parameters[a_block][0], b = parameters[a_block + 1][0];
+      r -= a * std::cos(psi) + b * std::sin(psi);
+      slope = -a * std::sin(psi) + b * std::cos(psi);
+    }
+    residuals[0] = normalize_angle(r) / sigma_rad_;
+    if (!jacobians) return true;
+    if (jacobians[0]) {
       jacobians[0][0] = 0.0;
       jacobians[0][1] = 0.0;
-      jacobians[0][2] = -1.0 / sigma_rad_;
+      jacobians[0][2] = -(1.0 + slope) / sigma_rad_;
     }
-    if (jacobians && jacobians[1]) jacobians[1][0] = -1.0 / sigma_rad_;
+    if (bias_ && jacobians[1]) jacobians[1][0] = -1.0 / sigma_rad_;
+    if (deviation_ && jacobians[a_block]) jacobians[a_block][0] = -std::cos(psi) / sigma_rad_;
+    if (deviation_ && jacobians[a_block + 1]) {
+      jacobians[a_block + 1][0] = -std::sin(psi) / sigma_rad_;
+    }
     return true;
   }
 
  private:
   double yaw_rad_;
   double sigma_rad_;
+  bool bias_, deviation_;
+};
+
+/// An odometry edge through the DVL's scale k and the compass's deviation (a, b) where the graph
+/// has them (the filters' motion model read backwards, slam/calibration_model.hpp): the measured
+/// motion of the true one h = (-)x_i (+) x_j is m = (k R(delta / 2) t_h, yaw_h + delta), delta =
+/// a (cos psi_j - c cos psi_i) + b (sin psi_j - c sin psi_i) at the nodes' yaws, c = 1, or 0 when
+/// node i's heading was not read from the compass (an exact start); r = W (z (-) m). Blocks: x_i,
+/// x_j, then k, then a, b. With R = R(delta / 2), J the quarter turn and J_i, J_j of between():
+/// dm/dh = diag(k R, 1), dm/dk = (R t_h, 0), dm/ddelta = (k J R t_h / 2, 1), and delta's own
+/// derivatives over a, b and the two yaws.
+class OdometryCost : public ceres::CostFunction {
+ public:
+  OdometryCost(const Pose2& z, const Eigen::Matrix3d& W, bool scale, bool deviation,
+               bool start_deviated)
+      : z_(z), W_(W), scale_(scale), deviation_(deviation), c_(start_deviated ? 1.0 : 0.0) {
+    set_num_residuals(3);
+    std::vector<int32_t>& sizes = *mutable_parameter_block_sizes();
+    sizes = {3, 3};
+    if (scale) sizes.push_back(1);
+    if (deviation) sizes.insert(sizes.end(), {1, 1});
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const Pose2 x_i(parameters[0][0], parameters[0][1], parameters[0][2]);
+    const Pose2 x_j(parameters[1][0], parameters[1][1], parameters[1][2]);
+    const double k = scale_ ? parameters[2][0] : 1.0;
+    const int a_block = scale_ ? 3 : 2;
+    Eigen::Matrix3d J_i, J_j;
+    const Pose2 h = x_i.between(x_j, &J_i, &J_j);
+    // delta and its gradient over (a, b) and over (psi_i, psi_j).
+    Eigen::Vector2d d_ab = Eigen::Vector2d::Zero(), d_psi = Eigen::Vector2d::Zero();
+    double delta = 0.0;
+    if (deviation_) {
+      const double a = parameters[a_block][0], b = parameters[a_block + 1][0];
+      const double psi_i = x_i.yaw(), psi_j = x_j.yaw();
+      d_ab << std::cos(psi_j) - c_ * std::cos(psi_i), std::sin(psi_j) - c_ * std::sin(psi_i);
+      d_psi << c_ * (a * std::sin(psi_i) - b * std::cos(psi_i)),
+          -a * std::sin(psi_j) + b * std::cos(psi_j);
+      delta = a * d_ab(0) + b * d_ab(1);
+    }
+    Eigen::Matrix2d R, J_turn;  // R(delta / 2)
+    R << std::cos(delta / 2.0), -std::sin(delta / 2.0), std::sin(delta / 2.0),
+        std::cos(delta / 2.0);
+    J_turn << 0.0, -1.0, 1.0, 0.0;
+    const Eigen::Vector2d turned = R * h.translation();
+    const Pose2 m(k * turned.x(), k * turned.y(), h.yaw() + delta);
+    Eigen::Map<Eigen::Vector3d> r(residuals);
+    r = W_ * pose_difference(z_, m);
+    if (!jacobians) return true;
+    Eigen::Matrix3d dm_dh = Eigen::Matrix3d::Identity();
+    dm_dh.topLeftCorner<2, 2>() = k * R;
+    Eigen::Vector3d dm_ddelta;
+    dm_ddelta << 0.5 * k * J_turn * turned, 1.0;
+    for (int b = 0; b < 2; ++b) {
+      if (!jacobians[b]) continue;
+      Eigen::Matrix3d dm = dm_dh * (b == 0 ? J_i : J_j);
+      dm.col(2) += dm_ddelta * d_psi(b);
+      Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> J(jacobians[b]);
+      J = -W_ * dm;
+    }
+    if (scale_ && jacobians[2]) {
+      Eigen::Map<Eigen::Vector3d> J(jacobians[2]);
+      J = -W_ * Eigen::Vector3d(turned.x(), turned.y(), 0.0);
+    }
+    for (int e = 0; deviation_ && e < 2; ++e) {
+      if (jacobians[a_block + e]) {
+        Eigen::Map<Eigen::Vector3d> J(jacobians[a_block + e]);
+        J = -W_ * dm_ddelta * d_ab(e);
+      }
+    }
+    return true;
+  }
+
+ private:
+  Pose2 z_;
+  Eigen::Matrix3d W_;
+  bool scale_, deviation_;
+  double c_;
 };
 
 /// The bias's random walk between two nodes: r = (b_j - b_i) / sigma; dr/db_i = -1 / sigma,

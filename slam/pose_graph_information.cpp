@@ -124,6 +124,7 @@ class Information {
 
 std::vector<Eigen::Matrix3d> PoseGraph::covariances(const std::vector<std::size_t>& nodes) {
   hold_before(0);
+  hold_constants(false);
   const Information information(problem_->problem, poses_, biases_, has_bias_, constant_blocks());
   std::vector<Eigen::Matrix3d> out;
   // In batches: the joint of all nodes at once would be a dense 3N x 3N matrix.
@@ -145,6 +146,7 @@ Eigen::MatrixXd PoseGraph::joint_covariance(const std::vector<std::size_t>& node
                                             const std::vector<std::size_t>& bias_nodes,
                                             const std::vector<GraphConstant>& scales) {
   hold_before(0);
+  hold_constants(false);
   std::vector<const double*> wanted;
   for (const GraphConstant which : scales) {
     if (!has_constant(which)) throw std::out_of_range("pose graph: no such scale");

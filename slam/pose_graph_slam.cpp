@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <utility>
 
 #include "slam/match_validation.hpp"
 #include "slam/numerical_error.hpp"
@@ -26,7 +28,8 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
   }
   // The calibration leads the belief from the start with its priors: the compass's bias (the
   // scans' nodes carry it in the graph, the first with the prior, the later ones through the
-  // walk), then the range scale and the DVL's (one block each in the graph).
+  // walk), then the range scale, the DVL's, the clock offset and the compass deviation's a and b
+  // (one block each in the graph).
   const CalibrationStatesConfig& c = front_end.calibration;
   std::vector<double> prior_sd;
   if (c.heading_bias) prior_sd.push_back(c.heading_bias_sigma_deg * M_PI / 180.0);
@@ -45,20 +48,21 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
     graph_->add_constant(GraphConstant::kClockOffset, c.clock_offset_prior_s,
                          c.clock_offset_prior_s, c.clock_offset_sigma_s);
   }
+  if (c.compass_deviation) {
+    constexpr double kDegToRad = M_PI / 180.0;
+    const double sigma_rad = c.compass_deviation_sigma_deg * kDegToRad;
+    for (const auto& [which, prior_deg] :
+         {std::pair(GraphConstant::kDeviationCos, c.compass_deviation_cos_prior_deg),
+          std::pair(GraphConstant::kDeviationSin, c.compass_deviation_sin_prior_deg)}) {
+      prior_sd.push_back(sigma_rad);
+      graph_->add_constant(which, prior_deg * kDegToRad, prior_deg * kDegToRad, sigma_rad);
+    }
+  }
   const auto p = static_cast<Eigen::Index>(prior_sd.size());
   window_cov_ = Eigen::MatrixXd::Zero(p + 3, p + 3);
   for (Eigen::Index i = 0; i < p; ++i) window_cov_(i, i) = std::pow(prior_sd[i], 2);
   window_cov_.bottomRightCorner<3, 3>() = start_cov_;
   newest_joint_ = window_cov_;
-}
-
-void PoseGraphSlam::append_odometry(PoseGraphBelief& belief, std::size_t node,
-                                    Eigen::Index previous, const GaussianPose2& motion) const {
-  if (estimates_dvl_scale()) {
-    belief.append_composed_scaled(node, previous, motion, constant_at(GraphConstant::kDvlScale));
-  } else {
-    belief.append_composed(node, previous, motion);
-  }
 }
 
 SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
@@ -99,12 +103,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     belief = {{node}, {newest.mean}, newest.cov, 0, {}};
   }
   graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
-  if (estimates_dvl_scale()) {
-    graph_->add_scaled_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false,
-                                GraphConstant::kDvlScale);
-  } else {
-    graph_->add_relative(node - 1, node, motion, Eigen::Matrix3d::Identity(), false);
-  }
+  graph_->add_odometry(node - 1, node, motion, start_deviated(node));
   if (estimates_heading_bias()) add_bias_block(node, scan.t_s, belief);
   motions_.push_back(motion);
   velocities_.push_back(scan.velocity_vehicle.allFinite() ? scan.velocity_vehicle
@@ -185,15 +184,25 @@ bool PoseGraphSlam::update_compass(double yaw_world_rad, double sigma_rad,
   const Eigen::Index t = belief.newest;
   const auto residual = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
     H->setZero(1, belief.cov.cols());
+    const double psi = belief.means[static_cast<std::size_t>(t)].yaw();
     (*H)(0, belief.at(t) + 2) = 1.0;
     // Through the bias when the belief carries it (its first parameter): h = yaw + b.
     const double bias_rad = estimates_heading_bias() ? belief.parameters(0) : 0.0;
     if (estimates_heading_bias()) (*H)(0, 0) = 1.0;
+    double deviation_rad = 0.0;
+    if (front_end_.calibration.compass_deviation) {
+      // And its deviation: h + a cos(psi) + b sin(psi), dh/dpsi = 1 + d'(psi).
+      const Eigen::Index ab_at = constant_at(GraphConstant::kDeviationCos);
+      const Eigen::Vector2d ab = belief.parameters.segment<2>(ab_at);
+      const Eigen::Vector2d basis(std::cos(psi), std::sin(psi));
+      deviation_rad = ab.dot(basis);
+      H->block<1, 2>(0, ab_at) = basis.transpose();
+      (*H)(0, belief.at(t) + 2) += ab.dot(Eigen::Vector2d(-std::sin(psi), std::cos(psi)));
+    }
     return Eigen::VectorXd::Constant(
-        1, normalize_angle(yaw_world_rad - belief.means[static_cast<std::size_t>(t)].yaw() -
-                           bias_rad));
+        1, normalize_angle(yaw_world_rad - psi - bias_rad - deviation_rad));
   };
-  // Linear in the yaw: one step is exact.
+  // Linear in the yaw (nearly, with the deviation): one step.
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
   return belief.update(residual, R, 1, front_end_.compass_gate_chi2);
 }
@@ -288,6 +297,7 @@ void PoseGraphSlam::solve(bool count_downweighted) const {
 void PoseGraphSlam::smooth() const {
   if (!smoothed_.empty() || motions_.empty()) return;
   graph_->hold_before(0);
+  graph_->hold_constants(false);
   solve(true);
   std::vector<std::size_t> nodes;
   for (std::size_t i = 1; i <= motions_.size(); ++i) nodes.push_back(i);

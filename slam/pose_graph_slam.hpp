@@ -64,11 +64,6 @@ struct PoseGraphSlamConfig {
   int online_old_chain_scans = 10;
 };
 
-/// The calibration states switched on in `c` that the pose graph does not estimate (it estimates
-/// the heading bias and the range scale; the filters all of them), by their config names: what a
-/// run says it leaves out.
-std::vector<std::string> pose_graph_ignored_calibration(const CalibrationStatesConfig& c);
-
 class PoseGraphSlam : public ScanSlam {
  public:
   /// front_end: the candidate selection, gates, spIC and validation of trajectory SLAM (its
@@ -125,6 +120,9 @@ class PoseGraphSlam : public ScanSlam {
   /// Windowed: appends old node i to the belief, composed from the nearest node of the belief
   /// along the odometry (online_old_chain_scans), or with its last marginal, uncorrelated.
   void append_old(PoseGraphBelief& belief, std::size_t i);
+  /// Windowed, with the odometry through the calibration: appends old node i composed from the
+  /// belief's node at `from` along the odometry, correlated with the calibration.
+  void append_old_through_calibration(PoseGraphBelief& belief, std::size_t i, Eigen::Index from);
   /// Windowed: keeps the window's part of the belief and the online_old_nodes most recently used
   /// old nodes (k, the scan, for this scan's), dropping (marginalising) the others with their
   /// marginal stored, and holds the nodes older than the window in the graph's online solves.
@@ -138,14 +136,29 @@ class PoseGraphSlam : public ScanSlam {
   void write_means(const PoseGraphBelief& belief);
   bool estimates_heading_bias() const;
   bool estimates_range_scale() const;
-  /// The graph's scale blocks switched on, in their order (the range scale, the DVL's).
+  /// The graph's constants switched on, in GraphConstant order (the range scale, the DVL's, the
+  /// clock offset, the deviation's a and b).
   std::vector<GraphConstant> estimated_constants() const;
-  /// A scale's index in the belief's parameters (after the heading bias, in that order).
+  /// A constant's index in the belief's parameters (after the heading bias, in that order).
   Eigen::Index constant_at(GraphConstant which) const;
   /// The odometry edge in the belief (Eq. 2): node `node` appended as the previous one composed
-  /// with the motion, through the DVL's scale when estimated; it becomes the newest.
+  /// with the motion, through the DVL's scale and the compass's deviation when estimated; it
+  /// becomes the newest.
   void append_odometry(PoseGraphBelief& belief, std::size_t node, Eigen::Index previous,
                        const GaussianPose2& motion) const;
+  /// Whether the motion to scan node `node` starts from a heading the compass's deviation is in:
+  /// always but from an exact start (node 0 held fixed).
+  bool start_deviated(std::size_t node) const;
+  /// The odometry goes through the calibration (the DVL's scale or the deviation estimated).
+  bool calibrates_odometry() const;
+  /// The DVL scale's and the deviation's a's index in the belief's parameters; -1: not estimated.
+  Eigen::Index odometry_k_at() const;
+  Eigen::Index odometry_ab_at() const;
+  /// The true motion to node node_to behind a measured one (slam/calibration_model.hpp), at the
+  /// calibration `parameters` (the belief's) and the motion's two headings.
+  CalibratedMotion calibrated_step(const Eigen::VectorXd& parameters, const Pose2& motion,
+                                   double psi_from_rad, double psi_to_rad,
+                                   std::size_t node_to) const;
   /// The belief's parameters as the graph holds them: the heading bias of node bias_of's block
   /// (none: 0, before the first scan's), the range scale.
   Eigen::VectorXd graph_parameters(std::optional<std::size_t> bias_of) const;
@@ -185,8 +198,8 @@ class PoseGraphSlam : public ScanSlam {
   double previous_t_s_ = 0.0;                 ///< the last scan's time (the bias's walk)
   std::pair<double, double> bias_{0.0, 0.0};  ///< the newest bias and its sd, rad
   /// Per GraphConstant: online, the constant and its sd; after smooth(), the smoothed graph's.
-  std::array<std::pair<double, double>, 3> constant_estimates_{};
-  mutable std::array<std::pair<double, double>, 3> smoothed_constants_{};
+  std::array<std::pair<double, double>, 5> constant_estimates_{};
+  mutable std::array<std::pair<double, double>, 5> smoothed_constants_{};
   std::vector<Eigen::Vector3d> velocities_;  ///< each scan's Scan::velocity_vehicle (the clock)
 };
 

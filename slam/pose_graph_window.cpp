@@ -44,6 +44,10 @@ void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
       from = static_cast<Eigen::Index>(b);
     }
   }
+  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans) && calibrates_odometry()) {
+    append_old_through_calibration(belief, i, from);
+    return;
+  }
   if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans)) {
     const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
     GaussianPose2 relative;  // node j to node i along the odometry: motions_[m] is node m to m + 1
@@ -60,6 +64,28 @@ void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
   ++old_uncorrelated_;
 }
 
+void PoseGraphSlam::append_old_through_calibration(PoseGraphBelief& belief, std::size_t i,
+                                                   Eigen::Index from) {
+  // The odometry from node j to node i a motion at a time, each through the calibration (as
+  // append_odometry; backward when i is older, the motions_[m] of node m to m + 1 inverted), at the
+  // graph's headings; the nodes between marginalised, node i kept at the graph's mean.
+  const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
+  const auto first = static_cast<Eigen::Index>(belief.nodes.size());
+  Eigen::Index at = from;
+  for (std::size_t n = j; n != i;) {
+    const std::size_t next = i < j ? n - 1 : n + 1;
+    const std::size_t m = std::min(n, next);  // motions_[m] runs from node m to node m + 1
+    const CalibratedMotion g =
+        calibrated_step(belief.parameters, motions_[m].mean, graph_->pose(m).yaw(),
+                        graph_->pose(m + 1).yaw(), m + 1);
+    belief.append_through(next, at, motions_[m], g, odometry_k_at(), odometry_ab_at(), i < j);
+    at = static_cast<Eigen::Index>(belief.nodes.size()) - 1;
+    n = next;
+  }
+  belief.drop(first, at - first);  // the nodes between
+  belief.means.back() = graph_->pose(i);
+}
+
 void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
@@ -74,6 +100,9 @@ void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
   window_cov_ = belief.marginal(kept_at);
   window_first_ += static_cast<std::size_t>(dropped);
   graph_->hold_before(window_first_);
+  // The constants too, once nodes are held: the belief estimates them online (with its nodes,
+  // jointly); a solve over the held nodes' edges would inform them from nodes it takes as exact.
+  graph_->hold_constants(window_first_ > 0);
 }
 
 std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,

@@ -4,9 +4,11 @@
 // the bias and the deviation, and the estimates read out. How a match sees the range scale and the
 // clock offset is in trajectory_observations.cpp; the updates and the step in trajectory_slam.cpp.
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
+#include "slam/calibration_model.hpp"
 #include "slam/trajectory_slam.hpp"
 
 namespace msislab {
@@ -59,35 +61,18 @@ TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const Gaussia
 
 Pose2 TrajectorySlam::calibrated_motion(const Pose2& m, Eigen::Matrix3d& J_m,
                                         Eigen::MatrixXd& J_c) const {
-  J_m.setIdentity();
+  // The DVL's scale divides the translation; the deviation's change over the motion,
+  // (a, b) . deviation_change_, turns it and the heading (slam/calibration_model.hpp).
+  const CalibratedMotion g = msislab::calibrated_motion(
+      m, dvl_scale_row_ >= 0 ? std::optional(calibration_(dvl_scale_row_)) : std::nullopt,
+      deviation_row_ >= 0 ? std::optional<Eigen::Vector2d>(calibration_.segment<2>(deviation_row_))
+                          : std::nullopt,
+      deviation_change_);
+  J_m = g.d_m;
   J_c.setZero(3, calibration_.size());
-  Eigen::Vector2d t = m.translation();
-  double yaw = m.yaw();
-  if (dvl_scale_row_ >= 0) {
-    // The DVL measured k times the true velocity: t / k, d/dk = -t_m / k^2.
-    const double k = calibration_(dvl_scale_row_);
-    J_c.block<2, 1>(0, dvl_scale_row_) = -t / (k * k);
-    J_m.topLeftCorner<2, 2>() /= k;
-    t /= k;
-  }
-  if (deviation_row_ >= 0) {
-    // The heading change read delta = d(psi_k) - d(psi_k-1) = (a, b) . deviation_change_ too
-    // much, and the translation, integrated along headings off by d - d(psi_k-1) growing from 0
-    // to delta, is turned by delta / 2 (to first order): x = (R(-delta/2) t, yaw - delta).
-    const double delta = calibration_.segment<2>(deviation_row_).dot(deviation_change_);
-    Eigen::Matrix2d R, J_turn;  // R(-delta/2); d(R(theta) t)/d theta = J R(theta) t
-    R << std::cos(delta / 2.0), std::sin(delta / 2.0), -std::sin(delta / 2.0),
-        std::cos(delta / 2.0);
-    J_turn << 0.0, -1.0, 1.0, 0.0;
-    Eigen::Vector3d dx_ddelta;
-    dx_ddelta << -0.5 * J_turn * R * t, -1.0;
-    J_m.topRows<2>() = R * J_m.topRows<2>();
-    J_c.topRows<2>() = R * J_c.topRows<2>();
-    J_c.block<3, 2>(0, deviation_row_) += dx_ddelta * deviation_change_.transpose();
-    t = R * t;
-    yaw -= delta;
-  }
-  return Pose2(t.x(), t.y(), yaw);
+  if (dvl_scale_row_ >= 0) J_c.col(dvl_scale_row_) = g.d_k;
+  if (deviation_row_ >= 0) J_c.middleCols<2>(deviation_row_) = g.d_ab;
+  return g.x;
 }
 
 void TrajectorySlam::walk_heading_bias(double t_s) {

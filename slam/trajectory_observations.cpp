@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "slam/calibration_model.hpp"
 #include "slam/trajectory_slam.hpp"
 
 namespace msislab {
@@ -48,18 +49,14 @@ Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
     H->rightCols(H_pose.cols()) = H_pose;
   }
   if (clock_row_ >= 0) {
-    // The scans show the frames at t + tau: z = (-)d_a (+) h (+) d_b, d_i = tau u_i, so
-    // dz/dtau = J1 (J1' J- u_a) + J2 u_b and dz/dX = J1 J2' dh/dX.
-    const double tau = calibration_(clock_row_);
-    const Eigen::Vector3d& u_a = velocities_.at(a);  // one per scan added (add_scan)
-    const Eigen::Vector3d& u_b = velocities_.at(b);
-    Eigen::Matrix3d J_inverse, J1_inner, J2_inner, J1, J2;
-    const Pose2 back = Pose2(Eigen::Vector3d(tau * u_a)).inverse(H ? &J_inverse : nullptr);
-    const Pose2 inner = back.compose(h, H ? &J1_inner : nullptr, H ? &J2_inner : nullptr);
-    h = inner.compose(Pose2(Eigen::Vector3d(tau * u_b)), H ? &J1 : nullptr, H ? &J2 : nullptr);
+    // The scans show the frames at t + tau (slam/calibration_model.hpp): z = (-)(tau u_a) (+) h
+    // (+) (tau u_b), so dz/dX = (dh_tau/dh) dh/dX.
+    const ClockShifted shifted = clock_shifted(h, calibration_(clock_row_), velocities_.at(a),
+                                               velocities_.at(b));  // one per scan (add_scan)
+    h = shifted.h;
     if (H) {
-      H->col(clock_row_) = J1 * J1_inner * J_inverse * u_a + J2 * u_b;
-      H->rightCols(H_pose.cols()) = J1 * J2_inner * H_pose;
+      H->col(clock_row_) = shifted.d_tau;
+      H->rightCols(H_pose.cols()) = shifted.d_h * H_pose;
     }
   }
   if (range_scale_row_ < 0) return h;

@@ -53,33 +53,6 @@ TrajectorySlamConfig with_compass_deviation() {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-/// The one-cycle deviation d(psi) = a cos(psi) + b sin(psi), a and b in deg, in rad.
-double deviation_rad(double yaw_rad, double a_deg, double b_deg) {
-  return (a_deg * std::cos(yaw_rad) + b_deg * std::sin(yaw_rad)) * kDegToRad;
-}
-
-/// The loop with a compass (its readings psi + d(psi) + noise of sigma_deg) whose deviation also
-/// shaped the dead reckoning: each motion's heading change reads d(psi_k) - d(psi_k-1) too much
-/// (the first, from the exact start, d(psi_0)) and its translation is turned by half of it
-/// (docs/trajectory_slam.md).
-Loop with_deviated_compass(Loop loop, double a_deg, double b_deg, unsigned seed, double sigma_deg) {
-  std::mt19937 rng(seed + 1000);
-  std::normal_distribution<double> n01(0.0, 1.0);
-  for (std::size_t k = 0; k < loop.scans.size(); ++k) {
-    Scan& scan = loop.scans[k];
-    const double psi = loop.truth[k].yaw();
-    scan.compass_yaw_world_rad =
-        psi + deviation_rad(psi, a_deg, b_deg) + sigma_deg * kDegToRad * n01(rng);
-    scan.compass_sigma_rad = sigma_deg * kDegToRad;
-    // The first motion runs from the exact start (no deviation) to a heading that has it.
-    const double delta = deviation_rad(psi, a_deg, b_deg) -
-                         (k == 0 ? 0.0 : deviation_rad(loop.truth[k - 1].yaw(), a_deg, b_deg));
-    const Eigen::Vector2d t = Eigen::Rotation2Dd(delta / 2.0) * scan.motion.mean.translation();
-    scan.motion.mean = Pose2(t.x(), t.y(), scan.motion.mean.yaw() + delta);
-  }
-  return loop;
-}
-
 TrajectorySlamConfig with_clock_offset() {
   TrajectorySlamConfig config;
   config.calibration.clock_offset = true;

@@ -108,16 +108,5 @@ TEST(PoseGraphHeadingBias, AShortStretchInBothBackEnds) {
   }
 }
 
-// What a posegraph run says it leaves out: every calibration state on but the heading bias, the
-// range scale, the DVL scale and the clock offset.
-TEST(PoseGraphHeadingBias, TheStatesThePoseGraphLeavesOutAreNamed) {
-  CalibrationStatesConfig c;
-  EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.heading_bias = c.range_scale = c.dvl_scale = c.clock_offset = true;
-  EXPECT_TRUE(pose_graph_ignored_calibration(c).empty());
-  c.compass_deviation = true;
-  EXPECT_EQ(pose_graph_ignored_calibration(c), (std::vector<std::string>{"compass_deviation"}));
-}
-
 }  // namespace
 }  // namespace msislab

@@ -2,6 +2,8 @@
 // its odometry drifts, and its scans see the walls.
 #pragma once
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <random>
 #include <vector>
@@ -154,6 +156,34 @@ inline double with_walking_compass(Loop& loop, double walk_deg_per_sqrt_s, doubl
     loop.scans[k].compass_sigma_rad = sigma_deg * kDegToRad;
   }
   return bias_rad;
+}
+
+/// The one-cycle deviation d(psi) = a cos(psi) + b sin(psi), a and b in deg, in rad.
+inline double deviation_rad(double yaw_rad, double a_deg, double b_deg) {
+  return (a_deg * std::cos(yaw_rad) + b_deg * std::sin(yaw_rad)) * (M_PI / 180.0);
+}
+
+/// The loop with a compass (its readings psi + d(psi) + noise of sigma_deg) whose deviation also
+/// shaped the dead reckoning: each motion's heading change reads d(psi_k) - d(psi_k-1) too much
+/// (the first, from the exact start, d(psi_0)) and its translation is turned by half of it
+/// (docs/trajectory_slam.md).
+inline Loop with_deviated_compass(Loop loop, double a_deg, double b_deg, unsigned seed,
+                                  double sigma_deg) {
+  std::mt19937 rng(seed + 1000);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  for (std::size_t k = 0; k < loop.scans.size(); ++k) {
+    Scan& scan = loop.scans[k];
+    const double psi = loop.truth[k].yaw();
+    scan.compass_yaw_world_rad =
+        psi + deviation_rad(psi, a_deg, b_deg) + sigma_deg * (M_PI / 180.0) * n01(rng);
+    scan.compass_sigma_rad = sigma_deg * (M_PI / 180.0);
+    // The first motion runs from the exact start (no deviation) to a heading that has it.
+    const double delta = deviation_rad(psi, a_deg, b_deg) -
+                         (k == 0 ? 0.0 : deviation_rad(loop.truth[k - 1].yaw(), a_deg, b_deg));
+    const Eigen::Vector2d t = Eigen::Rotation2Dd(delta / 2.0) * scan.motion.mean.translation();
+    scan.motion.mean = Pose2(t.x(), t.y(), scan.motion.mean.yaw() + delta);
+  }
+  return loop;
 }
 
 }  // namespace msislab

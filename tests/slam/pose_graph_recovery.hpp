@@ -1,0 +1,71 @@
+// The pose graph's calibration recovery on synthetic loops (the filters' recovery tests,
+// tests/slam/calibration_states_test.cpp, on the graph): shared by the constants' tests.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "slam/pose_graph_slam.hpp"
+#include "tests/slam/synthetic_loop.hpp"
+
+namespace msislab {
+
+/// A calibration value a recovery test expects: its name (as calibration() gives it), its true
+/// value and the largest standard deviation its estimate may keep (the loop informs it).
+struct ExpectedEstimate {
+  std::string name;
+  double truth = 0.0;
+  double max_sigma = 0.0;
+};
+
+/// Loops 1..seeds made by loop_of, the graph with the state against the graph without (window:
+/// online_window_scans): the smoothed estimates, named and ordered as `expected`, each informed
+/// below its max_sigma; at least `within` of them (over every loop and value) within two of their
+/// standard deviations of the truth, and the smoothed trajectory's mean error below the graph's
+/// without the state in at least `better` loops.
+inline void expect_recovered(int window, unsigned seeds,
+                             const std::function<Loop(unsigned)>& loop_of,
+                             const TrajectorySlamConfig& with_state,
+                             const std::vector<ExpectedEstimate>& expected, int within,
+                             int better) {
+  int in = 0, improved = 0;
+  PoseGraphSlamConfig graph;
+  graph.online_window_scans = window;
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
+    const Loop loop = loop_of(seed);
+    PoseGraphSlam estimating(with_state, graph, GaussianPose2{});
+    PoseGraphSlam ignoring(TrajectorySlamConfig{}, graph, GaussianPose2{});
+    for (const Scan& scan : loop.scans) estimating.add_scan(scan), ignoring.add_scan(scan);
+    const auto mean_error_m = [&](const PoseGraphSlam& slam) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < slam.scans(); ++i) {
+        sum += (slam.scan_pose_world(i).mean.translation() - loop.truth[i].translation()).norm();
+      }
+      return sum / static_cast<double>(slam.scans());
+    };
+    const double with_m = mean_error_m(estimating), without_m = mean_error_m(ignoring);
+    // Read after the smoothed trajectory, as a run reads it: the smoothed graph's estimates.
+    const std::vector<CalibrationEstimate> c = estimating.calibration();
+    ASSERT_EQ(c.size(), expected.size());
+    std::cout << "window " << window << ", seed " << seed << ":";
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      EXPECT_EQ(c[i].name, expected[i].name);
+      EXPECT_GT(c[i].sigma, 0.0);
+      EXPECT_LT(c[i].sigma, expected[i].max_sigma) << "seed " << seed << ": " << c[i].name;
+      in += std::abs(c[i].value - expected[i].truth) < 2.0 * c[i].sigma;
+      std::cout << " " << c[i].name << " " << c[i].value << " +- " << c[i].sigma;
+    }
+    improved += with_m < without_m;
+    std::cout << ", mean error " << with_m << " m (without " << without_m << " m)\n";
+    EXPECT_TRUE(ignoring.calibration().empty());
+  }
+  EXPECT_GE(in, within);
+  EXPECT_GE(improved, better);
+}
+
+}  // namespace msislab

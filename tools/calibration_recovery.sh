@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Calibration recovery on simulation (docs/trajectory_slam.md, "Calibration states"): the St. Pere
 # replica with a calibration error injected into its sensors, N Monte Carlo runs each (default 20,
-# seeds 42..), robocentric SLAM read through the detections with config/stpere_replica.yaml plus
+# seeds 42..), robocentric SLAM (or --method's) read through the detections with config/stpere_replica.yaml plus
 # the state that estimates the error. Cases: the sonar's range scale 0.96 and 1.03 (a water sound
 # speed of 1500 / 0.96 and 1500 / 1.03 m/s against the sonar's 1500), the DVL's scale factor 1.01,
 # the sonar clock's 0.66 s offset and the compass deviation (a, b) = (0.62, -3.39) deg, each left
@@ -10,15 +10,32 @@
 # estimate lies within two of its standard deviations of the injected value, the estimates' range
 # and mean, their mean standard deviation, the mean error, ANEES and the steps in bounds of the
 # Monte Carlo NEES test. Writes under out/calibration_recovery/.
-# Usage: tools/calibration_recovery.sh [--runs N] [--msislab EXE]
+# --method posegraph (or worldcentric) runs that back end instead, under
+# out/calibration_recovery.METHOD/.
+# Usage: tools/calibration_recovery.sh [--runs N] [--msislab EXE] [--method METHOD]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=20
+method=robocentric
 source tools/run_fresh.sh
-parse_runs_msislab tools/calibration_recovery.sh "$@"
+rest=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --method) method="${2:?--method needs robocentric, worldcentric or posegraph}"; shift 2 ;;
+    *) rest+=("$1"); shift ;;
+  esac
+done
+case "$method" in
+  robocentric | worldcentric | posegraph) ;;
+  *) echo "tools/calibration_recovery.sh: --method '$method' is not robocentric, worldcentric" \
+       "or posegraph" >&2
+     exit 2 ;;
+esac
+parse_runs_msislab tools/calibration_recovery.sh "${rest[@]}"
 
 out=out/calibration_recovery
+[ "$method" = robocentric ] || out="$out.$method"
 claim_out_folder tools/calibration_recovery.sh "$out"
 
 # CASE  STATE  ESTIMATE=TRUE-VALUE[,...]  SCENARIO-KEY=VALUE[,...] (dotted paths into the scenario)
@@ -30,7 +47,7 @@ cases=(
   "deviation compass_deviation compass_deviation_cos_deg=0.62,compass_deviation_sin_deg=-3.39 mru.deviation_cos_deg=0.62,mru.deviation_sin_deg=-3.39,stated_calibration.mru.deviation_cos_deg=0,stated_calibration.mru.deviation_sin_deg=0"
 )
 for c in "${cases[@]}"; do
-  read -r name state truth keys <<<"$c"
+  read -r name state _ keys <<<"$c"
   # The replica's scenario with the keys set, its relative paths made absolute.
   python3 - scenarios/stpere_replica.yaml "$out/$name.scenario.yaml" "$keys" <<'EOF'
 import os, sys, yaml
@@ -56,19 +73,19 @@ EOF
     >"$out/$name.config.yaml"
   # A folder made by another build or from another scenario is stale: run_fresh starts it again.
   run_fresh "$out/$name" "$msislab" montecarlo "$out/$name.scenario.yaml" --runs "$runs" \
-    --out "$out/$name" --methods robocentric --config "$out/$name.config.yaml" --no-plot >/dev/null
+    --out "$out/$name" --methods "$method" --config "$out/$name.config.yaml" --no-plot >/dev/null
 done
 
-python3 - "$out" "${cases[@]}" <<'EOF'
+python3 - "$out" "$method" "${cases[@]}" <<'EOF'
 import glob, json, os, sys
-out = sys.argv[1]
+out, method = sys.argv[1], sys.argv[2]
 print("| injected | state | estimate | runs within 2 sd | estimates (mean) | sd (mean) | mean error | ANEES | steps in bounds |")
 print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |")
-for case in sys.argv[2:]:
+for case in sys.argv[3:]:
     name, state, truths, keys = case.split(" ")
-    summary = json.load(open(os.path.join(out, name, "summary.json")))["robocentric"]
+    summary = json.load(open(os.path.join(out, name, "summary.json")))[method]
     runs = [json.load(open(p)).get("diagnostics", {}) for p in sorted(
-        glob.glob(os.path.join(out, name, "runs", "robocentric", "run_*", "metrics.json")))]
+        glob.glob(os.path.join(out, name, "runs", method, "run_*", "metrics.json")))]
     for item in truths.split(","):
         estimate, truth = item.split("=")
         truth = float(truth)

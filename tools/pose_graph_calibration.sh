@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The table of docs/pose_graph.md, "The scale factors and the clock offset": the pose graph without
-# its constants' blocks, then with each alone (trajectory_slam.calibration.range_scale, dvl_scale,
-# clock_offset), N Monte Carlo runs each (default 10): the replica read through its detections (config/stpere_replica.yaml), whole graph and with
+# The table of docs/pose_graph.md, "The scale factors, the clock offset and the compass deviation":
+# the pose graph without its constants' blocks, then with each alone
+# (trajectory_slam.calibration.range_scale, dvl_scale, clock_offset, compass_deviation), N Monte
+# Carlo runs each (default 10): the replica read through its detections (config/stpere_replica.yaml), whole graph and with
 # a 20-scan online window, the straight channel and the open area (the default config); then the
 # real St. Pere run once each (reported: the estimate is the run's, not chosen on it; skipped, said,
 # without the dataset). Prints a Markdown table: mean error, ANEES and the share of scan steps
@@ -28,6 +29,7 @@ config_of() {
   echo "$cfg"
 }
 
+states=(off range_scale dvl_scale clock_offset compass_deviation)
 # NAME SCENARIO CONFIG WINDOW
 cases=(
   "stpere_replica scenarios/stpere_replica.yaml config/stpere_replica.yaml 0"
@@ -37,7 +39,7 @@ cases=(
 )
 for c in "${cases[@]}"; do
   read -r name scenario config window <<<"$c"
-  for state in off range_scale dvl_scale clock_offset; do
+  for state in "${states[@]}"; do
     run_fresh "$out/$name.$state" "$msislab" montecarlo "$scenario" --runs "$runs" \
       --out "$out/$name.$state" --methods posegraph --config "$(config_of "$config" "$window" "$state")" \
       --no-plot >/dev/null 2>&1
@@ -45,7 +47,7 @@ for c in "${cases[@]}"; do
 done
 real=../shared/datasets/stpere
 if [ -d "$real" ]; then
-  for state in off range_scale dvl_scale clock_offset; do
+  for state in "${states[@]}"; do
     run_fresh "$out/real.$state" "$msislab" run "$real" --method posegraph \
       --config "$(config_of config/stpere.yaml 0 "$state")" --out "$out/real.$state" >/dev/null 2>&1
   done
@@ -56,8 +58,15 @@ fi
 python3 - "$out" "$runs" "${cases[@]}" <<'PY'
 import json, os, sys
 out, runs = sys.argv[1], sys.argv[2]
-states = ("off", "range_scale", "dvl_scale", "clock_offset")
-key = {"range_scale": "range_scale", "dvl_scale": "dvl_scale", "clock_offset": "clock_offset_s"}
+states = ("off", "range_scale", "dvl_scale", "clock_offset", "compass_deviation")
+keys = {"range_scale": ["range_scale"], "dvl_scale": ["dvl_scale"],
+        "clock_offset": ["clock_offset_s"],
+        "compass_deviation": ["compass_deviation_cos_deg", "compass_deviation_sin_deg"]}
+
+
+def estimate(d, state):
+    """The state's estimates with their standard deviations (the deviation's a, b in deg)."""
+    return ", ".join(f"{d[k]:.4f} +- {d[k + '_sigma']:.4f}" for k in keys[state])
 print("| scene (runs) | block | mean error, ANEES, steps in bounds | estimate (run 0) |")
 print("| --- | --- | ---: | ---: |")
 for case in sys.argv[3:]:
@@ -68,7 +77,7 @@ for case in sys.argv[3:]:
         if state != "off":
             m = json.load(open(os.path.join(out, f"{name}.{state}", "runs", "posegraph",
                                             "run_0000", "metrics.json")))["diagnostics"]
-            est = f"{m[key[state]]:.4f} +- {m[key[state] + '_sigma']:.4f}"
+            est = estimate(m, state)
         print(f"| {name} ({runs}) | {state} | {s['mean_error_m']:.2f} m, {s['anees']:.2f}, "
               f"{100 * s['nees_in_bounds_fraction']:.0f} % | {est} |")
 if os.path.isdir(os.path.join(out, "real.off")):
@@ -80,7 +89,7 @@ if os.path.isdir(os.path.join(out, "real.off")):
         est = ""
         if state != "off":
             d = m["diagnostics"]
-            est = f"{d[key[state]]:.4f} +- {d[key[state] + '_sigma']:.4f}"
+            est = estimate(d, state)
         print(f"| posegraph | {state} | {m['mean_error_m']:.2f} m ({seg.get('loop', float('nan')):.2f}, "
               f"{seg.get('canal', float('nan')):.2f}) | {est} |")
 PY

@@ -1,11 +1,11 @@
 // The pose graph's compass deviation (trajectory_slam.calibration.compass_deviation;
-// docs/pose_graph.md, "The compass deviation"): the one-cycle d(psi) = a cos(psi) + b sin(psi) as
-// two scalar blocks with their priors, read by every compass edge (h = yaw + d(yaw)) and every
-// odometry edge (its heading change carries d(yaw_j) - d(yaw_i), its translation turned by half
-// of it: the filters' model, slam/calibration_model.hpp). The edges' Jacobians against Ceres'
-// numeric ones; on synthetic loops whose compass deviates by the replica's injected (0.62, -3.39)
-// deg, the deviation found and the trajectory better than the graph's that takes the compass as
-// calibrated, whole graph and windowed.
+// docs/pose_graph.md, "The scale factors, the clock offset and the compass deviation"): the
+// one-cycle d(psi) = a cos(psi) + b sin(psi) as two scalar blocks with their priors, read by every
+// compass edge (h = yaw + d(yaw)) and every odometry edge (its heading change carries d(yaw_j) -
+// d(yaw_i), its translation turned by half of it: the filters' model, slam/calibration_model.hpp).
+// The edges' Jacobians against Ceres' numeric ones; on synthetic loops whose compass deviates by
+// the replica's injected (0.62, -3.39) deg, the deviation found and the trajectory better than the
+// graph's that takes the compass as calibrated, whole graph and windowed.
 #include <gtest/gtest.h>
 
 #include <ceres/ceres.h>

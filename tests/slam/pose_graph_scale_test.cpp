@@ -1,9 +1,9 @@
 // The pose graph's constants (trajectory_slam.calibration.range_scale, dvl_scale, clock_offset;
-// docs/pose_graph.md, "The scale factors and the clock offset"): one scalar block each for the
-// graph, with its prior; every match edge reads the range scale and the clock offset, every
-// odometry edge the DVL's scale. The edges' Jacobians against Ceres' numeric ones; on synthetic
-// loops whose scans see the world 4 % small, whose DVL reads 3 % long or whose scans are seen
-// 0.1 s late, the constant found and the trajectory better than without the block, in the
+// docs/pose_graph.md, "The scale factors, the clock offset and the compass deviation"): one scalar
+// block each for the graph, with its prior; every match edge reads the range scale and the clock
+// offset, every odometry edge the DVL's scale. The edges' Jacobians against Ceres' numeric ones; on
+// synthetic loops whose scans see the world 4 % small, whose DVL reads 3 % long or whose scans are
+// seen 0.1 s late, the constant found and the trajectory better than without the block, in the
 // whole-graph and the windowed back end (the filters' recovery tests, on the graph).
 #include <gtest/gtest.h>
 

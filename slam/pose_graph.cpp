@@ -147,20 +147,6 @@ std::vector<double*> PoseGraph::constant_blocks() {
   return out;
 }
 
-void PoseGraph::add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
-                                    const Eigen::MatrixXd& observed, bool robust,
-                                    GraphConstant which) {
-  if (!has_constant(which)) throw std::out_of_range("pose graph: no such scale");
-  const Eigen::MatrixXd S = observed * z.cov * observed.transpose();
-  double *pose_i = poses_.at(i).data(), *pose_j = poses_.at(j).data();  // checked first
-  const Eigen::MatrixXd W = whitening(S) * observed;
-  ceres::LossFunction* loss = robust_loss(robust);
-  const ceres::ResidualBlockId id = problem_->problem.AddResidualBlock(
-      new MatchCost(z.mean, W, true, false, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()), loss,
-      pose_i, pose_j, &constants_[index(which)]);
-  if (loss) problem_->robust.push_back(id);
-}
-
 bool PoseGraph::has_deviation() const {
   return has_constant(GraphConstant::kDeviationCos) && has_constant(GraphConstant::kDeviationSin);
 }

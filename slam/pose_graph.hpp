@@ -140,10 +140,6 @@ class PoseGraph {
   double constant(GraphConstant which) const { return constants_[index(which)]; }
   /// Moves a constant (a warm start for the next solve).
   void set_constant(GraphConstant which, double c) { constants_[index(which)] = c; }
-  /// As add_relative, z observing h through the scale `which` (the range or the DVL scale),
-  /// (s t_h, yaw_h). Throws std::out_of_range when the graph has no such constant.
-  void add_scaled_relative(std::size_t i, std::size_t j, const GaussianPose2& z,
-                           const Eigen::MatrixXd& observed, bool robust, GraphConstant which);
   /// A match: as add_relative, through the graph's clock offset tau and range scale s where it has
   /// them: h_tau = (-)(tau u_i) (+) h (+) (tau u_j), u_i and u_j the two scans' velocities
   /// (Scan::velocity_vehicle), then (s t, yaw) of that.

@@ -51,8 +51,7 @@ class RelativeCost : public ceres::CostFunction {
 /// filters' model, slam/trajectory_observations.cpp): h = (-)x_i (+) x_j, h_tau = (-)(tau u_i) (+)
 /// h (+) (tau u_j) (u_i, u_j the scans' velocities; slam/calibration_model.hpp), h_s = (s t, yaw)
 /// of h_tau, r = W A (z (-) h_s). Blocks: x_i, x_j, then s, then tau. D = diag(s, s, 1) on
-/// dh_tau/dh and dh_tau/dtau; dh_s/ds = (t_tau, 0). Without the clock it is the scaled edge of
-/// PoseGraph::add_scaled_relative too (the DVL's scale k in place of s on an odometry edge).
+/// dh_tau/dh and dh_tau/dtau; dh_s/ds = (t_tau, 0).
 class MatchCost : public ceres::CostFunction {
  public:
   MatchCost(const Pose2& z, const Eigen::MatrixXd& WA, bool scale, bool clock,

@@ -24,20 +24,27 @@ inline std::string shell_quote(const std::string& text) {
   return quoted + "'";
 }
 
-/// Runs `msislab ARGS` (ARGS already quoted) with stdout and stderr captured in files of tmp.
-/// `launcher` goes before the executable, e.g. "env -u DISPLAY".
-inline CliResult run_msislab(const std::string& args, const TempDir& tmp,
-                             const std::string& launcher = "") {
+/// Runs a shell command (its words already quoted) with stdout and stderr captured in files of
+/// tmp and no stdin.
+inline CliResult run_shell(const std::string& command, const TempDir& tmp) {
   const std::string out = tmp.file("stdout.txt");
   const std::string err = tmp.file("stderr.txt");
-  const std::string command = launcher + " " + shell_quote(MSISLAB_EXE) + " " + args + " >" +
-                              shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
-  const int status = std::system(command.c_str());
+  const int status = std::system(
+      (command + " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null").c_str());
   CliResult result;
   if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
   result.out = read_text(out);
   result.err = read_text(err);
   return result;
 }
+
+#ifdef MSISLAB_EXE
+/// Runs `msislab ARGS` (ARGS already quoted), as run_shell. `launcher` goes before the
+/// executable, e.g. "env -u DISPLAY".
+inline CliResult run_msislab(const std::string& args, const TempDir& tmp,
+                             const std::string& launcher = "") {
+  return run_shell(launcher + " " + shell_quote(MSISLAB_EXE) + " " + args, tmp);
+}
+#endif
 
 }  // namespace msislab::testing

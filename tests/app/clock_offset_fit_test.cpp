@@ -31,18 +31,11 @@ using testing::shell_quote;
 
 /// Runs the script on a run folder and its dataset.
 CliResult fit(const std::string& run_dir, const std::string& dataset, const testing::TempDir& tmp) {
-  const std::string command =
+  return testing::run_shell(
       shell_quote(MSISLAB_PYTHON3) + " " +
-      shell_quote(std::string(MSISLAB_SOURCE_DIR) + "/tools/clock_offset_fit.py") + " " +
-      shell_quote(run_dir) + " --dataset " + shell_quote(dataset);
-  const std::string out = tmp.file("fit_out.txt"), err = tmp.file("fit_err.txt");
-  const int status = std::system(
-      (command + " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null").c_str());
-  CliResult result;
-  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  result.out = testing::read_text(out);
-  result.err = testing::read_text(err);
-  return result;
+          shell_quote(std::string(MSISLAB_SOURCE_DIR) + "/tools/clock_offset_fit.py") + " " +
+          shell_quote(run_dir) + " --dataset " + shell_quote(dataset),
+      tmp);
 }
 
 /// The offset and its standard error the script printed.

@@ -38,14 +38,7 @@ CliResult run_script(const std::vector<std::string>& datasets, const TempDir& tm
       shell_quote(MSISLAB_PYTHON3) + " " +
       shell_quote(std::string(MSISLAB_SOURCE_DIR) + "/tools/fidelity_crosscheck.py");
   for (const std::string& d : datasets) command += " " + shell_quote(d);
-  const std::string out = tmp.file("script_out.json"), err = tmp.file("script_err.txt");
-  const int status = std::system(
-      (command + " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null").c_str());
-  CliResult result;
-  if (status != -1 && WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-  result.out = testing::read_text(out);
-  result.err = testing::read_text(err);
-  return result;
+  return testing::run_shell(command, tmp);
 }
 
 io::Json script_rows(const CliResult& result) {

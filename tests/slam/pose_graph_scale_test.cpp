@@ -26,9 +26,6 @@ TEST(PoseGraphScale, EdgeJacobiansMatchCentralDifferences) {
   PoseGraph graph;
   graph.add_node(Pose2(1.0, -2.0, 0.7));
   graph.add_node(Pose2(4.0, 1.5, 2.9));
-  EXPECT_THROW(graph.add_scaled_relative(0, 1, {}, Eigen::Matrix3d::Identity(), true,
-                                         GraphConstant::kRangeScale),
-               std::out_of_range);
   graph.add_constant(GraphConstant::kRangeScale, 0.97, 1.0, 0.05);
   graph.add_constant(GraphConstant::kDvlScale, 1.02, 1.0, 0.02);
   EXPECT_THROW(graph.add_constant(GraphConstant::kRangeScale, 1.0, 1.0, 0.05),
@@ -36,19 +33,19 @@ TEST(PoseGraphScale, EdgeJacobiansMatchCentralDifferences) {
   EXPECT_THROW(graph.add_constant(GraphConstant::kDvlScale, 1.0, 1.0, 0.0), std::invalid_argument);
   GaussianPose2 z{Pose2(3.5, 2.0, 2.0), Eigen::Vector3d(0.04, 0.09, 0.001).asDiagonal()};
   z.cov(0, 1) = z.cov(1, 0) = 0.01;
-  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), true, GraphConstant::kRangeScale);
-  // A match that leaves a direction out (2 orthonormal rows), not robust.
+  // Matches through the range scale alone, one leaving a direction out (2 orthonormal rows); an
+  // odometry edge through the DVL's scale; then matches through the range scale and the clock.
+  const Eigen::Vector3d u_0(0.6, 0.1, 0.05), u_1(0.4, -0.2, -0.1);
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(2, 3);
   A(0, 0) = A(0, 1) = std::sqrt(0.5);
   A(1, 2) = 1.0;
-  graph.add_scaled_relative(1, 0, z, A, false, GraphConstant::kRangeScale);
-  graph.add_scaled_relative(0, 1, z, Eigen::Matrix3d::Identity(), false, GraphConstant::kDvlScale);
-  // Matches through the range scale alone, then through it and the clock offset.
-  const Eigen::Vector3d u_0(0.6, 0.1, 0.05), u_1(0.4, -0.2, -0.1);
-  graph.add_match(0, 1, z, A, u_0, u_1);
+  graph.add_match(0, 1, z, Eigen::Matrix3d::Identity(), u_0, u_1);
+  graph.add_match(1, 0, z, A, u_1, u_0);
+  graph.add_odometry(0, 1, z, true);
   graph.add_constant(GraphConstant::kClockOffset, 0.3, 0.0, 0.5);
+  graph.add_match(0, 1, z, A, u_0, u_1);
   graph.add_match(1, 0, z, Eigen::Matrix3d::Identity(), u_1, u_0);
-  // two priors, three scaled edges, two matches, the clock's prior
+  // two priors, two scaled matches, the scaled odometry, the clock's prior, two clocked matches
   expect_residual_jacobians_match(graph.problem_for_checks(), 8);
 }
 

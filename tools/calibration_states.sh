@@ -9,7 +9,8 @@
 # bounds (3 DOF: 0.216-9.348), on the real run the loop's and the canal's mean error; the
 # estimates with their standard deviations; the consecutive matches' scale against the truth; the
 # run time. Then the clock-offset state on each dataset read with calibration.yaml stating no sonar
-# clock offset (the true one is 0.66 s on both). Writes its results under
+# clock offset (the true one is 0.66 s on both); then the sensor-only fits of the deviation and
+# the clock offset (tools/compass_deviation_fit.py, tools/clock_offset_fit.py). Writes its results under
 # out/calibration_states/.
 # Usage: tools/calibration_states.sh [--msislab EXE]
 set -euo pipefail
@@ -130,3 +131,17 @@ for row in sys.argv[1:]:
           f"{method} | {m['mean_error_m']:.2f} m | {second} | {scale} | "
           f"{d.get('consecutive_match_scale', float('nan')):.3f} | {m['runtime_s']:.1f} s |")
 EOF
+
+# The sensor-only fits beside the estimates: the run without a state, its matches against the
+# MTi log (the deviation and the clock offset beyond calibration.yaml's, from the sensors alone).
+echo
+echo "Sensor-only fits (the robocentric run without a state against the heading log;" \
+  "tools/compass_deviation_fit.py, tools/clock_offset_fit.py, its offset beyond calibration.yaml's):"
+for name in replica real; do
+  run="$out/$name/off/robocentric"
+  [ -d "$run" ] || continue
+  dataset=$replica
+  [ $name = real ] && dataset=$stpere
+  echo "- $name: $(python3 tools/compass_deviation_fit.py "$run" --dataset "$dataset");" \
+    "$(python3 tools/clock_offset_fit.py "$run" --dataset "$dataset")"
+done

@@ -21,14 +21,9 @@ import sys
 
 sys.dont_write_bytecode = True  # no __pycache__ left beside the tools
 
-from stpere_logs import fail, find_log, rows, vehicle_yaw_rad
+from stpere_logs import fail, find_log, gps_track, rows, vehicle_yaw_rad
 
 TOOL = "heading_course_check"
-
-
-def nmea_deg(value):
-    degrees = int(value / 100)
-    return degrees + (value - 100 * degrees) / 60
 
 
 def solve3(pairs):
@@ -63,13 +58,7 @@ def main():
     ap.add_argument("--deviation-sin", type=float, default=0.0)
     o = ap.parse_args()
 
-    fixes = []
-    for r in rows(find_log(o.dataset, "_DGPS.log", TOOL)):
-        fixes.append((float(r[0]), nmea_deg(float(r[1])), nmea_deg(float(r[2]))))
-    lat0, lon0 = fixes[0][1], fixes[0][2]
-    earth_m = 6378137.0
-    gps = [(t, math.radians(lon - lon0) * math.cos(math.radians(lat0)) * earth_m,
-            math.radians(lat - lat0) * earth_m) for t, lat, lon in fixes]
+    gps = gps_track(o.dataset, TOOL)
     heading = []
     for r in rows(find_log(o.dataset, "_MTi.log", TOOL)):
         read = vehicle_yaw_rad(float(r[3]), o.mru_yaw_offset)

@@ -3,7 +3,7 @@
 # (config/stpere.yaml), with the published calibration and with the calibration every sensor agrees
 # on (config/stpere_sensor_agreed_calibration.yaml): dead reckoning and robocentric SLAM, then,
 # under the sensor-agreed calibration, robocentric SLAM with one thing changed at a time; then
-# tools/match_direction_check.py on the robocentric runs. Then the simulated analogue: the replica
+# tools/match_direction_check.py on every robocentric run. Then the simulated analogue: the replica
 # (seed 42, config/stpere_replica.yaml) with that deviation and the 3.9 deg in its MRU
 # (mru.deviation_*, mru.mount.yaw_offset_deg 89.9), read with a calibration.yaml stating neither,
 # the deviation only, or both (stated_calibration), and the shipped replica's matches. Prints
@@ -79,8 +79,8 @@ if [ -f "$stpere/_040825_1735_DVL.log" ]; then
   echo "Real St. Pere (config/stpere.yaml):"
   table "${rows[@]}"
   echo
-  for calibration in published agreed; do
-    python3 tools/match_direction_check.py "$out/real/$calibration/robocentric.default"
+  for run in "$out"/real/published/robocentric.default "$out"/real/agreed/robocentric.*; do
+    python3 tools/match_direction_check.py "$run"
   done
 else
   echo "tools/canal_check.sh: no real St. Pere dataset at $stpere: its rows are left out" >&2

@@ -6,7 +6,8 @@
 # tools/match_direction_check.py on every robocentric run. Then the simulated analogue: the replica
 # (seed 42, config/stpere_replica.yaml) with that deviation and the 3.9 deg in its MRU
 # (mru.deviation_*, mru.mount.yaw_offset_deg 89.9), read with a calibration.yaml stating neither,
-# the deviation only, or both (stated_calibration), and the shipped replica's matches. Prints
+# the deviation only, or both (stated_calibration); last, the shipped replica's and the straight
+# channel's matches with the reciprocal association and one-way. Prints
 # Markdown tables (mean error; loop and canal) and the direction check's lines. Writes its results
 # under out/canal_check/. The real rows need the dataset (MSISLAB_STPERE_DIR, default
 # ../shared/datasets/stpere): without it they are left out, said.
@@ -118,8 +119,21 @@ echo
 echo "The replica, seed 42, its MRU with the deviation (0.62, -3.39) deg and 3.9 deg in its mount:"
 table "${rows[@]}"
 echo
-"$msislab" simulate scenarios/stpere_replica.yaml --out "$out/sim/replica" >/dev/null
-"$msislab" run "$out/sim/replica" --method robocentric --out "$out/replica/shipped" \
-  --config config/stpere_replica.yaml >/dev/null 2>&1
-python3 tools/match_direction_check.py "$out/replica/shipped"
 python3 tools/match_direction_check.py "$out/replica/both/robocentric"
+
+# How much the association sets the along-axis solution: the shipped replica and the straight
+# channel, each with the reciprocal association (the default) and one-way.
+"$msislab" simulate scenarios/stpere_replica.yaml --out "$out/sim/replica" >/dev/null
+sed 's|mesh: \.\./scenes/|mesh: ../../scenes/|' scenarios/straight_channel.yaml \
+  >"$out/straight_channel.scenario.yaml"
+"$msislab" simulate "$out/straight_channel.scenario.yaml" --out "$out/sim/straight_channel" >/dev/null
+for dataset in replica straight_channel; do
+  config=/dev/null  # the defaults
+  [ $dataset = replica ] && config=config/stpere_replica.yaml
+  for v in default one_way; do
+    variant $config $v >"$out/$dataset.$v.yaml"
+    "$msislab" run "$out/sim/$dataset" --method robocentric --out "$out/$dataset/$v" \
+      --config "$out/$dataset.$v.yaml" >/dev/null 2>&1
+    python3 tools/match_direction_check.py "$out/$dataset/$v"
+  done
+done

@@ -3,11 +3,13 @@
 # (config/stpere.yaml), with the published calibration and with the calibration every sensor agrees
 # on (config/stpere_sensor_agreed_calibration.yaml): dead reckoning and robocentric SLAM, then,
 # under the sensor-agreed calibration, robocentric SLAM with one thing changed at a time; then
-# tools/match_direction_check.py on every robocentric run. Then the simulated analogue: the replica
+# tools/match_direction_check.py on every robocentric run (on the published one also for matches
+# that skip one and two scans). Then the simulated analogue: the replica
 # (seed 42, config/stpere_replica.yaml) with that deviation and the 3.9 deg in its MRU
 # (mru.deviation_*, mru.mount.yaw_offset_deg 89.9), read with a calibration.yaml stating neither,
 # the deviation only, or both (stated_calibration); last, the shipped replica's and the straight
-# channel's matches with the reciprocal association and one-way. Prints
+# channel's matches with the reciprocal association and one-way, and the replica's that skip
+# scans. Prints
 # Markdown tables (mean error; loop and canal) and the direction check's lines. Writes its results
 # under out/canal_check/. The real rows need the dataset (MSISLAB_STPERE_DIR, default
 # ../shared/datasets/stpere): without it they are left out, said.
@@ -83,6 +85,9 @@ if [ -f "$stpere/_040825_1735_DVL.log" ]; then
   for run in "$out"/real/published/robocentric.default "$out"/real/agreed/robocentric.*; do
     python3 tools/match_direction_check.py "$run"
   done
+  for gap in 2 3; do
+    python3 tools/match_direction_check.py "$out/real/published/robocentric.default" --gap $gap
+  done
 else
   echo "tools/canal_check.sh: no real St. Pere dataset at $stpere: its rows are left out" >&2
 fi
@@ -136,4 +141,7 @@ for dataset in replica straight_channel; do
       --config "$out/$dataset.$v.yaml" >/dev/null 2>&1
     python3 tools/match_direction_check.py "$out/$dataset/$v"
   done
+done
+for gap in 2 3; do
+  python3 tools/match_direction_check.py "$out/replica/default" --gap $gap
 done

@@ -3,7 +3,8 @@
 segment: their length and their direction (docs/trajectory_slam.md, "Where the real canal is
 lost").
 
-For every accepted match of a scan against the one before it (matches.csv), the true displacement
+For every accepted match of a scan against the one before it (matches.csv; with --gap N, against
+the scan N before it), the true displacement
 between the two scans' times (the simulation's positions, or the GPS; pairs under 1 m apart or
 across a truth gap over 5 s left out) is put in the reference scan's frame by the run's own yaw of
 that scan (scans.csv), as metrics.json's `consecutive_match_scale` does. Per window (the whole run,
@@ -15,7 +16,7 @@ then each of metrics.json's segment windows, seconds from the first truth stamp)
 and the same two for the filter's prediction of the match (pred_*: the dead-reckoning motion for
 a step's first match), then spIC's direction against the prediction's, which needs no truth.
 Standard library only. Usage:
-  tools/match_direction_check.py RUN_DIR [--dataset DIR]
+  tools/match_direction_check.py RUN_DIR [--dataset DIR] [--gap N]
 """
 import argparse
 import bisect
@@ -132,7 +133,11 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("run", help="a SLAM run's output folder (matches.csv, scans.csv, metrics.json)")
     ap.add_argument("--dataset", help="the dataset it ran on (default: metrics.json's)")
+    ap.add_argument("--gap", type=int, default=1,
+                    help="match scan k against scan k - GAP (default 1: consecutive scans)")
     o = ap.parse_args()
+    if o.gap < 1:
+        fail(TOOL, f"--gap {o.gap}: must be at least 1")
 
     metrics = read_json(os.path.join(o.run, "metrics.json"))
     dataset = o.dataset or metrics.get("dataset")
@@ -164,7 +169,7 @@ def main():
         if row["outcome"] != "accepted":
             continue
         if number(matches_path, line, row, "scan") != number(matches_path, line, row,
-                                                               "reference") + 1:
+                                                               "reference") + o.gap:
             continue
         t_s = number(matches_path, line, row, "t_s")
         t_reference_s = number(matches_path, line, row, "t_reference_s")
@@ -185,7 +190,8 @@ def main():
              number(matches_path, line, row, "pred_y_m"))
         pairs.append((t_s - times[0], z, p, g))
 
-    print(f"{o.run}: accepted consecutive matches against the {truth} truth "
+    which = "consecutive matches" if o.gap == 1 else f"matches of scan k against k - {o.gap}"
+    print(f"{o.run}: accepted {which} against the {truth} truth "
           "(direction: deg anticlockwise of the truth's, mean (standard error))")
     for name, window in windows:
         chosen = [v[1:] for v in pairs if window is None or window[0] <= v[0] < window[1]]

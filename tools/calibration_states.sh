@@ -15,17 +15,11 @@
 # Usage: tools/calibration_states.sh [--msislab EXE]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-msislab=build/release/tools/msislab
-if [ "${1:-}" = --msislab ]; then
-  msislab="${2:?--msislab needs a path}"
-elif [ $# -gt 0 ]; then
-  echo "tools/calibration_states.sh: unknown argument '$1' (usage: [--msislab EXE])" >&2
-  exit 2
-fi
-[ -x "$msislab" ] || { echo "tools/calibration_states.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/calibration_states
 source tools/run_fresh.sh
+msislab=build/release/tools/msislab
+parse_msislab tools/calibration_states.sh "$@"
 claim_out_folder tools/calibration_states.sh "$out"
 replica="$out/sim/stpere_replica"
 "$msislab" simulate scenarios/stpere_replica.yaml --out "$replica" >/dev/null

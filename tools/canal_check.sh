@@ -16,17 +16,11 @@
 # Usage: tools/canal_check.sh [--msislab EXE]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-msislab=build/release/tools/msislab
-if [ "${1:-}" = --msislab ]; then
-  msislab="${2:?--msislab needs a path}"
-elif [ $# -gt 0 ]; then
-  echo "tools/canal_check.sh: unknown argument '$1' (usage: [--msislab EXE])" >&2
-  exit 2
-fi
-[ -x "$msislab" ] || { echo "tools/canal_check.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/canal_check
 source tools/run_fresh.sh
+msislab=build/release/tools/msislab
+parse_msislab tools/canal_check.sh "$@"
 claim_out_folder tools/canal_check.sh "$out"
 agreed=config/stpere_sensor_agreed_calibration.yaml
 

@@ -9,17 +9,11 @@
 # Usage: tools/dvl_scale_feedback.sh [--msislab EXE]
 set -euo pipefail
 cd "$(dirname "$0")/.."
-msislab=build/release/tools/msislab
-if [ "${1:-}" = --msislab ]; then
-  msislab="${2:?--msislab needs a path}"
-elif [ $# -gt 0 ]; then
-  echo "tools/dvl_scale_feedback.sh: unknown argument '$1' (usage: [--msislab EXE])" >&2
-  exit 2
-fi
-[ -x "$msislab" ] || { echo "tools/dvl_scale_feedback.sh: no $msislab (build first)" >&2; exit 2; }
 
 out=out/dvl_scale_feedback
 source tools/run_fresh.sh
+msislab=build/release/tools/msislab
+parse_msislab tools/dvl_scale_feedback.sh "$@"
 claim_out_folder tools/dvl_scale_feedback.sh "$out"
 python3 - scenarios/stpere_replica.yaml "$out/replica_dvl_1.01.yaml" <<'EOF'
 import os, sys, yaml

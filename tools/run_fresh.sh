@@ -61,3 +61,19 @@ parse_runs_msislab() {
   [[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "$script: --runs '$runs' is not a count" >&2; exit 2; }
   [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
 }
+
+# parse_msislab SCRIPT ARGS...: the one option of a single-run table script, --msislab EXE, into
+# the caller's `msislab` (set to its default before the call); anything else or an msislab that
+# is not there: one line naming SCRIPT, exit 2.
+parse_msislab() {
+  local script="$1"
+  shift
+  while [ $# -gt 0 ]; do
+    case "$1" in
+      --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
+      *) echo "$script: unknown argument '$1' (usage: [--msislab EXE])" >&2
+         exit 2 ;;
+    esac
+  done
+  [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
+}

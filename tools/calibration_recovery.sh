@@ -49,26 +49,9 @@ cases=(
 for c in "${cases[@]}"; do
   read -r name state _ keys <<<"$c"
   # The replica's scenario with the keys set, its relative paths made absolute.
-  python3 - scenarios/stpere_replica.yaml "$out/$name.scenario.yaml" "$keys" <<'EOF'
-import os, sys, yaml
-src, dst, keys = sys.argv[1:]
-s = yaml.safe_load(open(src))
-base = os.path.dirname(os.path.abspath(src))
-s["scene"]["mesh"] = os.path.join(base, s["scene"]["mesh"])
-s["vehicle"]["heading_csv"] = os.path.join(base, s["vehicle"]["heading_csv"])
-for key in keys.split(","):
-    path, value = key.split("=")
-    *sections, field = path.split(".")
-    node = s
-    for section in sections:
-        if not node.get(section):
-            node[section] = {}
-        node = node[section]
-    node[field] = float(value)
-with open(dst, "w") as f:
-    f.write("# scenarios/stpere_replica.yaml with " + keys + " (tools/calibration_recovery.sh)\n")
-    yaml.safe_dump(s, f, sort_keys=False)
-EOF
+  # shellcheck disable=SC2086  # the keys, one word each
+  tools/scenario_variant.py scenarios/stpere_replica.yaml "$out/$name.scenario.yaml" \
+    tools/calibration_recovery.sh ${keys//,/ }
   { cat config/stpere_replica.yaml; printf 'trajectory_slam:\n  calibration:\n    %s: true\n' "$state"; } \
     >"$out/$name.config.yaml"
   # A folder made by another build or from another scenario is stale: run_fresh starts it again.

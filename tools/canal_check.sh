@@ -89,23 +89,16 @@ fi
 # The simulated analogue: the replica's MRU with the deviation and the constant, stated or not.
 rows=()
 for stated in none deviation both; do
-  python3 - scenarios/stpere_replica.yaml "$out/replica.$stated.scenario.yaml" "$stated" <<'EOF'
-import os, sys, yaml
-src, dst, stated = sys.argv[1:]
-s = yaml.safe_load(open(src))
-base = os.path.dirname(os.path.abspath(src))
-s["scene"]["mesh"] = os.path.join(base, s["scene"]["mesh"])
-s["vehicle"]["heading_csv"] = os.path.join(base, s["vehicle"]["heading_csv"])
-s["mru"] = {"mount": {"yaw_offset_deg": 89.9}, "deviation_cos_deg": 0.62, "deviation_sin_deg": -3.39}
-s["stated_calibration"] = {"mru": {
-    "yaw_offset_deg": 89.9 if stated == "both" else 86.0,
-    "deviation_cos_deg": 0.0 if stated == "none" else 0.62,
-    "deviation_sin_deg": 0.0 if stated == "none" else -3.39}}
-with open(dst, "w") as f:
-    f.write("# scenarios/stpere_replica.yaml, its MRU with the real deviation and the 3.9 deg, "
-            f"calibration.yaml stating {stated} (tools/canal_check.sh)\n")
-    yaml.safe_dump(s, f, sort_keys=False)
-EOF
+  case $stated in
+    none) stated_keys=(stated_calibration.mru.yaw_offset_deg=86
+                       stated_calibration.mru.deviation_cos_deg=0
+                       stated_calibration.mru.deviation_sin_deg=0) ;;
+    deviation) stated_keys=(stated_calibration.mru.yaw_offset_deg=86) ;;
+    both) stated_keys=() ;;
+  esac
+  tools/scenario_variant.py scenarios/stpere_replica.yaml "$out/replica.$stated.scenario.yaml" \
+    tools/canal_check.sh mru.mount.yaw_offset_deg=89.9 mru.deviation_cos_deg=0.62 \
+    mru.deviation_sin_deg=-3.39 "${stated_keys[@]}"
   dataset="$out/sim/replica.$stated"
   "$msislab" simulate "$out/replica.$stated.scenario.yaml" --out "$dataset" >/dev/null
   for method in deadreckoning robocentric; do

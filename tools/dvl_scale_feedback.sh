@@ -15,20 +15,8 @@ source tools/run_fresh.sh
 msislab=build/release/tools/msislab
 parse_msislab tools/dvl_scale_feedback.sh "$@"
 claim_out_folder tools/dvl_scale_feedback.sh "$out"
-python3 - scenarios/stpere_replica.yaml "$out/replica_dvl_1.01.yaml" <<'EOF'
-import os, sys, yaml
-src, dst = sys.argv[1:]
-s = yaml.safe_load(open(src))
-base = os.path.dirname(os.path.abspath(src))
-s["scene"]["mesh"] = os.path.join(base, s["scene"]["mesh"])
-s["vehicle"]["heading_csv"] = os.path.join(base, s["vehicle"]["heading_csv"])
-s["dvl"] = dict(s.get("dvl") or {}, scale_factor=1.01)
-s["stated_calibration"] = {"dvl": {"scale_factor": 1.0}}
-with open(dst, "w") as f:
-    f.write("# scenarios/stpere_replica.yaml, its DVL 1.01 times the true velocity, calibration.yaml"
-            " stating 1 (tools/dvl_scale_feedback.sh)\n")
-    yaml.safe_dump(s, f, sort_keys=False)
-EOF
+tools/scenario_variant.py scenarios/stpere_replica.yaml "$out/replica_dvl_1.01.yaml" \
+  tools/dvl_scale_feedback.sh dvl.scale_factor=1.01 stated_calibration.dvl.scale_factor=1
 dataset="$out/sim/replica_dvl_1.01"
 "$msislab" simulate "$out/replica_dvl_1.01.yaml" --out "$dataset" >/dev/null
 

@@ -3,7 +3,8 @@
 # the replica"): the shipped replica (seed 42) with its DVL reading 1.01 times the true velocity
 # and calibration.yaml stating 1, read through its detections with config/stpere_replica.yaml and
 # `dvl_scale` on, by the robocentric filter and the pose graph: first with the state free (prior
-# 1 +- 0.02), then held at 0.95, 1.01 and 1.07 (prior sd 0.0005). Prints a Markdown table: the
+# 1 +- 0.02, the default; then 1 +- 0.1 and 1 +- 0.005), then held at 0.95, 1.01 and 1.07 (prior
+# sd 0.0005). Prints a Markdown table: the
 # estimate with its standard deviation, the consecutive matches' scale against the truth
 # (metrics.json's consecutive_match_scale) and the mean error. Writes under out/dvl_scale_feedback/.
 # Usage: tools/dvl_scale_feedback.sh [--msislab EXE]
@@ -21,12 +22,16 @@ dataset="$out/sim/replica_dvl_1.01"
 "$msislab" simulate "$out/replica_dvl_1.01.yaml" --out "$dataset" >/dev/null
 
 rows=()
-for prior in free 0.95 1.01 1.07; do
+# free: the default prior 1 +- 0.02; sigma_S: prior 1 +- S; held_K: prior K +- 0.0005.
+for prior in free sigma_0.1 sigma_0.005 held_0.95 held_1.01 held_1.07; do
   config="$out/dvl_scale.$prior.yaml"
   {
     cat config/stpere_replica.yaml
     printf 'trajectory_slam:\n  calibration:\n    dvl_scale: true\n'
-    [ $prior = free ] || printf '    dvl_scale_prior: %s\n    dvl_scale_sigma: 0.0005\n' $prior
+    case $prior in
+      sigma_*) printf '    dvl_scale_sigma: %s\n' "${prior#sigma_}" ;;
+      held_*) printf '    dvl_scale_prior: %s\n    dvl_scale_sigma: 0.0005\n' "${prior#held_}" ;;
+    esac
   } >"$config"
   for method in robocentric posegraph; do
     "$msislab" run "$dataset" --method $method --out "$out/$method.$prior" --config "$config" \
@@ -42,7 +47,12 @@ for row in sys.argv[1:]:
     method, prior, path = row.split(" ", 2)
     m = json.load(open(path))
     d = m["diagnostics"]
-    state = "free (prior 1 +- 0.02)" if prior == "free" else f"held at {prior}"
+    if prior == "free":
+        state = "free (prior 1 +- 0.02)"
+    elif prior.startswith("sigma_"):
+        state = f"free (prior 1 +- {prior[6:]})"
+    else:
+        state = f"held at {prior[5:]}"
     print(f"| {method} | {state} | {d['dvl_scale']:.3f} ({d['dvl_scale_sigma']:.4f}) | "
           f"{d['consecutive_match_scale']:.3f} | {m['mean_error_m']:.2f} m |")
 EOF

@@ -4,7 +4,8 @@
 # and calibration.yaml stating 1, read through its detections with config/stpere_replica.yaml and
 # `dvl_scale` on, by the robocentric filter and the pose graph: first with the state free (prior
 # 1 +- 0.02, the default; then 1 +- 0.1 and 1 +- 0.005), then held at 0.95, 1.01 and 1.07 (prior
-# sd 0.0005). Prints a Markdown table: the
+# sd 0.0005); last the pose graph with the default prior solved with 1000 iterations, without
+# the robust loss and in one stage. Prints a Markdown table: the
 # estimate with its standard deviation, the consecutive matches' scale against the truth
 # (metrics.json's consecutive_match_scale) and the mean error. Writes under out/dvl_scale_feedback/.
 # Usage: tools/dvl_scale_feedback.sh [--msislab EXE]
@@ -39,6 +40,15 @@ for prior in free sigma_0.1 sigma_0.005 held_0.95 held_1.01 held_1.07; do
     rows+=("$method $prior $out/$method.$prior/metrics.json")
   done
 done
+# The pose graph's solve, the default prior: more iterations, no robust loss, one stage.
+for solver in max_iterations:1000 robust_scale_chi2:0 robust_start_factor:1; do
+  config="$out/dvl_scale.${solver%%:*}.yaml"
+  { cat "$out/dvl_scale.free.yaml"; printf 'pose_graph:\n  %s %s\n' "${solver%%:*}:" "${solver#*:}"; } \
+    >"$config"
+  "$msislab" run "$dataset" --method posegraph --out "$out/posegraph.${solver%%:*}" \
+    --config "$config" >/dev/null 2>&1
+  rows+=("posegraph $solver $out/posegraph.${solver%%:*}/metrics.json")
+done
 python3 - "${rows[@]}" <<'EOF'
 import json, sys
 print("| method | DVL scale state | estimate (sd) | consecutive match scale | mean error |")
@@ -51,8 +61,10 @@ for row in sys.argv[1:]:
         state = "free (prior 1 +- 0.02)"
     elif prior.startswith("sigma_"):
         state = f"free (prior 1 +- {prior[6:]})"
-    else:
+    elif prior.startswith("held_"):
         state = f"held at {prior[5:]}"
+    else:
+        state = "free (prior 1 +- 0.02), " + prior.replace(":", " ")
     print(f"| {method} | {state} | {d['dvl_scale']:.3f} ({d['dvl_scale_sigma']:.4f}) | "
           f"{d['consecutive_match_scale']:.3f} | {m['mean_error_m']:.2f} m |")
 EOF

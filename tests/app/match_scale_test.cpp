@@ -11,9 +11,10 @@
 // scale is metrics.json's, and a sonar read 3 deg turned (calibration.yaml's bearing offset)
 // turns the matches by about that much against the truth. On the real run and the replica it
 // guards the split docs/trajectory_slam.md shows ("Where the real canal is lost"): the real
-// canal's consecutive matches longer than the GPS motion and than the loop's, the replica's
-// canal matches as short as its loop's; and under the calibration every sensor agrees on, the
-// real canal lost by SLAM (worse than dead reckoning) where the replica's analogue keeps it.
+// canal's consecutive matches longer than the GPS motion, than the loop's and than the matches
+// that skip a scan, the replica's canal matches as short as its loop's; and under the
+// calibration every sensor agrees on, the real canal lost by SLAM (worse than dead reckoning)
+// where the replica's analogue keeps it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -83,11 +84,12 @@ TEST(MatchScale, NarrowBeamMeasuresTheMotionAndTheWideBeamShortensIt) {
 
 #ifdef MSISLAB_PYTHON3
 /// tools/match_direction_check.py on a run folder.
-testing::CliResult direction_check(const std::string& run_dir, const testing::TempDir& tmp) {
+testing::CliResult direction_check(const std::string& run_dir, const testing::TempDir& tmp,
+                                   const std::string& options = "") {
   return testing::run_shell(testing::shell_quote(MSISLAB_PYTHON3) + " " +
                                 testing::shell_quote(std::string(MSISLAB_SOURCE_DIR) +
                                                      "/tools/match_direction_check.py") +
-                                " " + testing::shell_quote(run_dir),
+                                " " + testing::shell_quote(run_dir) + options,
                             tmp);
 }
 
@@ -176,6 +178,11 @@ TEST(MatchScale, TheRealCanalIsLostOnLongMatchesAndTheReplicaKeepsIt) {
   ASSERT_EQ(real.exit_code, 0) << real.err;
   const auto [real_loop, real_loop_prediction] = window_scales(real, "loop");
   const auto [real_canal, real_canal_prediction] = window_scales(real, "canal");
+  // The canal's matches that skip a scan are not long.
+  const testing::CliResult skipping = direction_check(tmp.file("real"), tmp, " --gap 2");
+  ASSERT_EQ(skipping.exit_code, 0) << skipping.err;
+  const double skipping_canal = window_scales(skipping, "canal")[0];
+  EXPECT_EQ(direction_check(tmp.file("real"), tmp, " --gap 0").exit_code, 2);
   // The calibration every sensor agrees on: SLAM loses the canal that dead reckoning keeps.
   RunOptions agreed{testing::stpere_dir(), "deadreckoning", tmp.file("agreed_dr"), real_config};
   agreed.calibration_path = source + "/config/stpere_sensor_agreed_calibration.yaml";
@@ -221,6 +228,7 @@ TEST(MatchScale, TheRealCanalIsLostOnLongMatchesAndTheReplicaKeepsIt) {
   // Measured: real loop 1.003, canal 1.052 (prediction 1.001); replica loop 0.951, canal 0.959.
   EXPECT_GT(real_canal, real_loop + 0.03);
   EXPECT_GT(real_canal, real_canal_prediction + 0.03);
+  EXPECT_LT(skipping_canal, real_canal - 0.02);  // 1.004 against 1.052
   EXPECT_LT(replica_canal, 0.98);
   EXPECT_LT(replica_loop, 0.98);
   // Measured: real 3.96 m against 9.35 m; the replica's analogue 6.53 m against 3.93 m.

@@ -8,8 +8,8 @@
 # (seed 42, config/stpere_replica.yaml) with that deviation and the 3.9 deg in its MRU
 # (mru.deviation_*, mru.mount.yaw_offset_deg 89.9), read with a calibration.yaml stating neither,
 # the deviation only, or both (stated_calibration); last, the shipped replica's and the straight
-# channel's matches with the reciprocal association and one-way, and the replica's that skip
-# scans. Prints
+# channel's matches with the reciprocal association and one-way, the replica's that skip scans,
+# and the channel's read with its ranges 5 % long. Prints
 # Markdown tables (mean error; loop and canal) and the direction check's lines. Writes its results
 # under out/canal_check/. The real rows need the dataset (MSISLAB_STPERE_DIR, default
 # ../shared/datasets/stpere): without it they are left out, said.
@@ -132,3 +132,10 @@ done
 for gap in 2 3; do
   python3 tools/match_direction_check.py "$out/replica/default" --gap $gap
 done
+# The straight channel read with its ranges 5 % long (calibration.yaml's range_scale 1 / 1.05).
+sed 's/^\(  range_scale:\).*/\1 0.95238095238095233/' "$out/sim/straight_channel/calibration.yaml" \
+  >"$out/straight_channel.ranges_long.calibration.yaml"
+"$msislab" run "$out/sim/straight_channel" --method robocentric \
+  --out "$out/straight_channel/ranges_long" \
+  --calibration "$out/straight_channel.ranges_long.calibration.yaml" >/dev/null 2>&1
+python3 tools/match_direction_check.py "$out/straight_channel/ranges_long"

@@ -32,7 +32,7 @@ case "$method" in
        "or posegraph" >&2
      exit 2 ;;
 esac
-parse_runs_msislab tools/calibration_recovery.sh "${rest[@]}"
+parse_table_options tools/calibration_recovery.sh montecarlo "${rest[@]}"
 
 out=out/calibration_recovery
 [ "$method" = robocentric ] || out="$out.$method"

@@ -19,7 +19,7 @@ cd "$(dirname "$0")/.."
 out=out/calibration_states
 source tools/run_fresh.sh
 msislab=build/release/tools/msislab
-parse_msislab tools/calibration_states.sh "$@"
+parse_table_options tools/calibration_states.sh single "$@"
 claim_out_folder tools/calibration_states.sh "$out"
 replica="$out/sim/stpere_replica"
 "$msislab" simulate scenarios/stpere_replica.yaml --out "$replica" >/dev/null

@@ -20,7 +20,7 @@ cd "$(dirname "$0")/.."
 out=out/canal_check
 source tools/run_fresh.sh
 msislab=build/release/tools/msislab
-parse_msislab tools/canal_check.sh "$@"
+parse_table_options tools/canal_check.sh single "$@"
 claim_out_folder tools/canal_check.sh "$out"
 agreed=config/stpere_sensor_agreed_calibration.yaml
 

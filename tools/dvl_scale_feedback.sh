@@ -15,7 +15,7 @@ cd "$(dirname "$0")/.."
 out=out/dvl_scale_feedback
 source tools/run_fresh.sh
 msislab=build/release/tools/msislab
-parse_msislab tools/dvl_scale_feedback.sh "$@"
+parse_table_options tools/dvl_scale_feedback.sh single "$@"
 claim_out_folder tools/dvl_scale_feedback.sh "$out"
 tools/scenario_variant.py scenarios/stpere_replica.yaml "$out/replica_dvl_1.01.yaml" \
   tools/dvl_scale_feedback.sh dvl.scale_factor=1.01 stated_calibration.dvl.scale_factor=1

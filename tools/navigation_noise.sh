@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=10
 source tools/run_fresh.sh
-parse_runs_msislab tools/navigation_noise.sh "$@"
+parse_table_options tools/navigation_noise.sh montecarlo "$@"
 
 out=out/navigation_noise
 claim_out_folder tools/navigation_noise.sh "$out"

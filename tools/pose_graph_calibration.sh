@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 msislab=build/release/tools/msislab
 runs=10
 source tools/run_fresh.sh
-parse_runs_msislab tools/pose_graph_calibration.sh "$@"
+parse_table_options tools/pose_graph_calibration.sh montecarlo "$@"
 
 out=out/pose_graph_calibration
 claim_out_folder tools/pose_graph_calibration.sh "$out"

@@ -43,37 +43,28 @@ claim_out_folder() {
   touch "$marker"
 }
 
-# parse_runs_msislab SCRIPT ARGS...: the options of a Monte Carlo table script, --runs N and
-# --msislab EXE, into the caller's `runs` and `msislab` (set to their defaults before the call);
-# anything else, a --runs that is not a count or an msislab that is not there: one line naming
-# SCRIPT, exit 2.
-parse_runs_msislab() {
-  local script="$1"
-  shift
+# parse_table_options SCRIPT KIND ARGS...: the options of a table script into the caller's
+# variables, set to their defaults before the call: --msislab EXE into `msislab`, and, for KIND
+# montecarlo (a Monte Carlo table; KIND single: none), --runs N into `runs`. Anything else, a
+# --runs that is not a count or an msislab that is not there: one line naming SCRIPT, exit 2.
+parse_table_options() {
+  local script="$1" kind="$2" usage="[--msislab EXE]"
+  shift 2
+  [ "$kind" = montecarlo ] && usage="[--runs N] $usage"
   while [ $# -gt 0 ]; do
     case "$1" in
-      --runs) runs="${2:?--runs needs a count}"; shift 2 ;;
+      --runs) [ "$kind" = montecarlo ] || break; runs="${2:?--runs needs a count}"; shift 2 ;;
       --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-      *) echo "$script: unknown argument '$1' (usage: [--runs N] [--msislab EXE])" >&2
-         exit 2 ;;
+      *) break ;;
     esac
   done
-  [[ "$runs" =~ ^[1-9][0-9]*$ ]] || { echo "$script: --runs '$runs' is not a count" >&2; exit 2; }
-  [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
-}
-
-# parse_msislab SCRIPT ARGS...: the one option of a single-run table script, --msislab EXE, into
-# the caller's `msislab` (set to its default before the call); anything else or an msislab that
-# is not there: one line naming SCRIPT, exit 2.
-parse_msislab() {
-  local script="$1"
-  shift
-  while [ $# -gt 0 ]; do
-    case "$1" in
-      --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-      *) echo "$script: unknown argument '$1' (usage: [--msislab EXE])" >&2
-         exit 2 ;;
-    esac
-  done
+  if [ $# -gt 0 ]; then
+    echo "$script: unknown argument '$1' (usage: $usage)" >&2
+    exit 2
+  fi
+  if [ "$kind" = montecarlo ] && ! [[ "$runs" =~ ^[1-9][0-9]*$ ]]; then
+    echo "$script: --runs '$runs' is not a count" >&2
+    exit 2
+  fi
   [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
 }

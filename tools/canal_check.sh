@@ -116,8 +116,8 @@ python3 tools/match_direction_check.py "$out/replica/both/robocentric"
 # How much the association sets the along-axis solution: the shipped replica and the straight
 # channel, each with the reciprocal association (the default) and one-way.
 "$msislab" simulate scenarios/stpere_replica.yaml --out "$out/sim/replica" >/dev/null
-sed 's|mesh: \.\./scenes/|mesh: ../../scenes/|' scenarios/straight_channel.yaml \
-  >"$out/straight_channel.scenario.yaml"
+tools/scenario_variant.py scenarios/straight_channel.yaml "$out/straight_channel.scenario.yaml" \
+  tools/canal_check.sh
 "$msislab" simulate "$out/straight_channel.scenario.yaml" --out "$out/sim/straight_channel" >/dev/null
 for dataset in replica straight_channel; do
   config=/dev/null  # the defaults

@@ -44,7 +44,8 @@ def read_json(path):
 
 
 def read_csv(path, columns):
-    """The rows of a CSV file; fails naming the file when it is missing a column or a number."""
+    """The rows of a CSV file with their line numbers; fails naming the file when it is missing
+    a column or cannot be read."""
     try:
         with open(path, encoding="utf-8", newline="") as f:
             reader = csv.DictReader(f)
@@ -198,8 +199,7 @@ def main():
         if not chosen:
             print(f"{name}: no match")
             continue
-        (z_scale, z_dir, z_se), (p_scale, p_dir, p_se) = summary(chosen)[0]
-        against, against_se = summary(chosen)[1]
+        ((z_scale, z_dir, z_se), (p_scale, p_dir, p_se)), (against, against_se) = summary(chosen)
         print(f"{name}: {len(chosen)} matches; spIC scale {z_scale:.3f} direction {z_dir:+.2f} "
               f"({z_se:.2f}); prediction scale {p_scale:.3f} direction {p_dir:+.2f} ({p_se:.2f}); "
               f"spIC against the prediction {against:+.2f} ({against_se:.2f}) deg")

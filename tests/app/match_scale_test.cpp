@@ -14,7 +14,8 @@
 // canal's consecutive matches longer than the GPS motion, than the loop's and than the matches
 // that skip a scan, the replica's canal matches as short as its loop's; and under the
 // calibration every sensor agrees on, the real canal lost by SLAM (worse than dead reckoning)
-// where the replica's analogue keeps it.
+// where the replica's analogue keeps it. Its scenarios come from tools/scenario_variant.py, as
+// the tools' do.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -93,6 +94,22 @@ testing::CliResult direction_check(const std::string& run_dir, const testing::Te
                             tmp);
 }
 
+/// tools/scenario_variant.py: scenarios/NAME.yaml with its paths made absolute and `keys`
+/// (KEY=VALUE ...) set, written into tmp; returns its path.
+std::string scenario_variant(const std::string& name, const std::string& keys,
+                             const testing::TempDir& tmp) {
+  const std::string source(MSISLAB_SOURCE_DIR);
+  const std::string out = tmp.file(name + ".variant.yaml");
+  const testing::CliResult r =
+      testing::run_shell(testing::shell_quote(MSISLAB_PYTHON3) + " " +
+                             testing::shell_quote(source + "/tools/scenario_variant.py") + " " +
+                             testing::shell_quote(source + "/scenarios/" + name + ".yaml") + " " +
+                             testing::shell_quote(out) + " match_scale_test " + keys,
+                         tmp);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  return out;
+}
+
 /// The whole run's spIC scale, direction and its standard error the script printed.
 std::array<double, 3> whole_run(const testing::CliResult& result) {
   EXPECT_EQ(result.exit_code, 0) << result.err;
@@ -107,14 +124,8 @@ std::array<double, 3> whole_run(const testing::CliResult& result) {
 TEST(MatchScale, DirectionCheckGivesTheScaleAndSeesATurnedSonar) {
   namespace fs = std::filesystem;
   const testing::TempDir tmp;
-  std::string yaml =
-      testing::read_text(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/straight_channel.yaml");
-  const std::string mesh = "mesh: ../scenes/";
-  const auto at_mesh = yaml.find(mesh);
-  ASSERT_NE(at_mesh, std::string::npos);
-  yaml.replace(at_mesh, mesh.size(), "mesh: " + std::string(MSISLAB_SOURCE_DIR) + "/scenes/");
   const std::string dataset = tmp.file("channel");
-  simulate({testing::write_text(tmp.file("channel.yaml"), yaml), dataset, std::nullopt, 2});
+  simulate({scenario_variant("straight_channel", "", tmp), dataset, std::nullopt, 2});
   const RunOutcome stated = run({dataset, "robocentric", tmp.file("stated"), ""});
   ASSERT_TRUE(stated.metrics);
   double scale = NAN;
@@ -200,22 +211,11 @@ TEST(MatchScale, TheRealCanalIsLostOnLongMatchesAndTheReplicaKeepsIt) {
   ASSERT_EQ(replica.exit_code, 0) << replica.err;
   const auto [replica_loop, replica_loop_prediction] = window_scales(replica, "loop");
   const auto [replica_canal, replica_canal_prediction] = window_scales(replica, "canal");
-  std::string yaml = testing::read_text(source + "/scenarios/stpere_replica.yaml");
-  for (const auto& [from, to] :
-       {std::pair<std::string, std::string>{"mesh: ../scenes/", "mesh: " + source + "/scenes/"},
-        {"heading_csv: stpere", "heading_csv: " + source + "/scenarios/stpere"}}) {
-    const std::size_t at = yaml.find(from);
-    ASSERT_NE(at, std::string::npos) << from;
-    yaml.replace(at, from.size(), to);
-  }
-  const std::string mru = "mru: {}";
-  const std::size_t at_mru = yaml.find(mru);
-  ASSERT_NE(at_mru, std::string::npos);
-  yaml.replace(at_mru, mru.size(),
-               "mru: {mount: {yaw_offset_deg: 89.9}, deviation_cos_deg: 0.62, "
-               "deviation_sin_deg: -3.39}");
-  simulate({testing::write_text(tmp.file("analogue.yaml"), yaml), tmp.file("analogue"),
-            std::nullopt, 2});
+  simulate({scenario_variant("stpere_replica",
+                             "mru.mount.yaw_offset_deg=89.9 mru.deviation_cos_deg=0.62 "
+                             "mru.deviation_sin_deg=-3.39",
+                             tmp),
+            tmp.file("analogue"), std::nullopt, 2});
   const double analogue_dr_canal = segment_error(
       run({tmp.file("analogue"), "deadreckoning", tmp.file("analogue_dr"), replica_config}),
       "canal");

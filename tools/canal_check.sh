@@ -103,7 +103,7 @@ for stated in none deviation both; do
   "$msislab" simulate "$out/replica.$stated.scenario.yaml" --out "$dataset" >/dev/null
   for method in deadreckoning robocentric; do
     "$msislab" run "$dataset" --method $method --out "$out/replica/$stated/$method" \
-      --config config/stpere_replica.yaml >/dev/null 2>&1
+      --config config/stpere_replica.yaml >/dev/null
     rows+=("replica, calibration.yaml stating $stated, $method" "$out/replica/$stated/$method/metrics.json")
   done
 done
@@ -125,7 +125,7 @@ for dataset in replica straight_channel; do
   for v in default one_way; do
     variant $config $v >"$out/$dataset.$v.yaml"
     "$msislab" run "$out/sim/$dataset" --method robocentric --out "$out/$dataset/$v" \
-      --config "$out/$dataset.$v.yaml" >/dev/null 2>&1
+      --config "$out/$dataset.$v.yaml" >/dev/null
     python3 tools/match_direction_check.py "$out/$dataset/$v"
   done
 done
@@ -137,5 +137,5 @@ sed 's/^\(  range_scale:\).*/\1 0.95238095238095233/' "$out/sim/straight_channel
   >"$out/straight_channel.ranges_long.calibration.yaml"
 "$msislab" run "$out/sim/straight_channel" --method robocentric \
   --out "$out/straight_channel/ranges_long" \
-  --calibration "$out/straight_channel.ranges_long.calibration.yaml" >/dev/null 2>&1
+  --calibration "$out/straight_channel.ranges_long.calibration.yaml" >/dev/null
 python3 tools/match_direction_check.py "$out/straight_channel/ranges_long"

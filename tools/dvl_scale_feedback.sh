@@ -36,7 +36,7 @@ for prior in free sigma_0.1 sigma_0.005 held_0.95 held_1.01 held_1.07; do
   } >"$config"
   for method in robocentric posegraph; do
     "$msislab" run "$dataset" --method $method --out "$out/$method.$prior" --config "$config" \
-      >/dev/null 2>&1
+      >/dev/null
     rows+=("$method $prior $out/$method.$prior/metrics.json")
   done
 done
@@ -46,7 +46,7 @@ for solver in max_iterations:1000 robust_scale_chi2:0 robust_start_factor:1; do
   { cat "$out/dvl_scale.free.yaml"; printf 'pose_graph:\n  %s %s\n' "${solver%%:*}:" "${solver#*:}"; } \
     >"$config"
   "$msislab" run "$dataset" --method posegraph --out "$out/posegraph.${solver%%:*}" \
-    --config "$config" >/dev/null 2>&1
+    --config "$config" >/dev/null
   rows+=("posegraph $solver $out/posegraph.${solver%%:*}/metrics.json")
 done
 python3 - "${rows[@]}" <<'EOF'

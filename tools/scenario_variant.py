@@ -4,7 +4,9 @@ absolute, so the copy runs from any folder, and each KEY=VALUE set (KEY a dotted
 scenario, made where missing; VALUE a number). The tools/ table scripts make their simulated cases
 with it. Usage:
   tools/scenario_variant.py SOURCE DESTINATION BY [KEY=VALUE ...]
-BY names the script, in the copy's first line."""
+BY names the script, in the copy's first line, "# SOURCE with KEYS (BY)". A DESTINATION that exists
+without that first line for the same BY (not a variant this script made for BY) is refused
+(exit 2, named); the copy is written beside it and renamed into place."""
 import os
 import sys
 
@@ -13,13 +15,28 @@ import yaml
 sys.dont_write_bytecode = True  # no __pycache__ left beside the tools
 
 
+def fail(what):
+    print(f"scenario_variant: {what}", file=sys.stderr)
+    sys.exit(2)
+
+
 def main():
     if len(sys.argv) < 4:
-        print("scenario_variant: usage: SOURCE DESTINATION BY [KEY=VALUE ...]", file=sys.stderr)
-        sys.exit(2)
+        fail("usage: SOURCE DESTINATION BY [KEY=VALUE ...]")
     src, dst, by, keys = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
-    with open(src, encoding="utf-8") as f:
-        s = yaml.safe_load(f)
+    if os.path.lexists(dst):
+        try:
+            with open(dst, encoding="utf-8") as f:
+                first = f.readline()
+        except (OSError, UnicodeDecodeError):
+            first = ""
+        if not (first.startswith("# ") and " with " in first and first.endswith(f" ({by})\n")):
+            fail(f"{dst} exists and is not a scenario variant made for {by}; refusing")
+    try:
+        with open(src, encoding="utf-8") as f:
+            s = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError) as e:
+        fail(f"{src}: {e}")
     base = os.path.dirname(os.path.abspath(src))
     s["scene"]["mesh"] = os.path.join(base, s["scene"]["mesh"])
     if "heading_csv" in s.get("vehicle", {}):
@@ -35,11 +52,12 @@ def main():
         try:
             node[field] = float(value)
         except ValueError:
-            print(f"scenario_variant: {key}: the value is not a number", file=sys.stderr)
-            sys.exit(2)
-    with open(dst, "w", encoding="utf-8") as f:
+            fail(f"{key}: the value is not a number")
+    partial = dst + ".partial"
+    with open(partial, "w", encoding="utf-8") as f:
         f.write(f"# {src} with {','.join(keys) or 'nothing changed'} ({by})\n")
         yaml.safe_dump(s, f, sort_keys=False)
+    os.replace(partial, dst)
 
 
 if __name__ == "__main__":

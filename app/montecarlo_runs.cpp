@@ -34,17 +34,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// DIR/runs/<method>/.run_<rrrr>.partial: where a run's result is written before it is put in
-/// place, so a run directory is never half-written.
-std::string partial_dir(const std::string& dir, const std::string& method, int run) {
-  return (fs::path(dir) / "runs" / method / ("." + run_name(run) + ".partial")).string();
-}
-
-/// Fills the partial directory of (method, run) with `write`, then puts it in place of the run
-/// directory.
+/// Fills the partial directory of (method, run), DIR/runs/<method>/.run_<rrrr>.partial, with
+/// `write`, then puts it in place of the run directory: a run directory is never half-written.
 void put_in_place(const std::string& dir, const std::string& method, int run,
                   const std::function<void(const std::string&)>& write) {
-  const std::string partial = partial_dir(dir, method, run);
+  const std::string partial =
+      (fs::path(dir) / "runs" / method / ("." + run_name(run) + ".partial")).string();
   std::error_code ec;
   fs::remove_all(partial, ec);
   io::create_output_dir(partial);
@@ -151,6 +146,48 @@ void run_one_method(const RunContext& ctx, int run, const std::string& method,
   if (files) fs::remove_all(setup.work_dir, ec);
 }
 
+/// What the worker of run r simulated: the dataset in memory, its label, and the files an
+/// external method reads (or why they could not be written).
+struct SimulatedRun {
+  std::shared_ptr<const io::DatasetRecords> records;
+  std::string dataset_label;
+  std::optional<ExternalFiles> files;
+  std::string files_failure;
+};
+
+/// Simulates run r into memory; on disk too with --keep-datasets, and for an external method.
+/// Throws when the simulation fails.
+SimulatedRun simulate_run(const RunContext& ctx, int run, const std::vector<std::string>& pending) {
+  SimulatedRun out;
+  note_stage(ctx.dir, run, "simulate");
+  sim::Scenario scenario = ctx.scenario;
+  scenario.seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
+  injected_fault(run, "simulate");
+  const sim::SimulationResult result = [&] {
+    if (ctx.trace) return sim::simulate(scenario, *ctx.trace, ctx.simulation_threads);
+    const sim::Scene scene(ctx.mesh, scenario.scene.surface);
+    return sim::simulate(scenario, scene, ctx.simulation_threads);
+  }();
+  out.records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
+  out.dataset_label = out.records->name;
+  std::string kept;
+  if (ctx.keep_datasets) {
+    out.dataset_label =
+        io::absolute_path((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
+    io::write_simulated_dataset({out.dataset_label, "dataset", "montecarlo", {}, false}, scenario,
+                                result, ctx.scenario_text);
+    kept = out.dataset_label;
+  }
+  if (std::any_of(pending.begin(), pending.end(), is_external)) {
+    try {
+      out.files = external_files(ctx, run, scenario, result, kept);
+    } catch (const std::exception& e) {
+      out.files_failure = std::string("writing the dataset for external methods: ") + e.what();
+    }
+  }
+  return out;
+}
+
 /// Worker process of run r: simulates into memory, runs the pending methods on the dataset and
 /// puts each method's result (or its failed.json) in place. The dataset is written to disk only
 /// for an external method (or with --keep-datasets).
@@ -160,58 +197,32 @@ int execute_run(const RunContext& ctx, int run, const std::vector<std::string>& 
                          O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (err >= 0) ::dup2(err, STDERR_FILENO);
   const std::uint64_t seed = ctx.manifest.first_seed + static_cast<std::uint64_t>(run);
-  std::shared_ptr<const io::DatasetRecords> records;
-  std::string dataset_label;
-  std::optional<ExternalFiles> files;
-  std::string files_failure;
+  SimulatedRun simulated;
   try {
-    note_stage(ctx.dir, run, "simulate");
-    sim::Scenario scenario = ctx.scenario;
-    scenario.seed = seed;
-    injected_fault(run, "simulate");
-    const sim::SimulationResult result = [&] {
-      if (ctx.trace) return sim::simulate(scenario, *ctx.trace, ctx.simulation_threads);
-      const sim::Scene scene(ctx.mesh, scenario.scene.surface);
-      return sim::simulate(scenario, scene, ctx.simulation_threads);
-    }();
-    records = std::make_shared<const io::DatasetRecords>(io::simulated_records(scenario, result));
-    dataset_label = records->name;
-    std::string kept;
-    if (ctx.keep_datasets) {
-      dataset_label = io::absolute_path((fs::path(ctx.dir) / "datasets" / run_name(run)).string());
-      io::write_simulated_dataset({dataset_label, "dataset", "montecarlo", {}, false}, scenario,
-                                  result, ctx.scenario_text);
-      kept = dataset_label;
-    }
-    if (std::any_of(pending.begin(), pending.end(), is_external)) {
-      try {
-        files = external_files(ctx, run, scenario, result, kept);
-      } catch (const std::exception& e) {
-        files_failure = std::string("writing the dataset for external methods: ") + e.what();
-      }
-    }
+    simulated = simulate_run(ctx, run, pending);
   } catch (const std::exception& e) {
     for (const std::string& method : pending) {
       record_failure(ctx.dir, method, {run, seed, "simulate", e.what(), {}});
     }
     return 0;
   }
+  const std::optional<ExternalFiles>& files = simulated.files;
   std::optional<io::RunInputs> in;
   SharedInputs shared;
   for (const std::string& method : pending) {
     note_stage(ctx.dir, run, "run");
     if (is_external(method) && !files) {
-      record_failure(ctx.dir, method, {run, seed, "simulate", files_failure, {}});
+      record_failure(ctx.dir, method, {run, seed, "simulate", simulated.files_failure, {}});
       continue;
     }
     try {
-      if (!in) in = io::run_inputs_of(records, ctx.config);
+      if (!in) in = io::run_inputs_of(simulated.records, ctx.config);
     } catch (const std::exception& e) {
       record_failure(ctx.dir, method, {run, seed, "run", e.what(), {}});
       continue;
     }
     run_one_method(ctx, run, method, *in, shared, is_external(method) ? &*files : nullptr,
-                   dataset_label);
+                   simulated.dataset_label);
   }
   std::error_code ec;
   if (files && !ctx.keep_datasets) fs::remove_all(files->dataset_dir, ec);

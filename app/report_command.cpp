@@ -24,10 +24,9 @@ void copy_figure(const fs::path& from, const fs::path& to) {
   fs::copy_file(from, to, fs::copy_options::overwrite_existing, ec);
   if (ec) io::fail_file(from.string(), "cannot copy to " + to.string() + ": " + ec.message());
 }
-}  // namespace
 
-ReportOutcome write_report(const ReportOptions& options) {
-  report::load_methods_file(options.methods_file);
+/// What a page needs before anything is read: a .md path and something to report.
+void check_report_options(const ReportOptions& options) {
   if (options.out_path.empty()) throw io::InputError("report: no output page given");
   if (fs::path(options.out_path).extension() != ".md") {
     io::fail_file(options.out_path,
@@ -39,17 +38,10 @@ ReportOutcome write_report(const ReportOptions& options) {
     throw io::InputError(
         "report: nothing to report (give --sim, --real, --montecarlo, --sweep or --sensitivity)");
   }
-  report::ResultsReport results;
-  const fs::path page = fs::absolute(options.out_path).lexically_normal();
-  results.figures_dir_name = page.stem().string();
-  const fs::path figures = fs::path(options.out_path).replace_extension();
-  std::vector<std::string> inputs = options.montecarlo_dirs;
-  inputs.insert(inputs.end(), options.sweep_dirs.begin(), options.sweep_dirs.end());
-  inputs.insert(inputs.end(), {options.sim_dir, options.real_dir, options.sensitivity_csv});
-  io::check_output_file({options.out_path, "page", "report", inputs, false},
-                        io::page_written_by_msislab);
-  const io::OutputRequest figures_out{figures.string(), "report figures", "report", inputs, false};
-  io::check_output_folder(figures_out);
+}
+
+/// Reads every folder and file the page reports into results.
+void read_report_inputs(const ReportOptions& options, report::ResultsReport& results) {
   if (!options.sim_dir.empty()) results.sim = report::read_result_folder(options.sim_dir, "sim");
   if (!options.real_dir.empty())
     results.real = report::read_result_folder(options.real_dir, "real");
@@ -73,6 +65,24 @@ ReportOutcome write_report(const ReportOptions& options) {
     results.sensitivity_source = options.sensitivity_csv;
     results.sensitivity = io::read_sensitivity_csv(options.sensitivity_csv);
   }
+}
+}  // namespace
+
+ReportOutcome write_report(const ReportOptions& options) {
+  report::load_methods_file(options.methods_file);
+  check_report_options(options);
+  report::ResultsReport results;
+  const fs::path page = fs::absolute(options.out_path).lexically_normal();
+  results.figures_dir_name = page.stem().string();
+  const fs::path figures = fs::path(options.out_path).replace_extension();
+  std::vector<std::string> inputs = options.montecarlo_dirs;
+  inputs.insert(inputs.end(), options.sweep_dirs.begin(), options.sweep_dirs.end());
+  inputs.insert(inputs.end(), {options.sim_dir, options.real_dir, options.sensitivity_csv});
+  io::check_output_file({options.out_path, "page", "report", inputs, false},
+                        io::page_written_by_msislab);
+  const io::OutputRequest figures_out{figures.string(), "report figures", "report", inputs, false};
+  io::check_output_folder(figures_out);
+  read_report_inputs(options, results);
   const std::string markdown = report::results_markdown(results);
 
   // The figures are staged beside their folder, which they replace whole.

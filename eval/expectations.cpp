@@ -55,6 +55,44 @@ std::string row_names(const ResultFigures& result) {
   return names.empty() ? "none" : names;
 }
 
+/// Applies e's bounds to value: each appended to expected, met cleared by one that fails. The
+/// error when the figure of the method it must stay below is missing.
+std::optional<std::string> apply_bounds(const Expectation& e, const ResultFigures& result,
+                                        const std::map<std::string, double>& row,
+                                        const std::string& metric, double value, bool& met,
+                                        std::string& expected) {
+  const auto require = [&](bool holds, const std::string& what) {
+    expected += (expected.empty() ? "" : ", ") + what;
+    if (!holds) met = false;
+  };
+  if (e.at_most) require(value <= *e.at_most, "<= " + number_text(*e.at_most));
+  if (e.at_least) require(value >= *e.at_least, ">= " + number_text(*e.at_least));
+  if (e.equals) {
+    require(std::abs(value - *e.equals) <= e.tolerance,
+            number_text(*e.equals) + " +- " + number_text(e.tolerance));
+  }
+  if (e.anees_in_bounds) {
+    const int runs = static_cast<int>(figure(row, "runs").value_or(1.0));
+    const auto [lower, upper] = average_chi2_bounds(std::max(runs, 1), 3, 0.05);
+    require(value >= lower && value <= upper, "in [" + number_text(lower) + ", " +
+                                                  number_text(upper) + "] (" +
+                                                  std::to_string(runs) + " runs)");
+  }
+  if (!e.below.empty()) {
+    Expectation other = e;
+    other.method = e.below;
+    std::string other_key;
+    const std::map<std::string, double>* other_row = find_row(result, other, other_key);
+    const std::optional<double> other_value = other_row ? figure(*other_row, metric) : std::nullopt;
+    if (!other_value) {
+      return result.path + ": no figure '" + metric + "' of '" + other_key +
+             "' to compare with (rows: " + row_names(result) + ")";
+    }
+    require(value < *other_value, "< " + number_text(*other_value) + " (" + e.below + ")");
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::string sweep_row_key(int cell, const std::string& method) {
@@ -120,34 +158,9 @@ CheckOutcome check_expectation(const Expectation& e, const std::vector<ResultFig
   outcome.value = number_text(*value);
   outcome.met = true;
   std::string expected;
-  const auto require = [&](bool holds, const std::string& what) {
-    expected += (expected.empty() ? "" : ", ") + what;
-    if (!holds) outcome.met = false;
-  };
-  if (e.at_most) require(*value <= *e.at_most, "<= " + number_text(*e.at_most));
-  if (e.at_least) require(*value >= *e.at_least, ">= " + number_text(*e.at_least));
-  if (e.equals) {
-    require(std::abs(*value - *e.equals) <= e.tolerance,
-            number_text(*e.equals) + " +- " + number_text(e.tolerance));
-  }
-  if (e.anees_in_bounds) {
-    const int runs = static_cast<int>(figure(*row, "runs").value_or(1.0));
-    const auto [lower, upper] = average_chi2_bounds(std::max(runs, 1), 3, 0.05);
-    require(*value >= lower && *value <= upper, "in [" + number_text(lower) + ", " +
-                                                    number_text(upper) + "] (" +
-                                                    std::to_string(runs) + " runs)");
-  }
-  if (!e.below.empty()) {
-    Expectation other = e;
-    other.method = e.below;
-    std::string other_key;
-    const std::map<std::string, double>* other_row = find_row(*result, other, other_key);
-    const std::optional<double> other_value = other_row ? figure(*other_row, metric) : std::nullopt;
-    if (!other_value) {
-      return miss(outcome, result->path + ": no figure '" + metric + "' of '" + other_key +
-                               "' to compare with (rows: " + row_names(*result) + ")");
-    }
-    require(*value < *other_value, "< " + number_text(*other_value) + " (" + e.below + ")");
+  if (const std::optional<std::string> error =
+          apply_bounds(e, *result, *row, metric, *value, outcome.met, expected)) {
+    return miss(outcome, *error);
   }
   outcome.expected = expected;
   if (!outcome.met)

@@ -72,6 +72,37 @@ ContaminatedNormal fit_contaminated_normal(const std::vector<Eigen::Vector2d>& d
   return fit;
 }
 
+namespace {
+
+/// The emission probabilities of sample k: p(s) = P(lost | s) when it was lost, else 1 - p(s).
+Eigen::Vector2d emission(const std::vector<bool>& lost, const Eigen::Vector2d& p, std::size_t k) {
+  return lost[k] ? p : Eigen::Vector2d(Eigen::Vector2d::Ones() - p);
+}
+
+/// Scaled forward-backward (Rabiner 1989, eqs. 91-93): fills alpha, beta and the scales, returns
+/// the log-likelihood.
+double forward_backward(const std::vector<bool>& lost, const Eigen::Matrix2d& A,
+                        const Eigen::Vector2d& p, const Eigen::Vector2d& pi,
+                        std::vector<Eigen::Vector2d>& alpha, std::vector<Eigen::Vector2d>& beta,
+                        std::vector<double>& scale) {
+  const std::size_t n = lost.size();
+  alpha[0] = pi.cwiseProduct(emission(lost, p, 0));
+  for (std::size_t k = 0; k < n; ++k) {
+    if (k > 0) alpha[k] = (A.transpose() * alpha[k - 1]).cwiseProduct(emission(lost, p, k));
+    scale[k] = alpha[k].sum();
+    alpha[k] /= scale[k];
+  }
+  beta[n - 1] = Eigen::Vector2d::Ones();
+  for (std::size_t k = n - 1; k > 0; --k) {
+    beta[k - 1] = A * emission(lost, p, k).cwiseProduct(beta[k]) / scale[k];
+  }
+  double ll = 0.0;
+  for (const double c : scale) ll += std::log(c);
+  return ll;
+}
+
+}  // namespace
+
 GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost) {
   const std::size_t n = lost.size();
   const double loss_fraction =
@@ -83,27 +114,12 @@ GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost) {
   Eigen::Vector2d p(0.25 * loss_fraction, std::min(0.5, 4.0 * loss_fraction));
   Eigen::Vector2d pi(A(1, 0), A(0, 1));
   pi /= pi.sum();
-  auto emission = [&](std::size_t k) {
-    return lost[k] ? p : Eigen::Vector2d(Eigen::Vector2d::Ones() - p);
-  };
   std::vector<Eigen::Vector2d> alpha(n), beta(n);
   std::vector<double> scale(n);
   GilbertElliott fit;
   double previous_ll = -std::numeric_limits<double>::infinity();
   for (fit.iterations = 1; fit.iterations <= 5000; ++fit.iterations) {
-    // Scaled forward-backward (Rabiner 1989, eqs. 91-93).
-    alpha[0] = pi.cwiseProduct(emission(0));
-    for (std::size_t k = 0; k < n; ++k) {
-      if (k > 0) alpha[k] = (A.transpose() * alpha[k - 1]).cwiseProduct(emission(k));
-      scale[k] = alpha[k].sum();
-      alpha[k] /= scale[k];
-    }
-    beta[n - 1] = Eigen::Vector2d::Ones();
-    for (std::size_t k = n - 1; k > 0; --k) {
-      beta[k - 1] = A * emission(k).cwiseProduct(beta[k]) / scale[k];
-    }
-    double ll = 0.0;
-    for (const double c : scale) ll += std::log(c);
+    const double ll = forward_backward(lost, A, p, pi, alpha, beta, scale);
     // Re-estimation (eqs. 40a-c, 109-110).
     Eigen::Matrix2d xi_sum = Eigen::Matrix2d::Zero();
     Eigen::Vector2d gamma_sum = Eigen::Vector2d::Zero(), gamma_lost = Eigen::Vector2d::Zero();
@@ -112,7 +128,8 @@ GilbertElliott fit_gilbert_elliott(const std::vector<bool>& lost) {
       gamma_sum += gamma;
       if (lost[k]) gamma_lost += gamma;
       if (k + 1 < n) {
-        const Eigen::Vector2d next = emission(k + 1).cwiseProduct(beta[k + 1]) / scale[k + 1];
+        const Eigen::Vector2d next =
+            emission(lost, p, k + 1).cwiseProduct(beta[k + 1]) / scale[k + 1];
         xi_sum += (alpha[k] * next.transpose()).cwiseProduct(A);
       }
     }

@@ -123,7 +123,8 @@ void read_vehicle(YamlMap map, const std::string& scenario_dir, sim::VehicleConf
   map.finish();
 }
 
-void read_sonar(YamlMap map, sim::SonarConfig& s) {
+/// The sonar's geometry and timing: counts, widths, sound speeds, when it stops.
+void read_sonar_geometry(YamlMap& map, sim::SonarConfig& s) {
   read_count(map, "steps_per_revolution", s.steps_per_revolution, 4, 6400);
   read_count(map, "bins", s.bins, 1, 10000);
   read_count(map, "rays_horizontal", s.rays_horizontal, 1, 64);
@@ -147,6 +148,10 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
     require_positive(map, "stop_s", stop_s);
     s.stop_s = stop_s;
   }
+}
+
+/// The levels: tilt, absorption, gain, TVG, noise, display, speckle, blanking.
+void read_sonar_levels(YamlMap& map, sim::SonarConfig& s) {
   map.number("tilt_deg", s.tilt_deg);
   map.number("absorption_db_per_m", s.absorption_db_per_m);
   if (s.absorption_db_per_m < 0.0) map.fail("absorption_db_per_m", "must be >= 0");
@@ -161,6 +166,10 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
   map.boolean("speckle", s.speckle);
   read_count(map, "speckle_looks", s.speckle_looks, 1, 64);
   map.number("min_range_m", s.min_range_m);
+}
+
+/// The echo's shape: the beam pattern, the traced span, the footprint, pulse and receiver.
+void read_sonar_echo(YamlMap& map, sim::SonarConfig& s) {
   std::string pattern = s.beam_pattern == sim::BeamPattern::kSinc ? "sinc" : "gaussian";
   map.text("beam_pattern", pattern);
   if (pattern != "gaussian" && pattern != "sinc") {
@@ -185,6 +194,12 @@ void read_sonar(YamlMap map, sim::SonarConfig& s) {
     map.fail(s.pulse_length_us > 10000.0 ? "pulse_length_us" : "receiver_time_constant_us",
              "must be at most 10000 (10 ms, 7.5 m of range)");
   }
+}
+
+void read_sonar(YamlMap map, sim::SonarConfig& s) {
+  read_sonar_geometry(map, s);
+  read_sonar_levels(map, s);
+  read_sonar_echo(map, s);
   YamlMap mount = map.map("mount");
   read_sonar_mount(mount, s.mount);
   mount.finish();

@@ -72,36 +72,8 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   const GaussianPose2 motion = motion_ok ? scan.motion : unknown_motion();
   const std::size_t k = motions_.size();
   const std::size_t node = k + 1;
-  const bool windowed = config_.online_window_scans > 0;
 
-  // The odometry edge (Eq. 2): the newest node's belief is the previous one's composed with the
-  // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
-  // the kept old nodes and the window.
-  PoseGraphBelief belief;
-  belief.parameters = graph_parameters(k == 0 ? std::nullopt : std::optional(node - 1));
-  if (windowed) {
-    for (const std::size_t i : old_nodes_) {
-      belief.nodes.push_back(i);
-      belief.means.push_back(graph_->pose(i));
-    }
-    for (std::size_t i = window_first_; i < node; ++i) {
-      belief.nodes.push_back(i);
-      belief.means.push_back(graph_->pose(i));
-    }
-    belief.cov = window_cov_;
-    append_odometry(belief, node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
-  } else if (belief.parameters.size() > 0) {
-    // The calibration's joint with the newest node, carried from scan to scan; the previous node
-    // marginalised once the new one is composed onto it.
-    PoseGraphBelief chain{
-        {node - 1}, {graph_->pose(node - 1)}, newest_joint_, 0, belief.parameters};
-    append_odometry(chain, node, 0, motion);
-    belief = {{node}, {chain.means[1]}, chain.marginal({1}), 0, chain.parameters};
-  } else {
-    const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
-    const GaussianPose2 newest = compose(previous, motion);
-    belief = {{node}, {newest.mean}, newest.cov, 0, {}};
-  }
+  PoseGraphBelief belief = odometry_belief(node, motion);
   graph_->add_node(belief.means[static_cast<std::size_t>(belief.newest)]);
   graph_->add_odometry(node - 1, node, motion, start_deviated(node));
   if (estimates_heading_bias()) add_bias_block(node, scan.t_s, belief);
@@ -130,34 +102,79 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     stats.skipped = true;
     ++totals_.skipped;
   } else {
-    // Associate (paper Eq. 3-4): past scans whose estimated centre lies within gamma.
-    const Pose2 newest_mean = belief.means[static_cast<std::size_t>(belief.newest)];
-    std::vector<double> distances_m(k);
-    for (std::size_t j = 0; j < k; ++j) {
-      distances_m[j] = (graph_->pose(j + 1).translation() - newest_mean.translation()).norm();
-    }
-    const std::vector<std::pair<double, std::size_t>> candidates =
-        nearest_candidates(distances_m, points_, front_end_);
-    stats.candidates = static_cast<int>(candidates.size());
-    if (!candidates.empty()) {
-      std::vector<Eigen::Index> in_belief;
-      if (windowed) {
-        in_belief = append_outside_window(belief, candidates, k);
-      } else {
-        belief = whole_graph_belief(node, newest_mean, candidates);
-        for (Eigen::Index c = 0; c < belief.newest; ++c) in_belief.push_back(c);
-      }
-      match(k, candidates, in_belief, belief, stats);
-      write_means(belief);  // the updated means start the next solve
-    }
-    totals_.candidates += stats.candidates;
-    totals_.matched += stats.matched;
-    totals_.accepted += stats.accepted;
+    associate_and_match(k, belief, stats);
   }
+  finish_scan(k, scan.t_s, belief);
+  return stats;
+}
+
+PoseGraphBelief PoseGraphSlam::odometry_belief(std::size_t node, const GaussianPose2& motion) {
+  // The odometry edge (Eq. 2): the newest node's belief is the previous one's composed with the
+  // motion, exact for its marginal since nothing else touches it yet; windowed, in the joint of
+  // the kept old nodes and the window.
+  const std::size_t k = node - 1;
+  PoseGraphBelief belief;
+  belief.parameters = graph_parameters(k == 0 ? std::nullopt : std::optional(node - 1));
+  if (config_.online_window_scans > 0) {
+    for (const std::size_t i : old_nodes_) {
+      belief.nodes.push_back(i);
+      belief.means.push_back(graph_->pose(i));
+    }
+    for (std::size_t i = window_first_; i < node; ++i) {
+      belief.nodes.push_back(i);
+      belief.means.push_back(graph_->pose(i));
+    }
+    belief.cov = window_cov_;
+    append_odometry(belief, node, static_cast<Eigen::Index>(belief.nodes.size()) - 1, motion);
+  } else if (belief.parameters.size() > 0) {
+    // The calibration's joint with the newest node, carried from scan to scan; the previous node
+    // marginalised once the new one is composed onto it.
+    PoseGraphBelief chain{
+        {node - 1}, {graph_->pose(node - 1)}, newest_joint_, 0, belief.parameters};
+    append_odometry(chain, node, 0, motion);
+    belief = {{node}, {chain.means[1]}, chain.marginal({1}), 0, chain.parameters};
+  } else {
+    const GaussianPose2 previous{graph_->pose(node - 1), k == 0 ? start_cov_ : online_.back().cov};
+    const GaussianPose2 newest = compose(previous, motion);
+    belief = {{node}, {newest.mean}, newest.cov, 0, {}};
+  }
+  return belief;
+}
+
+void PoseGraphSlam::associate_and_match(std::size_t k, PoseGraphBelief& belief,
+                                        SlamStepStats& stats) {
+  // Associate (paper Eq. 3-4): past scans whose estimated centre lies within gamma.
+  const Pose2 newest_mean = belief.means[static_cast<std::size_t>(belief.newest)];
+  std::vector<double> distances_m(k);
+  for (std::size_t j = 0; j < k; ++j) {
+    distances_m[j] = (graph_->pose(j + 1).translation() - newest_mean.translation()).norm();
+  }
+  const std::vector<std::pair<double, std::size_t>> candidates =
+      nearest_candidates(distances_m, points_, front_end_);
+  stats.candidates = static_cast<int>(candidates.size());
+  if (!candidates.empty()) {
+    std::vector<Eigen::Index> in_belief;
+    if (config_.online_window_scans > 0) {
+      in_belief = append_outside_window(belief, candidates, k);
+    } else {
+      belief = whole_graph_belief(k + 1, newest_mean, candidates);
+      for (Eigen::Index c = 0; c < belief.newest; ++c) in_belief.push_back(c);
+    }
+    match(k, candidates, in_belief, belief, stats);
+    write_means(belief);  // the updated means start the next solve
+  }
+  totals_.candidates += stats.candidates;
+  totals_.matched += stats.matched;
+  totals_.accepted += stats.accepted;
+}
+
+void PoseGraphSlam::finish_scan(std::size_t k, double t_s, const PoseGraphBelief& belief) {
+  const std::size_t node = k + 1;
+  const bool windowed = config_.online_window_scans > 0;
   const Eigen::Index t = belief.newest;
   const GaussianPose2 newest{belief.means[static_cast<std::size_t>(t)], belief.node_cov(t)};
-  require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k,
-                 scan.t_s, "compass and match updates");
+  require_finite(newest.mean.vector().allFinite() && newest.cov.allFinite(), "pose graph", k, t_s,
+                 "compass and match updates");
   if (windowed) {
     keep_window(belief, k);
   } else if (belief.parameters.size() > 0) {
@@ -165,7 +182,7 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
   }
   if (config_.solve_every <= 1 || (k + 1) % static_cast<std::size_t>(config_.solve_every) == 0) {
     solve(!windowed);  // windowed, edges_downweighted waits for the smoothing solve
-    require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, scan.t_s, "solve");
+    require_finite(graph_->pose(node).vector().allFinite(), "pose graph", k, t_s, "solve");
   }
   online_.push_back({graph_->pose(node), newest.cov});
   if (estimates_heading_bias()) {
@@ -176,7 +193,6 @@ SlamStepStats PoseGraphSlam::add_scan(const Scan& scan) {
     constant_estimates_[static_cast<std::size_t>(which)] = {graph_->constant(which),
                                                             std::sqrt(belief.cov(r, r))};
   }
-  return stats;
 }
 
 bool PoseGraphSlam::update_compass(double yaw_world_rad, double sigma_rad,

@@ -94,6 +94,14 @@ class PoseGraphSlam : public ScanSlam {
   int old_nodes_uncorrelated() const { return old_uncorrelated_; }
 
  private:
+  /// The newest node's belief after the odometry edge to it (Eq. 2): alone, with the calibration,
+  /// or windowed in the joint of the kept old nodes and the window.
+  PoseGraphBelief odometry_belief(std::size_t node, const GaussianPose2& motion);
+  /// Associates scan k with the past scans (Eq. 3-4) and matches it against them.
+  void associate_and_match(std::size_t k, PoseGraphBelief& belief, SlamStepStats& stats);
+  /// The end of scan k's step: the window or the calibration's joint kept, the online solve, the
+  /// newest pose and the calibration's estimates recorded.
+  void finish_scan(std::size_t k, double t_s, const PoseGraphBelief& belief);
   /// Solves the graph (const: the smoothed solution is a cache of the same graph, and solving
   /// a solved graph leaves it where it is); count_downweighted as PoseGraph::solve.
   void solve(bool count_downweighted) const;

@@ -184,6 +184,33 @@ void TrajectorySlam::measure_inversion_linearisation() {
                           config_.linearisation_samples, linearisation_rng_));
 }
 
+namespace {
+
+/// epsilon of h at the prior over the involved elements first_involved..b (x_tail, their
+/// covariance P_tail, h's Jacobian H_tail on them): A (h(X) - h(X^)) = r(X^) - r(X), each sample
+/// set into elements and put back before the next.
+template <class Residual>
+double observation_linearisation(std::vector<Pose2>& elements, std::size_t first_involved,
+                                 std::size_t b, const Residual& residual,
+                                 const Eigen::VectorXd& z_minus_h, const Eigen::VectorXd& x_tail,
+                                 const Eigen::MatrixXd& P_tail, const Eigen::MatrixXd& H_tail,
+                                 const Eigen::MatrixXd& S, int samples, std::mt19937_64& rng) {
+  const std::vector<Pose2> saved(elements.begin() + static_cast<long>(first_involved),
+                                 elements.begin() + static_cast<long>(b) + 1);
+  const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+    for (std::size_t j = 0; j < saved.size(); ++j) {
+      elements[first_involved + j] =
+          Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
+    }
+    const Eigen::VectorXd r = residual(nullptr);
+    std::copy(saved.begin(), saved.end(), elements.begin() + first_involved);
+    return z_minus_h - r;
+  };
+  return linearisation_error(deviation, x_tail, P_tail, H_tail, S, samples, rng);
+}
+
+}  // namespace
+
 template <class Residual>
 std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, std::size_t b,
                                                   const Residual& residual,
@@ -218,21 +245,10 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
       return false;  // the observation disagrees with the prediction: leave the state as it was
     }
     if (measure_linearisation && config_.linearisation_samples > 0) {
-      // epsilon of h at the prior over the involved elements: A (h(X) - h(X^)) = r(X^) - r(X).
       const Eigen::Index n = m - h_col;
-      const std::vector<Pose2> saved(elements_.begin() + static_cast<long>(first_involved),
-                                     elements_.begin() + static_cast<long>(b) + 1);
-      const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
-        for (std::size_t j = 0; j < saved.size(); ++j) {
-          elements_[first_involved + j] =
-              Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
-        }
-        const Eigen::VectorXd r = residual(nullptr);
-        std::copy(saved.begin(), saved.end(), elements_.begin() + first_involved);
-        return z_minus_h - r;
-      };
-      totals_.linearisation_observation.add(linearisation_error(
-          deviation, x_prior.tail(n), P_window.bottomRightCorner(n, n), H_involved.rightCols(n), S,
+      totals_.linearisation_observation.add(observation_linearisation(
+          elements_, first_involved, b, residual, z_minus_h, x_prior.tail(n),
+          P_window.bottomRightCorner(n, n), H_involved.rightCols(n), S,
           config_.linearisation_samples, linearisation_rng_));
     }
     return true;

@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
 # The size limits on the non-test sources (app, report, io, sim, slam, eval, geometry, stats, plot,
-# tools, examples, bench): no file over 350 lines and, with --functions, no function over 60 lines
-# (clang-tidy's readability-function-size, LineThreshold 60: a few minutes on 2 cores). Prints
-# each breach as file:line and exits 1 if there is one.
-# Usage: tools/check_sizes.sh [--functions [BUILD_DIR]]   (BUILD_DIR: default build/ci, needs its
-#        compile_commands.json)
+# tools, examples, bench): no file over 350 lines and no function over 60 lines. A function's
+# length is its definition's lines, from the line of its name to its closing brace, as Universal
+# Ctags finds them (kind f: free and member functions, defined in a .cpp or inline in a header;
+# lambdas count toward the function that holds them). Prints each breach as file:line and exits 1
+# if there is one; exits 2 without ctags. A second argument checks another tree (the tests'
+# fixtures).
+# Usage: tools/check_sizes.sh [ROOT]
 set -euo pipefail
-cd "$(dirname "$0")/.."
-dirs=(app report io sim slam eval geometry stats plot tools examples bench)
+root="${1:-$(dirname "$0")/..}"
+cd "$root"
+command -v ctags >/dev/null || { echo "check_sizes: no ctags (Debian: universal-ctags)" >&2; exit 2; }
+dirs=()
+for d in app report io sim slam eval geometry stats plot tools examples bench; do
+  [ -d "$d" ] && dirs+=("$d")
+done
 mapfile -t files < <(find "${dirs[@]}" \( -name '*.cpp' -o -name '*.hpp' \) | sort)
 status=0
 for f in "${files[@]}"; do
@@ -18,19 +25,29 @@ for f in "${files[@]}"; do
   fi
 done
 echo "check_sizes: ${#files[@]} files, none over 350 lines$([ $status -eq 0 ] || echo ': NO')"
-if [ "${1:-}" = --functions ]; then
-  build="${2:-build/ci}"
-  [ -f "$build/compile_commands.json" ] || { echo "check_sizes: no $build/compile_commands.json"; exit 2; }
-  mapfile -t sources < <(printf '%s\n' "${files[@]}" | grep '\.cpp$')
-  found=$(printf '%s\n' "${sources[@]}" | xargs -P 2 -n 8 clang-tidy -p "$build" --quiet \
-    -checks='-*,readability-function-size' \
-    -config='{CheckOptions: [{key: readability-function-size.LineThreshold, value: 60}]}' \
-    2>/dev/null | grep "warning: function" || true)
-  if [ -n "$found" ]; then
-    echo "$found"
-    status=1
-  fi
-  echo "check_sizes: ${#sources[@]} source files, $(grep -c . <<<"$found" || true) functions" \
-    "over 60 lines"
+
+long=$(printf '%s\n' "${files[@]}" |
+  ctags --languages=C++ --map-C++=+.hpp --kinds-C++=f --fields=+ne --output-format=json -o - -L - |
+  python3 -c '
+import json, re, sys
+rows = []
+for line in sys.stdin:
+    tag = json.loads(line)
+    if tag.get("_type") != "tag" or "end" not in tag:
+        continue
+    length = tag["end"] - tag["line"] + 1
+    if length > 60:
+        scope = tag.get("scope", "")
+        name = re.sub(r"__anon[0-9a-f]+", "(anonymous)", (scope + "::" if scope else "") + tag["name"])
+        where = "%s:%d" % (tag["path"], tag["line"])
+        rows.append(f"{where}: {name} is {length} lines (the limit is 60)")
+print("\n".join(sorted(rows)))
+')
+functions=$(printf '%s\n' "${files[@]}" |
+  ctags --languages=C++ --map-C++=+.hpp --kinds-C++=f -x --sort=no -L - | wc -l)
+if [ -n "$long" ]; then
+  echo "$long"
+  status=1
 fi
+echo "check_sizes: $functions functions, $(grep -c . <<<"$long" || true) over 60 lines"
 exit $status

@@ -8,6 +8,7 @@ packages=(
   libcli11-dev libproj-dev
   libboost-dev libceres-dev nlohmann-json3-dev proj-data zlib1g-dev libgtest-dev libgmock-dev
   libbenchmark-dev xvfb xauth fonts-dejavu-core
+  universal-ctags  # tools/check_sizes.sh: the length of every function
   clang libclang-rt-14-dev llvm  # tools/fuzz.sh (libFuzzer) and symbolized sanitizer reports
 )
 

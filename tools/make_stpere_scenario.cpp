@@ -197,6 +197,57 @@ void check_outputs(const Options& options) {
       ours ? +[](const std::string&) { return true; } : +[](const std::string&) { return false; });
 }
 
+/// Prints how the waypoints fit the real track: length, timing, speeds and wall clearance.
+void print_path_summary(const std::vector<msislab::PositionFix>& fixes, const Path& smoothed,
+                        const SceneOutline& outline, const Path& path,
+                        const std::vector<double>& real_times_s,
+                        const std::vector<double>& leg_speeds_mps,
+                        const std::vector<double>& arrivals_s) {
+  double lowest_m = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& p : path) lowest_m = std::min(lowest_m, clearance_m(outline, p));
+  double worst_s = 0.0;
+  for (std::size_t k = 0; k < path.size(); ++k) {
+    worst_s = std::max(worst_s, std::abs(arrivals_s[k] - real_times_s[k]));
+  }
+  const auto [slowest, fastest] = std::minmax_element(leg_speeds_mps.begin(), leg_speeds_mps.end());
+  std::cerr << std::fixed << std::setprecision(1) << path.size() << " waypoints, path "
+            << length_m(path) << " m (smoothed GPS track " << length_m(smoothed) << " m), run "
+            << fixes.back().t_s - fixes.front().t_s << " s; simulated arrival at the last waypoint "
+            << arrivals_s.back() << " s\n"
+            << std::setprecision(3) << "leg speeds " << *slowest << " .. " << *fastest << " m/s\n"
+            << std::setprecision(1) << "timing: every waypoint reached within " << worst_s
+            << " s of the real vehicle\n"
+            << std::setprecision(2) << "clearance from the walls: waypoints >= " << lowest_m
+            << " m, legs >= " << min_leg_clearance_m(outline, path) << " m\n";
+}
+
+/// Writes --heading-out (when given) and returns its path relative to the scenario's folder;
+/// empty without it.
+std::string write_heading_history(const Options& options, const msislab::io::DatasetFiles& files,
+                                  const msislab::Calibration& calibration,
+                                  const std::vector<msislab::PositionFix>& fixes) {
+  if (options.heading_out.empty()) return "";
+  // The real MTi heading (scene frame, through the calibration) at 1 Hz from the first fix,
+  // to the MTi log's own resolution (1 ms, 0.001 deg).
+  const auto thousandths = [](double x) { return std::round(x * 1000.0) / 1000.0; };
+  std::vector<Eigen::Vector2d> heading;
+  for (const msislab::HeadingReading& h :
+       msislab::io::load_navigation(files, calibration).heading) {
+    const double t_s = h.t_s - fixes.front().t_s;
+    if (t_s < 0.0 || t_s > fixes.back().t_s - fixes.front().t_s + 1.0) continue;
+    if (heading.empty() || t_s >= heading.back().x() + 1.0) {
+      heading.emplace_back(t_s, h.yaw_rad * 180.0 / M_PI);
+    }
+  }
+  for (Eigen::Vector2d& row : heading) row = row.unaryExpr(thousandths);
+  msislab::io::write_heading_csv(options.heading_out, heading);
+  std::cerr << "wrote " << options.heading_out << " (" << heading.size() << " headings)\n";
+  const auto out_dir =
+      std::filesystem::absolute(options.out_path.empty() ? "." : options.out_path).parent_path();
+  return std::filesystem::relative(std::filesystem::absolute(options.heading_out), out_dir)
+      .string();
+}
+
 void make_scenario(const Options& options) {
   check_outputs(options);
   const msislab::io::DatasetFiles files = msislab::io::find_dataset_files(options.dataset_dir);
@@ -213,50 +264,15 @@ void make_scenario(const Options& options) {
   const auto [leg_speeds_mps, arrivals_s] =
       msislab::sim::timed_leg_speeds(path, waypoints.real_times_s, options.timing_iterations);
 
-  double lowest_m = std::numeric_limits<double>::infinity();
-  for (const Eigen::Vector2d& p : path) lowest_m = std::min(lowest_m, clearance_m(outline, p));
-  double worst_s = 0.0;
-  for (std::size_t k = 0; k < path.size(); ++k) {
-    worst_s = std::max(worst_s, std::abs(arrivals_s[k] - waypoints.real_times_s[k]));
-  }
-  const auto [slowest, fastest] = std::minmax_element(leg_speeds_mps.begin(), leg_speeds_mps.end());
-  std::cerr << std::fixed << std::setprecision(1) << path.size() << " waypoints, path "
-            << length_m(path) << " m (smoothed GPS track " << length_m(smoothed) << " m), run "
-            << fixes.back().t_s - fixes.front().t_s << " s; simulated arrival at the last waypoint "
-            << arrivals_s.back() << " s\n"
-            << std::setprecision(3) << "leg speeds " << *slowest << " .. " << *fastest << " m/s\n"
-            << std::setprecision(1) << "timing: every waypoint reached within " << worst_s
-            << " s of the real vehicle\n"
-            << std::setprecision(2) << "clearance from the walls: waypoints >= " << lowest_m
-            << " m, legs >= " << min_leg_clearance_m(outline, path) << " m\n";
+  print_path_summary(fixes, smoothed, outline, path, waypoints.real_times_s, leg_speeds_mps,
+                     arrivals_s);
 
   std::string mesh_ref = options.scene_path;
   if (!options.out_path.empty()) {
     const auto out_dir = std::filesystem::absolute(options.out_path).parent_path();
     mesh_ref = std::filesystem::relative(std::filesystem::absolute(options.scene_path), out_dir);
   }
-  std::string heading_ref;
-  if (!options.heading_out.empty()) {
-    // The real MTi heading (scene frame, through the calibration) at 1 Hz from the first fix,
-    // to the MTi log's own resolution (1 ms, 0.001 deg).
-    const auto thousandths = [](double x) { return std::round(x * 1000.0) / 1000.0; };
-    std::vector<Eigen::Vector2d> heading;
-    for (const msislab::HeadingReading& h :
-         msislab::io::load_navigation(files, calibration).heading) {
-      const double t_s = h.t_s - fixes.front().t_s;
-      if (t_s < 0.0 || t_s > fixes.back().t_s - fixes.front().t_s + 1.0) continue;
-      if (heading.empty() || t_s >= heading.back().x() + 1.0) {
-        heading.emplace_back(t_s, h.yaw_rad * 180.0 / M_PI);
-      }
-    }
-    for (Eigen::Vector2d& row : heading) row = row.unaryExpr(thousandths);
-    msislab::io::write_heading_csv(options.heading_out, heading);
-    std::cerr << "wrote " << options.heading_out << " (" << heading.size() << " headings)\n";
-    const auto out_dir =
-        std::filesystem::absolute(options.out_path.empty() ? "." : options.out_path).parent_path();
-    heading_ref =
-        std::filesystem::relative(std::filesystem::absolute(options.heading_out), out_dir).string();
-  }
+  const std::string heading_ref = write_heading_history(options, files, calibration, fixes);
   const std::string yaml =
       scenario_yaml(options, path, leg_speeds_mps, mesh_ref, sonar_stop_s, heading_ref);
   if (options.out_path.empty()) {

@@ -30,12 +30,6 @@ std::vector<int> runs_of(const io::MonteCarloManifest& manifest) {
   return runs;
 }
 
-namespace {
-void write_text(const std::string& path, const std::string& text) {
-  io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-}  // namespace
-
 std::string executable_digest(const std::string& executable_path) {
   const std::string bytes = io::read_whole_file(executable_path);
   std::uint64_t hash = 0xcbf29ce484222325ULL;  // FNV-1a offset basis
@@ -85,9 +79,11 @@ void write_directory_header(const std::string& dir, const io::MonteCarloManifest
                             const DirectoryInputs& inputs) {
   io::create_output_dir(dir);
   const fs::path d(dir);
-  write_text((d / "scenario.yaml").string(), inputs.scenario_text);
-  if (manifest.has_config) write_text((d / "config.yaml").string(), inputs.config_text);
-  if (manifest.has_methods_file) write_text((d / "methods.yaml").string(), inputs.methods_text);
+  io::write_text_atomically((d / "scenario.yaml").string(), inputs.scenario_text);
+  if (manifest.has_config)
+    io::write_text_atomically((d / "config.yaml").string(), inputs.config_text);
+  if (manifest.has_methods_file)
+    io::write_text_atomically((d / "methods.yaml").string(), inputs.methods_text);
   io::write_manifest_json((d / "montecarlo.json").string(), manifest);
 }
 

@@ -31,10 +31,6 @@ std::string cell_name(std::size_t cell) {
   return name;
 }
 
-void write_text(const std::string& path, const std::string& text) {
-  io::write_file_atomically(path, [&](std::ostream& out) { out << text; });
-}
-
 /// The sweep file's copy in DIR: a DIR made from other bytes is refused before anything changes.
 void check_same_sweep(const std::string& dir, const std::string& sweep_text,
                       const std::string& sweep_path) {
@@ -111,11 +107,11 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
       {options.out_dir, "sweep", "sweep", {options.sweep_path, options.methods_file}, false},
       "msislab sweep " + options.sweep_path);
   check_same_sweep(options.out_dir, sweep_text, options.sweep_path);
-  write_text((fs::path(options.out_dir) / "sweep.yaml").string(), sweep_text);
+  io::write_text_atomically((fs::path(options.out_dir) / "sweep.yaml").string(), sweep_text);
   // Each cell keeps (and checks) its copy; this one gives the sweep's figures their titles.
   if (!options.methods_file.empty()) {
-    write_text((fs::path(options.out_dir) / "methods.yaml").string(),
-               io::read_whole_file(options.methods_file));
+    io::write_text_atomically((fs::path(options.out_dir) / "methods.yaml").string(),
+                              io::read_whole_file(options.methods_file));
   }
 
   SweepOutcome outcome;
@@ -123,12 +119,12 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   for (std::size_t c = 0; c < plan.cells.size(); ++c) {
     const fs::path in_dir = fs::path(options.out_dir) / "inputs" / cell_name(c);
     io::create_output_dir(in_dir.string());
-    write_text((in_dir / "scenario.yaml").string(), inputs[c].scenario_text);
+    io::write_text_atomically((in_dir / "scenario.yaml").string(), inputs[c].scenario_text);
     MonteCarloOptions mc;
     mc.scenario_path = (in_dir / "scenario.yaml").string();
     if (!inputs[c].config_text.empty()) {
       mc.config_path = (in_dir / "config.yaml").string();
-      write_text(mc.config_path, inputs[c].config_text);
+      io::write_text_atomically(mc.config_path, inputs[c].config_text);
     }
     mc.runs = plan.runs;
     mc.methods = plan.methods;
@@ -169,7 +165,7 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
   const DirectoryLock lock({out_dir, "sweep", "sweep merge", shard_dirs, false},
                            "msislab sweep merge");
   check_same_sweep(out_dir, sweep_text, shard_dirs.front() + "/sweep.yaml");
-  write_text((fs::path(out_dir) / "sweep.yaml").string(), sweep_text);
+  io::write_text_atomically((fs::path(out_dir) / "sweep.yaml").string(), sweep_text);
   SweepOutcome outcome;
   outcome.cells = plan.cells.size();
   for (std::size_t c = 0; c < plan.cells.size(); ++c) {

@@ -7,6 +7,7 @@
 
 #include "eval/evaluation.hpp"
 #include "eval/navigation_statistics.hpp"
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 #include "sim/navigation_sensors.hpp"
 #include "stats/sample_statistics.hpp"
@@ -14,8 +15,6 @@
 namespace msislab {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 /// The measurements between t0_s and t1_s (inclusive).
 NavigationLog slice(const NavigationLog& log, double t0_s, double t1_s) {

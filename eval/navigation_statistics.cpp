@@ -6,14 +6,13 @@
 #include <cmath>
 
 #include "eval/evaluation.hpp"
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 #include "stats/sample_statistics.hpp"
 
 namespace msislab {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / M_PI;
 
 /// Noise sigma from differences whose variance is `factor` sigma^2.
 DifferenceNoise noise_of_differences(const std::vector<double>& d, double factor) {

@@ -1,11 +1,11 @@
 #include "geometry/calibration.hpp"
 
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 
 namespace msislab {
 
 namespace {
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// d(psi) in radians.
 double deviation_rad(double yaw_rad, const MruMount& mount) {

@@ -12,6 +12,8 @@ namespace msislab::io {
 /// is removed and InputError names the path.
 void write_file_atomically(const std::string& path,
                            const std::function<void(std::ostream&)>& write);
+/// The same for a whole text.
+void write_text_atomically(const std::string& path, const std::string& text);
 
 /// Creates the directory (and its parents) if needed; InputError naming it when that fails.
 void create_output_dir(const std::string& dir);

@@ -4,15 +4,12 @@
 #include <iomanip>
 #include <sstream>
 
+#include "geometry/angles.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_fields.hpp"
 #include "io/config_yaml.hpp"
 
 namespace msislab::io {
-
-namespace {
-constexpr double kDegToRad = M_PI / 180.0;
-}  // namespace
 
 void read_calibration_sections(YamlMap& root, Calibration& c) {
   YamlMap mru = root.map("mru");

@@ -6,16 +6,13 @@
 #include <iomanip>
 #include <sstream>
 
+#include "geometry/angles.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_fields.hpp"
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::io {
-
-namespace {
-constexpr double kDegToRad = M_PI / 180.0;
-}  // namespace
 
 void require_positive(YamlMap& map, const std::string& key, double value) {
   if (!(value > 0.0)) map.fail(key, "must be > 0, got " + std::to_string(value));

@@ -30,7 +30,7 @@ SampleSummary read_summary(const JsonObject& rpe, const std::string& key) {
   return s;
 }
 
-std::size_t count_of(const JsonObject& json, const std::string& key) {
+std::size_t size_count_of(const JsonObject& json, const std::string& key) {
   return static_cast<std::size_t>(json.integer(key, 0, std::numeric_limits<int>::max()));
 }
 
@@ -64,7 +64,7 @@ std::optional<EvalScores> read_eval_scores(const JsonObject& json) {
   EstimateAlignment& a = scores.alignment;
   a.method = alignment.string("method");
   a.window_s = alignment.number_or_null("window_s");
-  a.positions = count_of(alignment, "positions");
+  a.positions = size_count_of(alignment, "positions");
   a.t_offset_s = alignment.number("t_offset_s");
   a.T_truth_estimate = Pose2(alignment.number("x_m"), alignment.number("y_m"),
                              alignment.number("rotation_deg") / kDegPerRad);
@@ -72,7 +72,7 @@ std::optional<EvalScores> read_eval_scores(const JsonObject& json) {
     const JsonObject rpe = json.object("rpe");
     scores.rpe = RelativePoseError{};
     scores.rpe->delta_m = rpe.number("delta_m");
-    scores.rpe->pairs = count_of(rpe, "pairs");
+    scores.rpe->pairs = size_count_of(rpe, "pairs");
     scores.rpe->translation_m = read_summary(rpe, "translation_m");
     scores.rpe->rotation_deg = read_summary(rpe, "rotation_deg");
   }

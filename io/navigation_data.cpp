@@ -5,16 +5,13 @@
 #include <optional>
 #include <vector>
 
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 #include "io/dataset.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/truth.hpp"
 
 namespace msislab::io {
-
-namespace {
-constexpr double kRadToDeg = 180.0 / M_PI;
-}  // namespace
 
 NavigationData load_navigation_data(const std::string& dataset_dir) {
   NavigationData data;

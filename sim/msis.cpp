@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/angles.hpp"
 #include "geometry/calibration.hpp"
 #include "sim/sonar_physics.hpp"
 
 namespace msislab::sim {
 
 namespace {
-constexpr double kDegToRad = M_PI / 180.0;
 
 Eigen::Vector3f direction(double azimuth_rad, double elevation_rad) {
   return Eigen::Vector3f(static_cast<float>(std::cos(elevation_rad) * std::cos(azimuth_rad)),

@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/angles.hpp"
 #include "sim/lanes.hpp"
 #include "sim/sonar_physics.hpp"
 
 namespace msislab::sim {
-
-namespace {
-constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kLn2 = 0.69314718055994530942;
-}  // namespace
 
 MsisReceiver::MsisReceiver(const SonarConfig& sonar, double pattern_norm)
     : sonar_(sonar),

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "geometry/angles.hpp"
 #include "geometry/calibration.hpp"
 #include "sim/random.hpp"
 #include "sim/scenario.hpp"
@@ -12,7 +13,6 @@
 namespace msislab::sim {
 
 namespace {
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// Sample times t0 + k / rate over the trajectory's span.
 std::vector<double> sample_times(const VehicleTrajectory& truth, double rate_hz) {

@@ -6,13 +6,12 @@
 #include <limits>
 #include <optional>
 
+#include "geometry/angles.hpp"
 #include "sim/scene_materials.hpp"
 #include "sim/vehicle.hpp"
 
 namespace msislab::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0) {
   char text[96];

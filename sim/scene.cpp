@@ -11,7 +11,10 @@
 #include <string>
 
 namespace msislab::sim {
-namespace {
+// The types Scene::Embree holds live in a named namespace of this file, not the anonymous one: a
+// member of a class with linkage may not have a type without (GCC's -Wsubobject-linkage, which a
+// unity build, compiling this file as an included one, would raise).
+namespace scene_detail {
 
 // Embree handles, released in reverse order of creation (geometry, scene, device) by RAII.
 struct DeviceRelease {
@@ -53,6 +56,16 @@ class ErrorLog {
   RTCError code_ = RTC_ERROR_NONE;
   std::string message_;
 };
+
+}  // namespace scene_detail
+
+using scene_detail::DeviceHandle;
+using scene_detail::ErrorLog;
+using scene_detail::GeometryHandle;
+using scene_detail::kPacketSize;
+using scene_detail::SceneHandle;
+
+namespace {
 
 // The BVH is built once from valid data, so a bad mesh is a programming error caught here rather
 // than a crash inside Embree.

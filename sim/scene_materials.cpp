@@ -3,12 +3,11 @@
 #include <cmath>
 #include <map>
 
+#include "geometry/angles.hpp"
 #include "sim/scene.hpp"
 
 namespace msislab::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 /// Twice the area times the unit normal (the cross product of two edges).
 Eigen::Vector3f area_normal(const TriangleMesh& mesh, std::size_t i) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 
+#include "geometry/angles.hpp"
 #include "sim/random.hpp"
 
 namespace msislab::sim {
@@ -18,8 +19,6 @@ double max_physical_range_m(const SonarConfig& sonar) {
 }
 
 namespace {
-constexpr double kDegToRad = M_PI / 180.0;
-constexpr double kLn2 = 0.69314718055994530942;
 /// sinc(x)^4 = 1/2 at x = this: where the two-way sinc^2 x sinc^2 pattern is down 3 dB.
 constexpr double kSincHalfPower = 1.0019063576966067;
 }  // namespace

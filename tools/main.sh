@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, then
+# The main job: installs what is missing, builds the msislab command (nothing else), then
 #  1. simulates the default scenario (scenarios/stpere_replica.yaml) and runs robocentric and
 #     world-centric trajectory SLAM, the pose graph, dead reckoning and the plain-integration
 #     reference on it, scored against the exact simulation truth;
@@ -14,7 +14,7 @@ cd "$(dirname "$0")/.."
 
 tools/install_deps.sh
 cmake --preset release
-cmake --build --preset release
+cmake --build --preset release --target msislab  # what it runs; the tests build in tools/test.sh
 
 msislab=build/release/tools/msislab
 methods=(robocentric worldcentric posegraph deadreckoning integration)

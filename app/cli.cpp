@@ -6,7 +6,7 @@
 #include <iostream>
 #include <vector>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "report/methods.hpp"
 
 namespace msislab::app {

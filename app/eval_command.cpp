@@ -25,55 +25,6 @@ namespace msislab::app {
 
 namespace fs = std::filesystem;
 
-RunMetrics score_trajectory(const io::Truth& truth, const std::vector<StampedPose>& trajectory,
-                            const std::vector<TimeSegment>& segments, const std::string& source) {
-  return score_errors(truth, position_errors(trajectory, truth.positions), segments, source);
-}
-
-RunMetrics score_errors(const io::Truth& truth, const std::vector<ErrorSample>& errors,
-                        const std::vector<TimeSegment>& segments, const std::string& source) {
-  const std::optional<ErrorStats> stats = error_stats(errors);
-  if (!stats) io::fail_file(source, "no " + truth.kind + " truth inside the estimated span");
-  RunMetrics metrics;
-  metrics.truth = truth.kind;
-  metrics.errors = *stats;
-  metrics.segment_windows = segments;
-  for (const TimeSegment& segment : segments) {
-    metrics.segments.emplace_back(segment.name,
-                                  segment_mean_error(errors, truth.positions.front().t_s, segment));
-  }
-  return metrics;
-}
-
-std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
-                                      const io::Truth& truth) {
-  std::vector<io::NeesSample> samples;
-  if (truth.poses.empty()) return samples;
-  const std::vector<double> nees = pose_nees(scan_poses, truth.poses);
-  for (std::size_t i = 0; i < nees.size(); ++i) samples.push_back({scan_poses[i].t_s, nees[i]});
-  return samples;
-}
-
-std::optional<double> average_nees(const std::vector<io::NeesSample>& nees) {
-  std::vector<double> values;
-  values.reserve(nees.size());
-  for (const io::NeesSample& s : nees) values.push_back(s.nees);
-  return mean_of(values);
-}
-
-void write_scores(const std::string& out_dir, const RunMetrics& metrics,
-                  const std::vector<io::NeesSample>& nees, const std::string& dataset_dir,
-                  const std::string& truth_file) {
-  const fs::path out(out_dir);
-  if (nees.empty()) {
-    std::error_code ec;
-    fs::remove(out / "nees.csv", ec);
-  } else {
-    io::write_nees_csv((out / "nees.csv").string(), nees);
-  }
-  io::write_metrics_json((out / "metrics.json").string(), metrics, dataset_dir, truth_file);
-}
-
 namespace {
 
 /// eval adds its scores to the folder: a result that msislab wrote, or a folder of the user's with

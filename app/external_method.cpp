@@ -3,8 +3,8 @@
 #include <cmath>
 #include <filesystem>
 
-#include "app/eval_command.hpp"
 #include "app/external_program.hpp"
+#include "app/method_result.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"

@@ -1,4 +1,4 @@
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 
 #include <filesystem>
 

@@ -13,9 +13,9 @@
 #include <stdexcept>
 
 #include "app/external_method.hpp"
+#include "app/method_result.hpp"
 #include "app/montecarlo_directory.hpp"
 #include "app/process.hpp"
-#include "app/run_command.hpp"
 #include "app/worker_processes.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"

@@ -9,7 +9,6 @@
 #include <memory>
 
 #include "app/cli.hpp"
-#include "app/eval_command.hpp"
 #include "app/external_method.hpp"
 #include "app/run_method.hpp"
 #include "io/atomic_file.hpp"
@@ -22,29 +21,6 @@
 namespace msislab::app {
 
 namespace fs = std::filesystem;
-
-void write_method_result(const std::string& out_dir, const MethodResult& result,
-                         const std::string& dataset_label, bool write_map) {
-  io::create_output_dir(out_dir);
-  const fs::path out(out_dir);
-  io::write_trajectory_tum((out / "trajectory.tum").string(), result.trajectory, result.depth_m);
-  if (result.smoothed_trajectory) {
-    io::write_trajectory_tum((out / "trajectory_smoothed.tum").string(),
-                             *result.smoothed_trajectory, result.depth_m);
-  }
-  if (result.scans) {
-    io::write_scans_csv((out / "scans.csv").string(), *result.scans);
-    if (write_map) io::write_points_ply((out / "map.ply").string(), world_points(*result.scans));
-  }
-  if (result.matches) io::write_matches_csv((out / "matches.csv").string(), *result.matches);
-  if (!result.calibration_history.empty()) {
-    io::write_calibration_csv((out / "calibration.csv").string(), result.calibration_history);
-  }
-  if (result.estimated_calibration) {
-    io::write_calibration((out / "calibration.yaml").string(), *result.estimated_calibration);
-  }
-  if (result.metrics) write_scores(out_dir, *result.metrics, result.nees, dataset_label);
-}
 
 namespace {
 

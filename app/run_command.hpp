@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "app/method_result.hpp"
 #include "app/run_method.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
@@ -29,13 +30,6 @@ struct RunOutcome {
   std::vector<StampedPose> trajectory;
   std::optional<RunMetrics> metrics;  ///< present when the dataset has truth (simulation or GPS)
 };
-
-/// Writes the files of a result directory (docs/formats.md) into the new folder out_dir:
-/// trajectory.tum, trajectory_smoothed.tum, scans.csv, map.ply (with write_map), matches.csv,
-/// metrics.json and nees.csv, as far as the result has them. dataset_label is recorded in
-/// metrics.json as the dataset.
-void write_method_result(const std::string& out_dir, const MethodResult& result,
-                         const std::string& dataset_label, bool write_map = true);
 
 /// Checks the output path and reads every input first, then runs and puts the result directory in
 /// place whole (io::StagedFolder). Throws io::InputError on bad input (unknown method, missing or

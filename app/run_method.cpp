@@ -5,8 +5,8 @@
 #include <iostream>
 #include <iterator>
 
-#include "app/eval_command.hpp"
 #include "app/external_method.hpp"
+#include "app/method_result.hpp"
 #include "io/input_error.hpp"
 #include "report/methods.hpp"
 #include "slam/calibration_update.hpp"

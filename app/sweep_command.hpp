@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "io/sweep_files.hpp"
 
 namespace msislab::app {

@@ -48,5 +48,19 @@ if [ -d app ]; then
     status=1
   done < <(grep -rnE "$numerics" app --include='*.hpp' --include='*.cpp')
 fi
-[ "$status" -eq 0 ] && echo "layering holds: $dirs; app/ computes no statistics"
+# A command file (app/X_command.cpp and .hpp: its options, its messages, the call) uses the units
+# of app/ and the libraries, never another command's file: what two commands share is a unit.
+if [ -d app ]; then
+  while IFS=: read -r file line text; do
+    own=$(basename "$file")
+    used=$(sed -n 's/.*#include "app\/\([a-z_]*_command\)\.hpp".*/\1/p' <<<"$text")
+    [ "$used" = "${own%.*}" ] && continue
+    echo "$file:$line: a command file includes another command's app/$used.hpp; move what" \
+      "both use into a unit of app/"
+    status=1
+  done < <(grep -rnE '#include "app/[a-z_]+_command[.]hpp"' app --include='*_command.cpp' \
+             --include='*_command.hpp')
+fi
+[ "$status" -eq 0 ] && echo "layering holds: $dirs; app/ computes no statistics; no command" \
+  "file includes another's"
 exit "$status"

@@ -11,7 +11,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 

@@ -14,7 +14,7 @@
 #include <sstream>
 #include <string>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "io/expectations_yaml.hpp"
 #include "io/results.hpp"
 #include "method_summary_lookup.hpp"

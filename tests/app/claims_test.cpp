@@ -20,7 +20,7 @@
 #include <string>
 
 #include "app/check_command.hpp"
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "cli_runner.hpp"
 #include "io/expectations_yaml.hpp"
 #include "io/results.hpp"

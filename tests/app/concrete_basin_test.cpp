@@ -15,7 +15,7 @@
 #include <iostream>
 #include <string>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "method_summary_lookup.hpp"

@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "method_summary_lookup.hpp"
 #include "test_support.hpp"
 

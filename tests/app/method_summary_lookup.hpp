@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 #include "eval/evaluation.hpp"
 
 namespace msislab::app::testing_lookup {

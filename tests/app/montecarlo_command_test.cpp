@@ -1,7 +1,7 @@
 // `msislab montecarlo` end to end on small_basin (3 runs of deadreckoning and worldcentric, about
 // 2 s each): the summary and run directories, seeds, resuming, shards merged into the same bytes,
 // failed runs recorded while the others finish, and bad input rejected before anything runs.
-#include "app/montecarlo_command.hpp"
+#include "app/montecarlo.hpp"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>

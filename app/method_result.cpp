@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "io/atomic_file.hpp"
+#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 
 namespace msislab::app {

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "app/cli.hpp"
+#include "app/method_result.hpp"
 #include "eval/alignment.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"

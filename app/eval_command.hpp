@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "app/method_result.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"
 #include "io/truth.hpp"

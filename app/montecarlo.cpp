@@ -1,13 +1,8 @@
 #include "app/montecarlo.hpp"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
-#include <iomanip>
 #include <iostream>
-#include <memory>
 #include <optional>
 #include <thread>
 
@@ -16,7 +11,6 @@
 #include "app/montecarlo_runs.hpp"
 #include "app/process.hpp"
 #include "app/progress.hpp"
-#include "app/run_method.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"

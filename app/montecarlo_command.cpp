@@ -5,11 +5,9 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
-#include <optional>
 
 #include "app/cli.hpp"
 #include "app/montecarlo.hpp"
-#include "app/progress.hpp"
 #include "io/input_error.hpp"
 
 namespace msislab::app {

@@ -10,12 +10,12 @@
 
 #include "app/cli.hpp"
 #include "app/external_method.hpp"
+#include "app/method_result.hpp"
 #include "app/run_method.hpp"
 #include "io/atomic_file.hpp"
 #include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/results.hpp"
 #include "report/methods.hpp"
 
 namespace msislab::app {

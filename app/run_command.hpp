@@ -6,7 +6,6 @@
 #include <string>
 #include <vector>
 
-#include "app/method_result.hpp"
 #include "app/run_method.hpp"
 #include "eval/evaluation.hpp"
 #include "io/results.hpp"

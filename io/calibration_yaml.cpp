@@ -77,7 +77,7 @@ Calibration read_calibration(const std::string& path) {
 
 void write_calibration(const std::string& path, const Calibration& calibration) {
   const std::string text = calibration_yaml(calibration);
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 Calibration calibration_as_stored(const Calibration& calibration) {

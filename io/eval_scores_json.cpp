@@ -3,11 +3,11 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/angles.hpp"
+
 namespace msislab::io {
 
 namespace {
-
-constexpr double kDegPerRad = 180.0 / M_PI;
 
 Json summary_json(const RelativePoseError& rpe, const SampleSummary& s) {
   if (rpe.pairs == 0) return Json();
@@ -43,7 +43,7 @@ void add_eval_scores(Json& json, const EvalScores& scores) {
   alignment["window_s"] = a.window_s ? Json(*a.window_s) : Json();
   alignment["positions"] = a.positions;
   alignment["t_offset_s"] = a.t_offset_s;
-  alignment["rotation_deg"] = a.T_truth_estimate.yaw() * kDegPerRad;
+  alignment["rotation_deg"] = a.T_truth_estimate.yaw() * kRadToDeg;
   alignment["x_m"] = a.T_truth_estimate.x();
   alignment["y_m"] = a.T_truth_estimate.y();
   if (!scores.rpe) {
@@ -67,7 +67,7 @@ std::optional<EvalScores> read_eval_scores(const JsonObject& json) {
   a.positions = size_count_of(alignment, "positions");
   a.t_offset_s = alignment.number("t_offset_s");
   a.T_truth_estimate = Pose2(alignment.number("x_m"), alignment.number("y_m"),
-                             alignment.number("rotation_deg") / kDegPerRad);
+                             alignment.number("rotation_deg") / kRadToDeg);
   if (json.has_value("rpe")) {
     const JsonObject rpe = json.object("rpe");
     scores.rpe = RelativePoseError{};

@@ -117,7 +117,7 @@ std::string format_json(const Json& value, const JsonLayout& layout) {
 
 void write_json_file(const std::string& path, const Json& value, const JsonLayout& layout) {
   const std::string text = format_json(value, layout);
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 JsonObject::JsonObject(const Json& value, std::string path, std::string prefix)

@@ -72,7 +72,7 @@ void write_junit_xml(const std::string& path, const std::string& suite,
     xml += "    </testcase>\n";
   }
   xml += "  </testsuite>\n</testsuites>\n";
-  write_file_atomically(path, [&](std::ostream& out) { out << xml; });
+  write_text_atomically(path, xml);
 }
 
 bool junit_written_by_msislab(const std::string& path) {

@@ -242,7 +242,7 @@ void write_obj(const std::string& path, const sim::TriangleMesh& mesh) {
     text += '\n';
   }
   append_obj_groups(path, mesh, text);
-  write_file_atomically(path, [&text](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 }  // namespace msislab::io

@@ -82,7 +82,7 @@ NavigationNoise read_navigation_noise(const std::string& path) {
 
 void write_navigation_noise(const std::string& path, const NavigationNoise& noise) {
   const std::string text = navigation_noise_yaml(noise);
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 NavigationNoise navigation_noise_as_stored(const NavigationNoise& noise) {

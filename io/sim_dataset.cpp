@@ -203,8 +203,7 @@ void write_files(const fs::path& dir, const sim::Scenario& scenario,
   if (scenario.gps.enabled) write_gps_log(base + "_DGPS.log", records.gps);
   write_calibration((dir / "calibration.yaml").string(), records.calibration);
   write_navigation_noise((dir / "navigation_noise.yaml").string(), *records.navigation_noise);
-  write_file_atomically((dir / "scenario.yaml").string(),
-                        [&](std::ostream& out) { out << scenario_text; });
+  write_text_atomically((dir / "scenario.yaml").string(), scenario_text);
   fs::create_directories(dir / "truth");
   write_tum((dir / "truth" / "trajectory.tum").string(), records.truth_trajectory);
   write_beam_truth((dir / "truth" / "beams.csv").string(), result.beams);

@@ -128,7 +128,7 @@ void write_sweep_csv(const std::string& path, const SweepTable& table) {
     }
     text += "\n";
   }
-  write_file_atomically(path, [&](std::ostream& out) { out << text; });
+  write_text_atomically(path, text);
 }
 
 SweepTable read_sweep_csv(const std::string& path) {

@@ -30,8 +30,6 @@ using DeviceHandle = std::unique_ptr<RTCDeviceTy, DeviceRelease>;
 using SceneHandle = std::unique_ptr<RTCSceneTy, SceneRelease>;
 using GeometryHandle = std::unique_ptr<RTCGeometryTy, GeometryRelease>;
 
-constexpr int kPacketSize = 16;
-
 // The one device error callback: keeps the first error so that the build steps can be checked
 // once instead of after every Embree call.
 class ErrorLog {
@@ -62,10 +60,11 @@ class ErrorLog {
 using scene_detail::DeviceHandle;
 using scene_detail::ErrorLog;
 using scene_detail::GeometryHandle;
-using scene_detail::kPacketSize;
 using scene_detail::SceneHandle;
 
 namespace {
+
+constexpr int kPacketSize = 16;
 
 // The BVH is built once from valid data, so a bad mesh is a programming error caught here rather
 // than a crash inside Embree.

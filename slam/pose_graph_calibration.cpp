@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/angles.hpp"
 #include "slam/calibration_model.hpp"
 #include "slam/pose_graph_slam.hpp"
 
@@ -183,7 +184,6 @@ std::vector<CalibrationEstimate> PoseGraphSlam::calibration() const {
   if (has(GraphConstant::kClockOffset)) {
     constant(GraphConstant::kClockOffset, "clock_offset_s", 1.0);
   }
-  constexpr double kRadToDeg = 180.0 / M_PI;
   if (estimates_heading_bias()) {
     out.push_back({"heading_bias_deg", bias_.first * kRadToDeg, bias_.second * kRadToDeg});
   }

@@ -7,6 +7,7 @@
 #include <optional>
 #include <utility>
 
+#include "geometry/angles.hpp"
 #include "slam/match_validation.hpp"
 #include "slam/numerical_error.hpp"
 
@@ -49,7 +50,6 @@ PoseGraphSlam::PoseGraphSlam(const TrajectorySlamConfig& front_end,
                          c.clock_offset_prior_s, c.clock_offset_sigma_s);
   }
   if (c.compass_deviation) {
-    constexpr double kDegToRad = M_PI / 180.0;
     const double sigma_rad = c.compass_deviation_sigma_deg * kDegToRad;
     for (const auto& [which, prior_deg] :
          {std::pair(GraphConstant::kDeviationCos, c.compass_deviation_cos_prior_deg),

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "geometry/angles.hpp"
 #include "slam/calibration_model.hpp"
 #include "slam/trajectory_slam.hpp"
 
@@ -16,7 +17,6 @@ namespace msislab {
 TrajectorySlam::TrajectorySlam(const TrajectorySlamConfig& config, const GaussianPose2& start_world)
     : config_(config), start_world_(start_world) {
   const CalibrationStatesConfig& c = config_.calibration;
-  constexpr double kDegToRad = M_PI / 180.0;
   std::vector<std::pair<double, double>> priors;  // (mean, sd) in row order
   if (c.range_scale) {
     range_scale_row_ = static_cast<Eigen::Index>(priors.size());
@@ -152,7 +152,6 @@ std::vector<CalibrationEstimate> TrajectorySlam::calibration() const {
     const Eigen::Index r = clock_row_;
     out.push_back({"clock_offset_s", calibration_(r), std::sqrt(P_(r, r))});
   }
-  constexpr double kRadToDeg = 180.0 / M_PI;
   if (heading_bias_row_ >= 0) {
     const Eigen::Index r = heading_bias_row_;
     out.push_back(

@@ -279,7 +279,7 @@ void make_scenario(const Options& options) {
     std::cout << yaml;
     return;
   }
-  msislab::io::write_file_atomically(options.out_path, [&](std::ostream& out) { out << yaml; });
+  msislab::io::write_text_atomically(options.out_path, yaml);
   std::cerr << "wrote " << options.out_path << "\n";
 }
 

@@ -9,12 +9,12 @@
 #include <set>
 
 #include "app/cli.hpp"
-#include "io/expectations_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/junit_xml.hpp"
 #include "io/output_guard.hpp"
-#include "io/result_figures.hpp"
 #include "io/text_lines.hpp"
+#include "plot/result_figures.hpp"
+#include "settings/expectations_yaml.hpp"
 
 namespace msislab::app {
 
@@ -42,7 +42,7 @@ std::vector<ResultFigures> read_results(const CheckOptions& options,
     if (!names.insert(name).second) {
       throw io::InputError("check: two results named '" + name + "' (name them NAME=PATH)");
     }
-    results.push_back(io::read_result_figures(name, path));
+    results.push_back(plot::read_result_figures(name, path));
   }
   if (options.partial) return results;
   for (const Expectation& e : expectations) {
@@ -90,7 +90,7 @@ void print_table(const std::vector<CheckOutcome>& outcomes) {
 
 std::vector<CheckOutcome> run_check(const CheckOptions& options) {
   const std::vector<Expectation> expectations =
-      io::read_expectations_yaml(options.expectations_path);
+      settings::read_expectations_yaml(options.expectations_path);
   if (options.results.empty() && !options.partial) {
     throw io::InputError("check: no result given (RESULT..., or --partial to check quotes only)");
   }

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
+#include <string>
 #include <vector>
 
+#include "app/method_catalogue.hpp"
 #include "app/montecarlo.hpp"
-#include "report/methods.hpp"
+#include "io/yaml_fields.hpp"
 
 namespace msislab::app {
 
@@ -26,6 +28,20 @@ void add_commands(CLI::App& app, CommandLine& line) {
   add_check_command(app, line);
 }
 
+std::string unknown_command_message(CLI::App& app, int argc, char** argv) {
+  if (argc < 2) return "";
+  const std::string word = argv[1];
+  if (word.empty() || word[0] == '-') return "";
+  std::vector<std::string> names;
+  for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+    if (command->check_name(word)) return "";
+    names.push_back(command->get_name());
+  }
+  const std::string nearest = io::closest_key(word, names);
+  return "unknown command '" + word + "' (" +
+         (nearest.empty() ? "" : "did you mean '" + nearest + "'? ") + "see msislab --help)";
+}
+
 void add_force_flag(CLI::App& command, bool& force) {
   command.add_flag("--force", force,
                    "Replace the output folder even when msislab did not write it (its contents "
@@ -34,7 +50,8 @@ void add_force_flag(CLI::App& command, bool& force) {
 
 std::string method_list() {
   std::string methods;
-  for (const std::string& m : report::method_names()) methods += (methods.empty() ? "" : ", ") + m;
+  for (const std::string& m : MethodCatalogue::builtin_names())
+    methods += (methods.empty() ? "" : ", ") + m;
   return methods;
 }
 

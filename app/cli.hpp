@@ -51,6 +51,13 @@ void add_force_flag(CLI::App& command, bool& force);
 /// Every subcommand, in the order of `msislab --help`.
 void add_commands(CLI::App& app, CommandLine& line);
 
+/// When the first argument is a word (not an option) that names none of app's subcommands:
+/// "unknown command 'WORD' (did you mean 'NEAREST'? see msislab --help)", NEAREST the subcommand
+/// near enough to be a typo of it (io::closest_key; without one, no question); else empty. main
+/// checks it before parsing, so that a misspelt command is named, and `msislab simulat --help` is
+/// an error, not the main help.
+std::string unknown_command_message(CLI::App& app, int argc, char** argv);
+
 /// "robocentric, worldcentric, ...": the methods for help texts.
 std::string method_list();
 

@@ -13,14 +13,14 @@
 
 #include "app/cli.hpp"
 #include "app/method_result.hpp"
+#include "dataset/dataset.hpp"
 #include "eval/alignment.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config_yaml.hpp"
-#include "io/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
+#include "settings/config_yaml.hpp"
 
 namespace msislab::app {
 
@@ -54,13 +54,13 @@ void record_scores(const std::string& dir) {
 
 /// The run's own record. A result written without truth has none: then only --truth can score it,
 /// and the run's figures are unknown.
-io::StoredMetrics read_run_record(const EvalOptions& options, const fs::path& dir) {
+results::StoredMetrics read_run_record(const EvalOptions& options, const fs::path& dir) {
   const std::string path = (dir / "metrics.json").string();
-  if (fs::exists(path)) return io::read_metrics_json(path);
+  if (fs::exists(path)) return results::read_metrics_json(path);
   if (options.truth_path.empty()) {
     io::fail_file(path, "missing (a result written without truth needs --truth FILE)");
   }
-  io::StoredMetrics stored;
+  results::StoredMetrics stored;
   stored.metrics.method = "unknown";
   stored.metrics.runtime_s = std::numeric_limits<double>::quiet_NaN();
   return stored;
@@ -68,17 +68,17 @@ io::StoredMetrics read_run_record(const EvalOptions& options, const fs::path& di
 
 /// The truth, and the file it came from for messages.
 struct TruthSource {
-  io::Truth truth;
+  dataset::Truth truth;
   std::string file;
 };
 
-TruthSource dataset_truth(const io::StoredMetrics& stored, const std::string& metrics_path) {
+TruthSource dataset_truth(const results::StoredMetrics& stored, const std::string& metrics_path) {
   if (stored.dataset_dir.empty() || !fs::is_directory(stored.dataset_dir)) {
     io::fail_file(metrics_path, "key 'dataset': the dataset '" + stored.dataset_dir +
                                     "' is not there any more; give --truth FILE");
   }
-  const io::DatasetFiles files = io::find_dataset_files(stored.dataset_dir);
-  io::Truth truth = io::load_truth(files, io::load_calibration(files));
+  const dataset::DatasetFiles files = dataset::find_dataset_files(stored.dataset_dir);
+  dataset::Truth truth = dataset::load_truth(files, dataset::load_calibration(files));
   if (truth.kind.empty()) {
     io::fail_file(stored.dataset_dir,
                   "the dataset has no truth (truth/trajectory.tum or "
@@ -176,10 +176,10 @@ EvalOutcome evaluate(const EvalOptions& options) {
   check_options(options);
   const fs::path dir(options.result_dir);
   if (!fs::is_directory(dir)) io::fail_file(options.result_dir, "no such result directory");
-  const io::StoredMetrics stored = read_run_record(options, dir);
+  const results::StoredMetrics stored = read_run_record(options, dir);
   const std::vector<TimeSegment> segments =
       options.config_path.empty() ? stored.metrics.segment_windows
-                                  : io::read_slam_config(options.config_path).segments;
+                                  : settings::read_slam_config(options.config_path).segments;
   const std::string estimate_file = (dir / "trajectory.tum").string();
   const std::vector<io::TumPose> tum = io::read_tum(estimate_file);
   std::vector<StampedPose> trajectory;
@@ -189,12 +189,12 @@ EvalOutcome evaluate(const EvalOptions& options) {
   const fs::path scans_path = dir / "scans.csv";
   std::optional<std::vector<StampedPose>> scans;
   if (fs::exists(scans_path)) {
-    scans = shift_times(io::read_scans_csv(scans_path.string()), options.t_offset_s);
+    scans = shift_times(results::read_scans_csv(scans_path.string()), options.t_offset_s);
   }
   const TruthSource truth =
       options.truth_path.empty()
           ? dataset_truth(stored, (dir / "metrics.json").string())
-          : TruthSource{io::read_tum_truth(options.truth_path, "tum"), options.truth_path};
+          : TruthSource{dataset::read_tum_truth(options.truth_path, "tum"), options.truth_path};
   require_overlap(trajectory, truth, estimate_file, tum.front().t_s, tum.back().t_s,
                   options.t_offset_s);
   EvalScores scores;
@@ -213,7 +213,7 @@ EvalOutcome evaluate(const EvalOptions& options) {
   metrics.runtime_s = stored.metrics.runtime_s;
   metrics.diagnostics = stored.metrics.diagnostics;
   metrics.eval_scores = scores;
-  std::vector<io::NeesSample> nees;
+  std::vector<results::NeesSample> nees;
   if (scans) nees = scan_nees(*scans, truth.truth);
   metrics.anees = average_nees(nees);
   outcome.nees_rows = nees.size();

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/results.hpp"
-#include "io/truth.hpp"
+#include "results/results.hpp"
 
 namespace msislab::app {
 

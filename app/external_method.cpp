@@ -8,9 +8,9 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/results.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
+#include "results/results.hpp"
 
 namespace msislab::app {
 
@@ -62,7 +62,7 @@ std::optional<std::vector<PlacedScan>> read_scans(const fs::path& out) {
   fs::path path;
   if (!program_file(out, "scans.csv", path)) return std::nullopt;
   std::vector<PlacedScan> scans;
-  for (const StampedPose& pose : io::read_scans_csv(path.string())) {
+  for (const StampedPose& pose : results::read_scans_csv(path.string())) {
     PlacedScan scan;
     scan.scan.t_s = pose.t_s;
     scan.centre_world = pose;
@@ -72,9 +72,9 @@ std::optional<std::vector<PlacedScan>> read_scans(const fs::path& out) {
 }
 
 /// Scores the estimate against the dataset's truth as run_method scores a built-in method's.
-void score(const report::MethodInfo& method, const io::RunInputs& in, double runtime_s,
+void score(const Method& method, const dataset::RunInputs& in, double runtime_s,
            MethodResult& result) {
-  const io::Truth& truth = in.truth;
+  const dataset::Truth& truth = in.truth;
   result.errors = position_errors(result.trajectory, truth.positions);
   result.metrics = score_errors(truth, result.errors, in.config.segments, "trajectory.tum");
   result.t_first_truth_s = truth.positions.front().t_s;
@@ -97,19 +97,19 @@ void score(const report::MethodInfo& method, const io::RunInputs& in, double run
 
 }  // namespace
 
-MethodResult run_external_method(const report::MethodInfo& method, const io::RunInputs& in,
+MethodResult run_external_method(const Method& method, const dataset::RunInputs& in,
                                  const ExternalSetup& setup) {
-  const io::ExternalMethod& spec = *method.external;
-  const fs::path work(setup.work_dir);
+  const settings::ExternalMethod& spec = *method.external;
+  const fs::path work(io::absolute_path(setup.work_dir));  // {out} is absolute (docs/cli.md)
   std::error_code ec;
   fs::remove_all(work, ec);
   const fs::path out = work / "out";
   fs::create_directories(out, ec);
   if (ec) throw ExternalMethodError("cannot make " + out.string() + ": " + ec.message(), {});
-  const io::PlaceholderValues values{io::absolute_path(setup.dataset_dir), out.string(),
-                                     io::absolute_path(setup.config_path), setup.seed};
+  const settings::PlaceholderValues values{io::absolute_path(setup.dataset_dir), out.string(),
+                                           io::absolute_path(setup.config_path), setup.seed};
   ProgramSpec program;
-  program.argv = io::expand_command(spec, values);
+  program.argv = settings::expand_command(spec, values);
   program.environment = spec.environment;
   program.working_dir = out.string();
   program.stderr_path = (work / "stderr.log").string();

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/method_catalogue.hpp"
 #include "app/run_method.hpp"
-#include "report/methods.hpp"
 
 namespace msislab::app {
 
@@ -42,7 +42,7 @@ inline constexpr std::size_t kStderrTailLines = 20;
 /// Runs the method's program and scores what it wrote, as run_method does for a built-in method
 /// (`in` is the same dataset, read by msislab: its truth, config and start). Throws
 /// ExternalMethodError.
-MethodResult run_external_method(const report::MethodInfo& method, const io::RunInputs& in,
+MethodResult run_external_method(const Method& method, const dataset::RunInputs& in,
                                  const ExternalSetup& setup);
 
 }  // namespace msislab::app

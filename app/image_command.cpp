@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "app/cli.hpp"
-#include "io/acoustic_image.hpp"
+#include "dataset/sonar_revolution.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/sonar_revolution.hpp"
+#include "plot/acoustic_image.hpp"
 
 namespace msislab::app {
 
@@ -20,11 +20,12 @@ void draw_image(const ImageOptions& options) {
   }
   io::check_output_file({options.out_path, "image", "image", {options.dataset_dir}, false},
                         io::png_written_by_msislab);
-  const io::SonarRevolution revolution =
-      options.keyframe > 0 ? io::read_detected_revolution(options.dataset_dir, options.keyframe)
-                           : io::read_revolution(options.dataset_dir, options.revolution);
-  io::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
-                           options.size_px);
+  const dataset::SonarRevolution revolution =
+      options.keyframe > 0
+          ? dataset::read_detected_revolution(options.dataset_dir, options.keyframe)
+          : dataset::read_revolution(options.dataset_dir, options.revolution);
+  plot::write_acoustic_image(options.out_path, revolution.beams, revolution.setup, revolution.mount,
+                             options.size_px);
 }
 
 void add_image_command(CLI::App& app, CommandLine&) {

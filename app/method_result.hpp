@@ -7,32 +7,32 @@
 #include <vector>
 
 #include "app/run_method.hpp"
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/results.hpp"
-#include "io/truth.hpp"
+#include "results/results.hpp"
 
 namespace msislab::app {
 
 /// Position errors of a trajectory against the truth, their statistics and the segment means
 /// (windows in seconds from the first truth stamp). InputError naming `source` when no truth stamp
 /// falls inside the trajectory's span.
-RunMetrics score_trajectory(const io::Truth& truth, const std::vector<StampedPose>& trajectory,
+RunMetrics score_trajectory(const dataset::Truth& truth, const std::vector<StampedPose>& trajectory,
                             const std::vector<TimeSegment>& segments, const std::string& source);
 /// The same from the position errors (position_errors) computed already.
-RunMetrics score_errors(const io::Truth& truth, const std::vector<ErrorSample>& errors,
+RunMetrics score_errors(const dataset::Truth& truth, const std::vector<ErrorSample>& errors,
                         const std::vector<TimeSegment>& segments, const std::string& source);
 
 /// The NEES of each scan pose against the pose truth; empty when the truth has no poses (GPS).
-std::vector<io::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
-                                      const io::Truth& truth);
+std::vector<results::NeesSample> scan_nees(const std::vector<StampedPose>& scan_poses,
+                                           const dataset::Truth& truth);
 
 /// The average NEES (ANEES) of the samples; nullopt when there are none.
-std::optional<double> average_nees(const std::vector<io::NeesSample>& nees);
+std::optional<double> average_nees(const std::vector<results::NeesSample>& nees);
 
 /// Writes metrics.json and nees.csv into a result directory; a stale nees.csv is removed when
 /// there are no NEES samples.
 void write_scores(const std::string& out_dir, const RunMetrics& metrics,
-                  const std::vector<io::NeesSample>& nees, const std::string& dataset_dir,
+                  const std::vector<results::NeesSample>& nees, const std::string& dataset_dir,
                   const std::string& truth_file = "");
 
 /// Writes the files of a result directory (docs/formats.md) into the new folder out_dir:

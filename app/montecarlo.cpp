@@ -12,12 +12,11 @@
 #include "app/process.hpp"
 #include "app/progress.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
-#include "io/montecarlo_files.hpp"
-#include "io/scenario_scene.hpp"
 #include "io/text_lines.hpp"
-#include "report/methods.hpp"
+#include "results/montecarlo_files.hpp"
+#include "settings/config_yaml.hpp"
+#include "settings/scenario_scene.hpp"
 #include "sim/navigation_sensors.hpp"
 
 namespace msislab::app {
@@ -26,10 +25,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-void check_methods(const std::vector<std::string>& methods) {
+void check_methods(const MethodCatalogue& catalogue, const std::vector<std::string>& methods) {
   if (methods.empty()) throw io::InputError("--methods: no method given");
   for (std::size_t i = 0; i < methods.size(); ++i) {
-    report::method_info(methods[i], "--methods");
+    catalogue.at(methods[i], "--methods");
     if (std::find(methods.begin(), methods.begin() + static_cast<long>(i), methods[i]) !=
         methods.begin() + static_cast<long>(i)) {
       throw io::InputError("--methods '" + methods[i] + "': given twice");
@@ -40,22 +39,22 @@ void check_methods(const std::vector<std::string>& methods) {
 /// Reads and checks every input and locks the directory; then makes or resumes it: scenario.yaml
 /// and config.yaml copies, montecarlo.json.
 RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock>& lock) {
-  report::load_methods_file(options.methods_file);
-  check_methods(options.methods);
   RunContext ctx;
-  io::MonteCarloManifest& manifest = ctx.manifest;
+  ctx.methods = MethodCatalogue::with_methods_file(options.methods_file);
+  check_methods(ctx.methods, options.methods);
+  results::MonteCarloManifest& manifest = ctx.manifest;
   check_shard_and_jobs(options.shard, options.jobs, manifest.shard_index, manifest.shard_count);
   if (options.runs < 1) {
     throw io::InputError("--runs " + std::to_string(options.runs) + ": must be at least 1");
   }
-  io::CheckedScenario checked = io::read_checked_scenario(options.scenario_path);
+  settings::CheckedScenario checked = settings::read_checked_scenario(options.scenario_path);
   for (const std::string& warning : checked.warnings) std::cerr << "msislab: " << warning << '\n';
   ctx.scenario = std::move(checked.scenario);
   ctx.mesh = std::move(checked.mesh);
   // Every run's dataset carries the scenario's navigation noise; the config is made over it once.
-  io::DatasetConfig config = io::slam_config_for_dataset(
-      options.config_path, io::navigation_noise_as_stored(sim::navigation_noise_of(ctx.scenario)),
-      "the scenario");
+  settings::DatasetConfig config = settings::slam_config_for_dataset(
+      options.config_path,
+      settings::navigation_noise_as_stored(sim::navigation_noise_of(ctx.scenario)), "the scenario");
   ctx.config = std::move(config.config);
   ctx.scenario_text = io::read_whole_file(options.scenario_path);
   DirectoryInputs inputs;
@@ -92,7 +91,7 @@ RunContext prepare(const MonteCarloOptions& options, std::optional<DirectoryLock
 void check_shard_and_jobs(const std::string& shard, int jobs, int& shard_index, int& shard_count) {
   shard_index = 0;
   shard_count = 1;
-  if (!shard.empty() && !io::parse_shard(shard, shard_index, shard_count)) {
+  if (!shard.empty() && !results::parse_shard(shard, shard_index, shard_count)) {
     throw io::InputError("--shard '" + shard + "': expected i/N with 0 <= i < N");
   }
   if (jobs < 0) {

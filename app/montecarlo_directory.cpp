@@ -5,8 +5,8 @@
 
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "io/results.hpp"
 #include "io/text_lines.hpp"
+#include "results/results.hpp"
 
 namespace msislab::app {
 
@@ -22,7 +22,7 @@ std::string run_dir(const std::string& dir, const std::string& method, int run) 
   return (fs::path(dir) / "runs" / method / run_name(run)).string();
 }
 
-std::vector<int> runs_of(const io::MonteCarloManifest& manifest) {
+std::vector<int> runs_of(const results::MonteCarloManifest& manifest) {
   std::vector<int> runs;
   for (int r = manifest.shard_index; r < manifest.runs; r += manifest.shard_count) {
     runs.push_back(r);
@@ -42,7 +42,7 @@ std::string executable_digest(const std::string& executable_path) {
   return hex;
 }
 
-void check_resumable(const std::string& dir, const io::MonteCarloManifest& manifest,
+void check_resumable(const std::string& dir, const results::MonteCarloManifest& manifest,
                      const DirectoryInputs& inputs, const std::string& scenario_path) {
   const fs::path d(dir);
   if (!fs::exists(d / "montecarlo.json")) return;
@@ -66,7 +66,7 @@ void check_resumable(const std::string& dir, const io::MonteCarloManifest& manif
   }
   const std::string& digest = manifest.executable_digest;
   const std::string made_by =
-      io::read_manifest_json((d / "montecarlo.json").string()).executable_digest;
+      results::read_manifest_json((d / "montecarlo.json").string()).executable_digest;
   if (made_by != digest) {
     io::fail_file(dir, "holds runs made by another msislab build (executable digest " +
                            (made_by.empty() ? std::string("not recorded") : made_by) +
@@ -75,7 +75,7 @@ void check_resumable(const std::string& dir, const io::MonteCarloManifest& manif
   }
 }
 
-void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
+void write_directory_header(const std::string& dir, const results::MonteCarloManifest& manifest,
                             const DirectoryInputs& inputs) {
   io::create_output_dir(dir);
   const fs::path d(dir);
@@ -84,7 +84,7 @@ void write_directory_header(const std::string& dir, const io::MonteCarloManifest
     io::write_text_atomically((d / "config.yaml").string(), inputs.config_text);
   if (manifest.has_methods_file)
     io::write_text_atomically((d / "methods.yaml").string(), inputs.methods_text);
-  io::write_manifest_json((d / "montecarlo.json").string(), manifest);
+  results::write_manifest_json((d / "montecarlo.json").string(), manifest);
 }
 
 namespace {
@@ -94,11 +94,11 @@ MonteCarloRun read_run(const std::string& dir, const std::string& method, int ru
   MonteCarloRun record;
   record.index = run;
   if (fs::exists(rd / "metrics.json")) {
-    record.metrics = io::read_metrics_json((rd / "metrics.json").string()).metrics;
+    record.metrics = results::read_metrics_json((rd / "metrics.json").string()).metrics;
     if (fs::exists(rd / "errors.csv"))
-      record.errors = io::read_errors_csv((rd / "errors.csv").string());
+      record.errors = results::read_errors_csv((rd / "errors.csv").string());
     if (fs::exists(rd / "nees.csv")) {
-      for (const io::NeesSample& s : io::read_nees_csv((rd / "nees.csv").string())) {
+      for (const results::NeesSample& s : results::read_nees_csv((rd / "nees.csv").string())) {
         record.nees.push_back(s.nees);
       }
     }
@@ -111,7 +111,7 @@ MonteCarloRun read_run(const std::string& dir, const std::string& method, int ru
 }  // namespace
 
 std::vector<MethodSummary> write_summary_files(const std::string& dir,
-                                               const io::MonteCarloManifest& manifest,
+                                               const results::MonteCarloManifest& manifest,
                                                const std::vector<int>& runs) {
   std::vector<MethodSummary> summaries;
   for (const std::string& method : manifest.methods) {
@@ -123,11 +123,12 @@ std::vector<MethodSummary> write_summary_files(const std::string& dir,
     summaries[m].paired = paired_difference(summaries[m], summaries.front());
   }
   const fs::path d(dir);
-  io::write_summary_json((d / "summary.json").string(), summaries);
-  io::write_montecarlo_nees_csv((d / "nees.csv").string(), summaries);
-  io::write_error_spread_csv((d / "errors.csv").string(), summaries);
-  io::write_error_histogram_csv((d / "error_histogram.csv").string(), error_histograms(summaries));
-  io::write_seeds_csv((d / "seeds.csv").string(), runs, manifest.first_seed);
+  results::write_summary_json((d / "summary.json").string(), summaries);
+  results::write_montecarlo_nees_csv((d / "nees.csv").string(), summaries);
+  results::write_error_spread_csv((d / "errors.csv").string(), summaries);
+  results::write_error_histogram_csv((d / "error_histogram.csv").string(),
+                                     error_histograms(summaries));
+  results::write_seeds_csv((d / "seeds.csv").string(), runs, manifest.first_seed);
   return summaries;
 }
 

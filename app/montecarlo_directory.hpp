@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "eval/monte_carlo.hpp"
-#include "io/montecarlo_files.hpp"
+#include "results/montecarlo_files.hpp"
 
 namespace msislab::app {
 
@@ -18,7 +18,7 @@ std::string run_name(int run);
 std::string run_dir(const std::string& dir, const std::string& method, int run);
 
 /// The run indices of the manifest's shard, in increasing order.
-std::vector<int> runs_of(const io::MonteCarloManifest& manifest);
+std::vector<int> runs_of(const results::MonteCarloManifest& manifest);
 
 /// A digest of the msislab executable's bytes (FNV-1a, 64 bits, hex): another build, with other
 /// defaults or code, has another digest. InputError when the file cannot be read.
@@ -33,18 +33,18 @@ struct DirectoryInputs {
 
 /// InputError unless dir is new or holds runs made from the same scenario, config and methods
 /// file bytes by the executable with this digest.
-void check_resumable(const std::string& dir, const io::MonteCarloManifest& manifest,
+void check_resumable(const std::string& dir, const results::MonteCarloManifest& manifest,
                      const DirectoryInputs& inputs, const std::string& scenario_path);
 
 /// Creates dir and writes scenario.yaml, config.yaml (when has_config), methods.yaml (when
 /// has_methods_file) and montecarlo.json.
-void write_directory_header(const std::string& dir, const io::MonteCarloManifest& manifest,
+void write_directory_header(const std::string& dir, const results::MonteCarloManifest& manifest,
                             const DirectoryInputs& inputs);
 
 /// Summarises the given runs of every method from their run directories and writes summary.json,
 /// nees.csv and seeds.csv.
 std::vector<MethodSummary> write_summary_files(const std::string& dir,
-                                               const io::MonteCarloManifest& manifest,
+                                               const results::MonteCarloManifest& manifest,
                                                const std::vector<int>& runs);
 
 /// How many of the runs have a failed.json for at least one method.

@@ -5,8 +5,8 @@
 #include "app/directory_lock.hpp"
 #include "app/montecarlo_directory.hpp"
 #include "io/input_error.hpp"
-#include "io/montecarlo_files.hpp"
 #include "io/text_lines.hpp"
+#include "results/montecarlo_files.hpp"
 
 namespace msislab::app {
 
@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 namespace {
 
 struct ShardHeader {
-  io::MonteCarloManifest manifest;
+  results::MonteCarloManifest manifest;
   DirectoryInputs inputs;
 };
 
@@ -25,7 +25,7 @@ ShardHeader read_shard(const std::string& shard) {
     io::fail_file(shard, "not a Monte Carlo directory (no montecarlo.json)");
   }
   ShardHeader header;
-  header.manifest = io::read_manifest_json((d / "montecarlo.json").string());
+  header.manifest = results::read_manifest_json((d / "montecarlo.json").string());
   header.inputs.scenario_text = io::read_whole_file((d / "scenario.yaml").string());
   if (header.manifest.has_config) {
     header.inputs.config_text = io::read_whole_file((d / "config.yaml").string());
@@ -78,7 +78,7 @@ MonteCarloOutcome merge_montecarlo(const MergeOptions& options) {
     shards.push_back(read_shard(dir));
     check_same_settings(shards.front(), shards.back(), options.shard_dirs.front(), dir);
   }
-  io::MonteCarloManifest manifest = shards.front().manifest;
+  results::MonteCarloManifest manifest = shards.front().manifest;
   manifest.shard_index = 0;
   manifest.shard_count = 1;
   const ShardHeader& first = shards.front();

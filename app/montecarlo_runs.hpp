@@ -1,6 +1,6 @@
-// The worker side of `msislab montecarlo`: what the workers share, the runs still to do, the worker
-// process of one run (simulate into memory, run the pending methods, put each result in place or
-// record its failure) and the clean-up of what a killed worker left.
+// The runs of `msislab montecarlo`: what the workers share, the runs still to do, the scenario
+// traced once, the worker processes started (one per run, app/montecarlo_worker) and the clean-up
+// of what a killed worker left.
 #pragma once
 
 #include <cstddef>
@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "app/method_catalogue.hpp"
 #include "app/progress.hpp"
-#include "io/montecarlo_files.hpp"
+#include "results/montecarlo_files.hpp"
 #include "sim/mesh.hpp"
 #include "sim/scenario.hpp"
 #include "sim/simulator.hpp"
@@ -20,12 +21,13 @@ namespace msislab::app {
 
 /// What the workers share: the directory's settings and the inputs read once by the caller.
 struct RunContext {
-  io::MonteCarloManifest manifest;
+  results::MonteCarloManifest manifest;
   std::string dir;
   sim::Scenario scenario;
   std::string scenario_text;
   sim::TriangleMesh mesh;
   SlamConfig config;
+  MethodCatalogue methods;  ///< the built-in ones and the methods file's
   int simulation_threads = 1;
   bool keep_datasets = false;
   /// The scenario's rays, traced once for every run (null: each run traces its own).

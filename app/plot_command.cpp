@@ -8,12 +8,12 @@
 #include <memory>
 
 #include "app/cli.hpp"
-#include "io/acoustic_image.hpp"
+#include "app/method_catalogue.hpp"
+#include "dataset/sonar_revolution.hpp"
 #include "io/atomic_file.hpp"
 #include "io/output_guard.hpp"
-#include "io/sonar_revolution.hpp"
+#include "plot/acoustic_image.hpp"
 #include "plot/display.hpp"
-#include "report/methods.hpp"
 #include "report/plot_figures.hpp"
 #include "report/plot_inputs.hpp"
 #include "report/sweep_figures.hpp"
@@ -26,7 +26,8 @@ namespace {
 
 class FigureWriter {
  public:
-  explicit FigureWriter(const report::PlotOptions& options) : options_(options) {}
+  FigureWriter(const report::PlotOptions& options, const report::MethodStyles& styles)
+      : options_(options), styles_(styles) {}
 
   void chart(const fs::path& dir, const std::string& name, const plot::ChartSpec& spec) {
     charts_.write_png(prepare(dir, name), spec);
@@ -34,17 +35,18 @@ class FigureWriter {
   /// trajectory.png and (with truth) error.png of one result, into its figures/.
   void result(const report::ResultData& r) {
     const fs::path dir = fs::path(r.dir) / "figures";
-    chart(
-        dir, "trajectory.png",
-        report::trajectory_chart(r, options_.ellipse_every, options_.width_px, options_.height_px));
+    chart(dir, "trajectory.png",
+          report::trajectory_chart(styles_, r, options_.ellipse_every, options_.width_px,
+                                   options_.height_px));
     if (!r.errors.empty()) {
-      chart(dir, "error.png", report::error_chart({&r}, options_.width_px, options_.height_px));
+      chart(dir, "error.png",
+            report::error_chart(styles_, {&r}, options_.width_px, options_.height_px));
     }
   }
-  void acoustic_image(const fs::path& dir, const io::SonarRevolution& revolution) {
+  void acoustic_image(const fs::path& dir, const dataset::SonarRevolution& revolution) {
     const std::string dataset =
         fs::path(revolution.dataset_dir).lexically_normal().filename().string();
-    io::write_acoustic_figure(
+    plot::write_acoustic_figure(
         prepare(dir, "acoustic_image.png"), revolution.beams, revolution.setup, revolution.mount,
         "Sonar revolution " + std::to_string(revolution.index) + " of " + dataset,
         options_.width_px, options_.height_px);
@@ -61,6 +63,7 @@ class FigureWriter {
   }
 
   const report::PlotOptions& options_;
+  const report::MethodStyles& styles_;
   plot::ChartWriter charts_;
   std::vector<std::string> written_;
 };
@@ -75,36 +78,38 @@ std::string comparison_name(const report::PlotInputs& in, const report::ResultDa
 
 }  // namespace
 
-std::vector<std::string> draw_plot(const report::PlotInputs& in) {
+std::vector<std::string> draw_plot(const report::PlotInputs& in,
+                                   const report::MethodStyles& styles) {
   const report::PlotOptions& options = in.options;
   const fs::path figures = fs::path(options.dir) / "figures";
-  FigureWriter writer(options);
+  FigureWriter writer(options, styles);
   if (in.comparison) {
     std::vector<const report::ResultData*> with_errors;
     for (const report::ResultData& r : in.results) {
-      writer.chart(
-          figures, comparison_name(in, r),
-          report::trajectory_chart(r, options.ellipse_every, options.width_px, options.height_px));
+      writer.chart(figures, comparison_name(in, r),
+                   report::trajectory_chart(styles, r, options.ellipse_every, options.width_px,
+                                            options.height_px));
       if (!r.errors.empty()) with_errors.push_back(&r);
     }
     if (!with_errors.empty()) {
       writer.chart(figures, "errors.png",
-                   report::error_chart(with_errors, options.width_px, options.height_px));
+                   report::error_chart(styles, with_errors, options.width_px, options.height_px));
     }
   }
   for (const report::ResultData& r : in.results) writer.result(r);
   if (!in.nees.empty()) {
     writer.chart(figures, "nees.png",
-                 report::nees_chart(in.nees, options.width_px, options.height_px));
+                 report::nees_chart(styles, in.nees, options.width_px, options.height_px));
   }
   if (!in.error_spread.empty()) {
-    writer.chart(figures, "error_spread.png",
-                 report::error_spread_chart(in.error_spread, options.width_px, options.height_px));
+    writer.chart(
+        figures, "error_spread.png",
+        report::error_spread_chart(styles, in.error_spread, options.width_px, options.height_px));
   }
   if (!in.error_histograms.empty()) {
-    writer.chart(
-        figures, "error_distribution.png",
-        report::error_distribution_chart(in.error_histograms, options.width_px, options.height_px));
+    writer.chart(figures, "error_distribution.png",
+                 report::error_distribution_chart(styles, in.error_histograms, options.width_px,
+                                                  options.height_px));
   }
   if (in.sweep) {
     for (std::size_t k = 0; k < in.sweep->keys.size(); ++k) {
@@ -114,7 +119,7 @@ std::vector<std::string> draw_plot(const report::PlotInputs& in) {
         if (!report::sweep_has_metric(*in.sweep, metric)) continue;
         writer.chart(
             figures, "sweep_" + stem + "_" + metric + ".png",
-            report::sweep_chart(*in.sweep, k, metric, options.width_px, options.height_px));
+            report::sweep_chart(styles, *in.sweep, k, metric, options.width_px, options.height_px));
       }
     }
   }
@@ -122,8 +127,9 @@ std::vector<std::string> draw_plot(const report::PlotInputs& in) {
   return writer.written();
 }
 
-std::vector<std::string> plot(const report::PlotOptions& options) {
-  return draw_plot(report::load_plot_inputs(options));
+std::vector<std::string> plot(const report::PlotOptions& options,
+                              const report::MethodStyles& styles) {
+  return draw_plot(report::load_plot_inputs(options), styles);
 }
 
 void add_plot_command(CLI::App& app, CommandLine& line) {
@@ -159,10 +165,11 @@ void add_plot_command(CLI::App& app, CommandLine& line) {
   // Reads every input first (bad input fails without a display), then draws; VTK needs an X
   // display, so without one the command runs again under xvfb-run.
   command->callback([options, methods_file, &line] {
-    report::load_methods_file(*methods_file);
+    const report::MethodStyles styles(
+        MethodCatalogue::with_methods_file(*methods_file).methods_file());
     const report::PlotInputs inputs = report::load_plot_inputs(*options);
     if (!plot::x_display_available()) plot::rerun_under_xvfb(line.argc, line.argv);
-    for (const std::string& file : draw_plot(inputs)) std::cout << "wrote " << file << "\n";
+    for (const std::string& file : draw_plot(inputs, styles)) std::cout << "wrote " << file << "\n";
     std::cout << std::flush;
   });
 }

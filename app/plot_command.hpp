@@ -6,15 +6,18 @@
 #include <string>
 #include <vector>
 
+#include "report/method_styles.hpp"
 #include "report/plot_inputs.hpp"
 
 namespace msislab::app {
 
-/// Draws every figure the inputs allow and returns the files written, in order. Needs an X
-/// display (plot/display.hpp).
-std::vector<std::string> draw_plot(const report::PlotInputs& inputs);
+/// Draws every figure the inputs allow, the methods shown as `styles` say, and returns the files
+/// written, in order. Needs an X display (plot/display.hpp).
+std::vector<std::string> draw_plot(const report::PlotInputs& inputs,
+                                   const report::MethodStyles& styles);
 
-/// load_plot_inputs, then draw_plot.
-std::vector<std::string> plot(const report::PlotOptions& options);
+/// load_plot_inputs, then draw_plot (by default with the built-in methods' styles).
+std::vector<std::string> plot(const report::PlotOptions& options,
+                              const report::MethodStyles& styles = {});
 
 }  // namespace msislab::app

@@ -7,10 +7,10 @@
 #include <memory>
 
 #include "app/cli.hpp"
+#include "app/method_catalogue.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "report/methods.hpp"
 #include "report/results_page.hpp"
 
 namespace msislab::app {
@@ -42,9 +42,10 @@ void check_report_options(const ReportOptions& options) {
 
 /// Reads every folder and file the page reports into results.
 void read_report_inputs(const ReportOptions& options, report::ResultsReport& results) {
-  if (!options.sim_dir.empty()) results.sim = report::read_result_folder(options.sim_dir, "sim");
+  if (!options.sim_dir.empty())
+    results.sim = report::read_result_folder(results.styles, options.sim_dir, "sim");
   if (!options.real_dir.empty())
-    results.real = report::read_result_folder(options.real_dir, "real");
+    results.real = report::read_result_folder(results.styles, options.real_dir, "real");
   for (const std::string& dir : options.montecarlo_dirs) {
     report::MonteCarloFolder mc = report::read_montecarlo_folder(dir);
     if (!results.montecarlo.empty()) {
@@ -59,7 +60,8 @@ void read_report_inputs(const ReportOptions& options, report::ResultsReport& res
     results.montecarlo.push_back(std::move(mc));
   }
   for (const std::string& dir : options.sweep_dirs) {
-    results.sweeps.push_back({dir, io::read_sweep_csv((fs::path(dir) / "sweep.csv").string())});
+    results.sweeps.push_back(
+        {dir, results::read_sweep_csv((fs::path(dir) / "sweep.csv").string())});
   }
   if (!options.sensitivity_csv.empty()) {
     results.sensitivity_source = options.sensitivity_csv;
@@ -69,9 +71,11 @@ void read_report_inputs(const ReportOptions& options, report::ResultsReport& res
 }  // namespace
 
 ReportOutcome write_report(const ReportOptions& options) {
-  report::load_methods_file(options.methods_file);
+  const report::MethodStyles styles(
+      MethodCatalogue::with_methods_file(options.methods_file).methods_file());
   check_report_options(options);
   report::ResultsReport results;
+  results.styles = styles;
   const fs::path page = fs::absolute(options.out_path).lexically_normal();
   results.figures_dir_name = page.stem().string();
   const fs::path figures = fs::path(options.out_path).replace_extension();

@@ -10,13 +10,13 @@
 
 #include "app/cli.hpp"
 #include "app/external_method.hpp"
+#include "app/method_catalogue.hpp"
 #include "app/method_result.hpp"
 #include "app/run_method.hpp"
 #include "io/atomic_file.hpp"
-#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "report/methods.hpp"
+#include "settings/config_yaml.hpp"
 
 namespace msislab::app {
 
@@ -52,25 +52,27 @@ class ExternalWork {
   fs::path root_;
 };
 
-MethodResult run_external(const RunOptions& options, const io::RunInputs& in) {
+MethodResult run_external(const Method& method, const RunOptions& options,
+                          const dataset::RunInputs& in) {
   const ExternalWork work(options.out_dir);
   ExternalSetup setup;
   setup.dataset_dir = options.dataset_dir;
   setup.config_path = options.config_path;
   if (setup.config_path.empty()) {
     setup.config_path = work.path("config.yaml").string();
-    io::write_dead_reckoning_config(setup.config_path, in.config.dead_reckoning);
+    settings::write_dead_reckoning_config(setup.config_path, in.config.dead_reckoning);
   }
   setup.work_dir = work.path("run").string();
-  return run_method(options.method, in, nullptr, &setup);
+  return run_method(method, in, nullptr, &setup);
 }
 
 }  // namespace
 
 RunOutcome run(const RunOptions& options) {
-  report::load_methods_file(options.methods_file);
+  const MethodCatalogue catalogue = MethodCatalogue::with_methods_file(options.methods_file);
   // An unknown method fails before anything is read.
-  const bool external = report::method_info(options.method).kind == report::MethodKind::kExternal;
+  const Method& method = catalogue.at(options.method);
+  const bool external = method.kind == MethodKind::kExternal;
   const io::OutputRequest out{
       options.out_dir,
       "result",
@@ -78,10 +80,10 @@ RunOutcome run(const RunOptions& options) {
       {options.dataset_dir, options.config_path, options.methods_file, options.calibration_path},
       options.force};
   io::check_output_folder(out);
-  const io::RunInputs in =
-      io::load_run_inputs(options.dataset_dir, options.config_path, options.calibration_path);
+  const dataset::RunInputs in =
+      dataset::load_run_inputs(options.dataset_dir, options.config_path, options.calibration_path);
   if (!in.noise_note.empty()) std::cerr << "msislab: " << in.noise_note << '\n';
-  const MethodResult result = external ? run_external(options, in) : run_method(options.method, in);
+  const MethodResult result = external ? run_external(method, options, in) : run_method(method, in);
   io::StagedFolder staged(out);
   // An external method's scans carry no points: no map.
   write_method_result(staged.path(), result, io::absolute_path(options.dataset_dir), !external);

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "app/run_method.hpp"
+#include "dataset/sonar_readings.hpp"
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/results.hpp"
-#include "io/sonar_readings.hpp"
-#include "io/truth.hpp"
+#include "results/results.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {

@@ -8,11 +8,12 @@
 #include "app/external_method.hpp"
 #include "app/method_result.hpp"
 #include "io/input_error.hpp"
-#include "report/methods.hpp"
 #include "slam/calibration_update.hpp"
 #include "slam/dead_reckoning.hpp"
+#include "slam/linearisation_probe.hpp"
 #include "slam/pose_graph_slam.hpp"
 #include "slam/scan_slam_pipeline.hpp"
+#include "slam/trajectory_slam.hpp"
 
 namespace msislab::app {
 
@@ -36,11 +37,12 @@ std::vector<StampedPose> scan_poses(const std::vector<PlacedScan>& scans) {
 
 /// matches.csv's rows: each match with its scans' times and, with pose truth, the true relative
 /// pose and the match's NEES in its observed directions.
-std::vector<io::MatchRow> match_rows(const ScanSlamEstimate& slam, const io::Truth& truth) {
-  std::vector<io::MatchRow> rows;
+std::vector<results::MatchRow> match_rows(const ScanSlamEstimate& slam,
+                                          const dataset::Truth& truth) {
+  std::vector<results::MatchRow> rows;
   rows.reserve(slam.matches.size());
   for (const MatchRecord& m : slam.matches) {
-    io::MatchRow row;
+    results::MatchRow row;
     row.t_s = slam.scans[m.scan].scan.t_s;
     row.t_reference_s = slam.scans[m.reference].scan.t_s;
     row.record = m;
@@ -78,9 +80,9 @@ std::pair<std::vector<MatchTranslation>, std::vector<MatchTranslation>> consecut
 }
 
 /// The SLAM's counters for metrics.json (docs/formats.md); sets matches_accepted.
-std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstimate& slam,
-                                                             const io::Truth& truth,
-                                                             int& matches_accepted) {
+std::vector<std::pair<std::string, double>> slam_diagnostics(
+    const ScanSlamEstimate& slam, const std::optional<LinearisationProbe>& linearisation,
+    const dataset::Truth& truth, int& matches_accepted) {
   matches_accepted = slam.totals.accepted;
   std::vector<std::pair<std::string, double>> diagnostics = {
       {"scan_candidates", slam.totals.candidates},
@@ -113,11 +115,15 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstim
     diagnostics.emplace_back(c.name + "_sigma", c.sigma);
   }
   // The measured linearisation error (trajectory_slam.linearisation_samples > 0).
-  for (const auto& [name, tally] :
-       {std::pair{"linearisation_observation", &slam.totals.linearisation_observation},
-        std::pair{"linearisation_inversion", &slam.totals.linearisation_inversion},
-        std::pair{"linearisation_pose", &slam.totals.linearisation_pose}}) {
-    if (const std::optional<double> mean = tally->mean()) diagnostics.emplace_back(name, *mean);
+  if (linearisation) {
+    for (const auto& [name, kind] :
+         {std::pair{"linearisation_observation", Linearisation::kObservation},
+          std::pair{"linearisation_inversion", Linearisation::kInversion},
+          std::pair{"linearisation_pose", Linearisation::kPose}}) {
+      if (const std::optional<double> mean = linearisation->tally(kind).mean()) {
+        diagnostics.emplace_back(name, *mean);
+      }
+    }
   }
   return diagnostics;
 }
@@ -127,6 +133,9 @@ std::vector<std::pair<std::string, double>> slam_diagnostics(const ScanSlamEstim
 struct Estimate {
   DeadReckoningResult dead_reckoning;  ///< the methods without sonar
   std::optional<ScanSlamEstimate> slam;
+  /// The study of the filters' linearisations, when the config asks for it
+  /// (linearisation_samples > 0) and the method is one of the filters.
+  std::optional<LinearisationProbe> linearisation;
   double runtime_s = 0.0;
   std::vector<PlacedScan> dead_reckoning_scans;
 
@@ -140,28 +149,33 @@ struct Estimate {
   bool has_scans() const { return slam || !dead_reckoning_scans.empty(); }
 };
 
-Estimate estimate(const report::MethodInfo& method, const io::RunInputs& in, SharedInputs* shared) {
+Estimate estimate(const Method& method, const dataset::RunInputs& in, SharedInputs* shared) {
   // SLAM methods: the sonar readings are read before the clock starts, like the logs; read once
   // and shared between the methods when `shared` is given.
-  std::optional<io::SonarInput> own_readings;
-  const auto readings = [&]() -> const io::SonarInput& {
-    std::optional<io::SonarInput>& slot = shared ? shared->sonar : own_readings;
-    if (!slot) slot = io::load_sonar_readings(in);
+  std::optional<dataset::SonarInput> own_readings;
+  const auto readings = [&]() -> const dataset::SonarInput& {
+    std::optional<dataset::SonarInput>& slot = shared ? shared->sonar : own_readings;
+    if (!slot) slot = dataset::load_sonar_readings(in);
     return *slot;
   };
-  const io::SonarInput* sonar =
-      method.kind == report::MethodKind::kTrajectorySlam ? &readings() : nullptr;
+  const dataset::SonarInput* sonar =
+      method.kind == MethodKind::kTrajectorySlam ? &readings() : nullptr;
   const auto t_begin = std::chrono::steady_clock::now();
   const Eigen::Vector2d p_vehicle_dvl_m(in.calibration.dvl.x_m, in.calibration.dvl.y_m);
   Estimate e;
   if (sonar) {
     const std::unique_ptr<ScanSlam> backend = method.make_slam(in.config, in.start.pose);
+    // The study observes the filters' linearisations; other back ends make none it measures.
+    if (auto* filter = dynamic_cast<TrajectorySlam*>(backend.get());
+        filter && in.config.linearisation_samples > 0) {
+      filter->set_linearisation_observer(&e.linearisation.emplace(in.config.linearisation_samples));
+    }
     e.slam = run_scan_slam(*backend, in.navigation, sonar->beams, in.config,
                            scan_slam_setup(in, *sonar));
     if (shared && !shared->dead_reckoning_scans && slam_scans_are_dead_reckonings(in.config)) {
       shared->dead_reckoning_scans = e.slam->scans;
     }
-  } else if (method.kind == report::MethodKind::kIntegration) {
+  } else if (method.kind == MethodKind::kIntegration) {
     e.dead_reckoning.trajectory = integrate_velocities(in.navigation, in.start);
   } else {
     e.dead_reckoning =
@@ -170,7 +184,7 @@ Estimate estimate(const report::MethodInfo& method, const io::RunInputs& in, Sha
   e.runtime_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_begin).count();
   // Dead reckoning on a dataset with sonar data also places the scans (the map SLAM starts from)
   // and scores their poses like the SLAM's; after the clock, as mapping is not part of the method.
-  if (method.kind == report::MethodKind::kDeadReckoning && io::has_sonar_data(in)) {
+  if (method.kind == MethodKind::kDeadReckoning && dataset::has_sonar_data(in)) {
     if (shared && shared->dead_reckoning_scans) {
       e.dead_reckoning_scans = *shared->dead_reckoning_scans;
     } else {
@@ -185,7 +199,7 @@ Estimate estimate(const report::MethodInfo& method, const io::RunInputs& in, Sha
 }
 
 /// The smoothed trajectory scored beside the online one (docs/formats.md).
-void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const io::Truth& truth,
+void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const dataset::Truth& truth,
                               RunMetrics& metrics) {
   const std::optional<ErrorStats> smoothed =
       error_stats(position_errors(*slam.smoothed_trajectory, truth.positions));
@@ -200,9 +214,9 @@ void add_smoothed_diagnostics(const ScanSlamEstimate& slam, const io::Truth& tru
 }
 
 /// Scores the estimate against the truth (the dataset has one).
-void score(const report::MethodInfo& method, const io::RunInputs& in, const Estimate& e,
+void score(const Method& method, const dataset::RunInputs& in, const Estimate& e,
            MethodResult& result) {
-  const io::Truth& truth = in.truth;
+  const dataset::Truth& truth = in.truth;
   result.errors = position_errors(e.trajectory(), truth.positions);
   result.metrics = score_errors(truth, result.errors, in.config.segments, in.dataset);
   result.t_first_truth_s = truth.positions.front().t_s;
@@ -215,9 +229,11 @@ void score(const report::MethodInfo& method, const io::RunInputs& in, const Esti
     result.nees = scan_nees(scan_poses(scans), truth);
     metrics.anees = average_nees(result.nees);
   }
-  if (e.slam) metrics.diagnostics = slam_diagnostics(*e.slam, truth, metrics.matches_accepted);
+  if (e.slam)
+    metrics.diagnostics =
+        slam_diagnostics(*e.slam, e.linearisation, truth, metrics.matches_accepted);
   if (e.slam && e.slam->smoothed_trajectory) add_smoothed_diagnostics(*e.slam, truth, metrics);
-  if (method.kind == report::MethodKind::kDeadReckoning) {
+  if (method.kind == MethodKind::kDeadReckoning) {
     const DeadReckoningResult& dr = e.dead_reckoning;
     metrics.diagnostics = {{"dvl_used", dr.dvl_used},
                            {"dvl_rejected", dr.dvl_rejected},
@@ -231,7 +247,7 @@ void score(const report::MethodInfo& method, const io::RunInputs& in, const Esti
 }  // namespace
 
 /// The library's pipeline settings from a dataset read already.
-ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar) {
+ScanSlamSetup scan_slam_setup(const dataset::RunInputs& in, const dataset::SonarInput& sonar) {
   ScanSlamSetup setup;
   setup.start = in.start;
   setup.p_vehicle_dvl_m = {in.calibration.dvl.x_m, in.calibration.dvl.y_m};
@@ -240,11 +256,12 @@ ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& son
   return setup;
 }
 
-MethodResult run_method(const std::string& name, const io::RunInputs& in, SharedInputs* shared,
+MethodResult run_method(const Method& method, const dataset::RunInputs& in, SharedInputs* shared,
                         const ExternalSetup* external) {
-  const report::MethodInfo& method = report::method_info(name);
-  if (method.kind == report::MethodKind::kExternal) {
-    if (external == nullptr) throw io::InputError(name + ": an external method needs its setup");
+  if (method.kind == MethodKind::kExternal) {
+    if (external == nullptr) {
+      throw io::InputError(method.name + ": an external method needs its setup");
+    }
     return run_external_method(method, in, *external);
   }
   const Estimate e = estimate(method, in, shared);

@@ -8,10 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "app/method_catalogue.hpp"
+#include "dataset/sonar_readings.hpp"
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/results.hpp"
-#include "io/sonar_readings.hpp"
-#include "io/truth.hpp"
+#include "results/results.hpp"
 #include "slam/scan_sequence.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
@@ -21,13 +22,13 @@ namespace msislab::app {
 struct MethodResult {
   std::string method;
   std::vector<StampedPose> trajectory;
-  double depth_m = 0.0;               ///< for the TUM z
-  std::optional<RunMetrics> metrics;  ///< present when the dataset has truth
-  std::vector<io::NeesSample> nees;   ///< per scan, with pose truth
-  std::vector<ErrorSample> errors;    ///< position error at every truth stamp
+  double depth_m = 0.0;                   ///< for the TUM z
+  std::optional<RunMetrics> metrics;      ///< present when the dataset has truth
+  std::vector<results::NeesSample> nees;  ///< per scan, with pose truth
+  std::vector<ErrorSample> errors;        ///< position error at every truth stamp
   double t_first_truth_s = 0.0;
-  std::optional<std::vector<PlacedScan>> scans;      ///< with sonar data
-  std::optional<std::vector<io::MatchRow>> matches;  ///< SLAM methods
+  std::optional<std::vector<PlacedScan>> scans;           ///< with sonar data
+  std::optional<std::vector<results::MatchRow>> matches;  ///< SLAM methods
   /// A SLAM back end estimating calibration: its estimates after every scan (calibration.csv).
   std::vector<CalibrationSnapshot> calibration_history;
   /// The dataset's calibration with what the back end estimated added (calibration.yaml; the
@@ -43,21 +44,21 @@ struct MethodResult {
 /// dead reckoning itself places after its clock; every SLAM method still builds its own scans on
 /// its clock).
 struct SharedInputs {
-  std::optional<io::SonarInput> sonar;
+  std::optional<dataset::SonarInput> sonar;
   std::optional<std::vector<PlacedScan>> dead_reckoning_scans;
 };
 
 /// The library pipeline's settings (slam/scan_slam_pipeline) from a dataset read already: its
 /// start, the DVL and sonar mounts, the sonar's beams per revolution.
-ScanSlamSetup scan_slam_setup(const io::RunInputs& in, const io::SonarInput& sonar);
+ScanSlamSetup scan_slam_setup(const dataset::RunInputs& in, const dataset::SonarInput& sonar);
 
 struct ExternalSetup;  // app/external_method.hpp
 
 /// Runs a method on a dataset read already (from a directory or held in memory), sharing with
 /// the other methods on it through `shared` when given (the results are the same). An external
-/// method (report::MethodKind::kExternal) runs its program as `external` says (required for it).
+/// method (MethodKind::kExternal) runs its program as `external` says (required for it).
 /// Throws io::InputError, or ExternalMethodError for an external method that gave no result.
-MethodResult run_method(const std::string& method, const io::RunInputs& in,
+MethodResult run_method(const Method& method, const dataset::RunInputs& in,
                         SharedInputs* shared = nullptr, const ExternalSetup* external = nullptr);
 
 }  // namespace msislab::app

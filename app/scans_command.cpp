@@ -8,13 +8,13 @@
 
 #include "app/cli.hpp"
 #include "app/run_method.hpp"
+#include "dataset/sonar_readings.hpp"
+#include "dataset/truth.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/results.hpp"
-#include "io/scan_figures.hpp"
-#include "io/sonar_readings.hpp"
-#include "io/truth.hpp"
+#include "plot/scan_figures.hpp"
+#include "results/results.hpp"
 #include "slam/scan_sequence.hpp"
 
 namespace msislab::app {
@@ -45,15 +45,15 @@ std::pair<double, double> compensation_errors(const std::vector<PlacedScan>& sca
 void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
                    const std::vector<Eigen::Vector2d>& truth_track, const std::string& truth_kind,
                    int figure_scan) {
-  io::write_scans_csv((out / "scans.csv").string(), scans);
+  results::write_scans_csv((out / "scans.csv").string(), scans);
   const std::vector<Eigen::Vector2d> points = world_points(scans);
   std::vector<Eigen::Vector2d> centres;
   for (const PlacedScan& s : scans) centres.push_back(s.centre_world.pose.mean.translation());
-  io::write_points_ply((out / "map.ply").string(), points);
-  std::vector<io::Track> tracks;
+  results::write_points_ply((out / "map.ply").string(), points);
+  std::vector<plot::Track> tracks;
   if (!truth_track.empty()) tracks.push_back({truth_kind + " truth", truth_track, 0x00a000});
   tracks.push_back({"dead reckoning", centres, 0x0000ff});
-  io::write_map_png(
+  plot::write_map_png(
       (out / "map.png").string(),
       "Scan points placed by dead reckoning (" + std::to_string(scans.size()) + " scans)", points,
       tracks);
@@ -65,7 +65,7 @@ void write_outputs(const fs::path& out, const std::vector<PlacedScan>& scans,
     before.push_back(p.p_vehicle_m);
     after.push_back(p.p_m);
   }
-  io::write_scan_comparison_png(
+  plot::write_scan_comparison_png(
       (out / "compensation.png").string(),
       "scan " + std::to_string(k) + " at t = " + std::to_string(scans[k].scan.t_s) + " s", before,
       after);
@@ -82,12 +82,13 @@ io::OutputRequest scans_output(const ScansOptions& options) {
 
 ScansSummary build_scans_command(const ScansOptions& options) {
   io::check_output_folder(scans_output(options));
-  const io::RunInputs in = io::load_run_inputs(options.dataset_dir, options.config_path);
+  const dataset::RunInputs in = dataset::load_run_inputs(options.dataset_dir, options.config_path);
   if (!in.noise_note.empty()) std::cerr << "msislab: " << in.noise_note << '\n';
   const SlamConfig& config = in.config;
   const Calibration& calibration = in.calibration;
-  const io::Truth& truth = in.truth;
-  const io::SonarInput sonar = io::load_sonar_readings(in.files, calibration, config.segmentation);
+  const dataset::Truth& truth = in.truth;
+  const dataset::SonarInput sonar =
+      dataset::load_sonar_readings(in.files, calibration, config.segmentation);
 
   const std::vector<PlacedScan> scans =
       build_placed_scans(in.navigation, sonar.beams, config, scan_slam_setup(in, sonar));

@@ -9,9 +9,9 @@
 #include <ostream>
 
 #include "app/cli.hpp"
+#include "dataset/dataset.hpp"
 #include "io/atomic_file.hpp"
 #include "io/beam_truth.hpp"
-#include "io/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/stpere_logs.hpp"
@@ -114,7 +114,7 @@ SegmentReport segment(const SegmentOptions& options) {
     io::check_output_file({options.out_path, "page", "segment", {options.dataset_dir}, false},
                           io::page_written_by_msislab);
   }
-  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
+  const dataset::DatasetFiles files = dataset::find_dataset_files(options.dataset_dir);
   if (!files.is_log) io::fail_file(options.dataset_dir, "no *_IS.log (raw sonar beams) to segment");
   if (!files.truth_beams) {
     io::fail_file(options.dataset_dir, "no truth/beams.csv (segment needs a simulated dataset)");

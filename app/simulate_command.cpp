@@ -9,11 +9,11 @@
 #include <thread>
 
 #include "app/cli.hpp"
+#include "dataset/sim_dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/scenario_scene.hpp"
-#include "io/sim_dataset.hpp"
 #include "io/text_lines.hpp"
+#include "settings/scenario_scene.hpp"
 #include "sim/simulator.hpp"
 
 namespace msislab::app {
@@ -29,7 +29,7 @@ double seconds_since(Clock::time_point start) {
 
 SimulateSummary simulate(const SimulateOptions& options) {
   const auto t_start = Clock::now();
-  io::CheckedScenario checked = io::read_checked_scenario(options.scenario_path);
+  settings::CheckedScenario checked = settings::read_checked_scenario(options.scenario_path);
   sim::Scenario& scenario = checked.scenario;
   if (options.seed) scenario.seed = *options.seed;
   const io::OutputRequest out{options.out_dir,
@@ -54,7 +54,8 @@ SimulateSummary simulate(const SimulateOptions& options) {
   const sim::SimulationResult result = sim::simulate(scenario, *scene, threads);
   SimulateSummary summary;
   summary.render_s = seconds_since(t_render);
-  io::write_simulated_dataset(out, scenario, result, io::read_whole_file(options.scenario_path));
+  dataset::write_simulated_dataset(out, scenario, result,
+                                   io::read_whole_file(options.scenario_path));
   summary.beams = result.beams.size();
   summary.dvl_samples = result.dvl.size();
   summary.duration_s = result.truth.end_s() - result.truth.start_s();

@@ -12,12 +12,12 @@
 
 #include "app/cli.hpp"
 #include "app/directory_lock.hpp"
+#include "app/method_catalogue.hpp"
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
-#include "io/montecarlo_files.hpp"
-#include "io/sweep_yaml.hpp"
 #include "io/text_lines.hpp"
-#include "report/methods.hpp"
+#include "results/montecarlo_files.hpp"
+#include "settings/sweep_yaml.hpp"
 
 namespace msislab::app {
 
@@ -42,8 +42,8 @@ void check_same_sweep(const std::string& dir, const std::string& sweep_text,
 }
 
 /// sweep.csv's rows from the cells' summary.json, in cell order then the summary's method order.
-io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
-  io::SweepTable table;
+results::SweepTable sweep_table(const std::string& dir, const settings::Sweep& sweep) {
+  results::SweepTable table;
   table.keys = sweep.keys;
   for (std::size_t c = 0; c < sweep.cells.size(); ++c) {
     const fs::path summary = fs::path(dir) / "cells" / cell_name(c) / "summary.json";
@@ -56,9 +56,9 @@ io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
       }
       values.push_back(value);
     }
-    for (const io::StoredSummary& stored : io::read_summary_json(summary.string())) {
+    for (const results::StoredSummary& stored : results::read_summary_json(summary.string())) {
       const MethodSummary& s = stored.summary;
-      io::SweepRow row;
+      results::SweepRow row;
       row.cell = static_cast<int>(c);
       row.values = values;
       row.method = s.method;
@@ -95,12 +95,12 @@ io::SweepTable sweep_table(const std::string& dir, const io::Sweep& sweep) {
 SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
   int shard_index = 0, shard_count = 1;
   check_shard_and_jobs(options.shard, options.jobs, shard_index, shard_count);
-  const io::Sweep plan = io::read_sweep(options.sweep_path);
-  report::load_methods_file(options.methods_file);
-  for (const std::string& m : plan.methods)
-    report::method_info(m, options.sweep_path + ": key 'methods'");
-  std::vector<io::CellInputs> inputs;
-  for (std::size_t c = 0; c < plan.cells.size(); ++c) inputs.push_back(io::cell_inputs(plan, c));
+  const settings::Sweep plan = settings::read_sweep(options.sweep_path);
+  const MethodCatalogue catalogue = MethodCatalogue::with_methods_file(options.methods_file);
+  for (const std::string& m : plan.methods) catalogue.at(m, options.sweep_path + ": key 'methods'");
+  std::vector<settings::CellInputs> inputs;
+  for (std::size_t c = 0; c < plan.cells.size(); ++c)
+    inputs.push_back(settings::cell_inputs(plan, c));
   const std::string sweep_text = io::read_whole_file(options.sweep_path);
 
   const DirectoryLock lock(
@@ -133,7 +133,7 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
     mc.shard = options.shard;
     mc.out_dir = (fs::path(options.out_dir) / "cells" / cell_name(c)).string();
     log.log << "sweep: " << cell_name(c) << " (" << c + 1 << "/" << plan.cells.size()
-            << "): " << io::describe_cell(plan.cells[c]) << std::endl;
+            << "): " << settings::describe_cell(plan.cells[c]) << std::endl;
     const MonteCarloOutcome cell = montecarlo(mc, log);
     outcome.runs += cell.runs;
     outcome.executed += cell.executed;
@@ -144,7 +144,7 @@ SweepOutcome sweep(const SweepOptions& options, const MonteCarloLog& log) {
     }
   }
   outcome.table = sweep_table(options.out_dir, plan);
-  io::write_sweep_csv((fs::path(options.out_dir) / "sweep.csv").string(), outcome.table);
+  results::write_sweep_csv((fs::path(options.out_dir) / "sweep.csv").string(), outcome.table);
   return outcome;
 }
 
@@ -161,7 +161,8 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
           shard, "made from another sweep file than " + shard_dirs.front() + "; cannot merge them");
     }
   }
-  const io::Sweep plan = io::read_sweep((fs::path(shard_dirs.front()) / "sweep.yaml").string());
+  const settings::Sweep plan =
+      settings::read_sweep((fs::path(shard_dirs.front()) / "sweep.yaml").string());
   const DirectoryLock lock({out_dir, "sweep", "sweep merge", shard_dirs, false},
                            "msislab sweep merge");
   check_same_sweep(out_dir, sweep_text, shard_dirs.front() + "/sweep.yaml");
@@ -179,7 +180,7 @@ SweepOutcome merge_sweep(const std::string& out_dir, const std::vector<std::stri
     outcome.failed += cell.failed;
   }
   outcome.table = sweep_table(out_dir, plan);
-  io::write_sweep_csv((fs::path(out_dir) / "sweep.csv").string(), outcome.table);
+  results::write_sweep_csv((fs::path(out_dir) / "sweep.csv").string(), outcome.table);
   return outcome;
 }
 

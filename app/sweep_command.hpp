@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "app/montecarlo.hpp"
-#include "io/sweep_files.hpp"
+#include "results/sweep_files.hpp"
 
 namespace msislab::app {
 
@@ -26,7 +26,7 @@ struct SweepOutcome {
   std::size_t executed = 0;  ///< runs (re)done by this call, over every cell
   std::size_t failed = 0;    ///< runs with a failed method, over every cell
   int interrupted = 0;       ///< the stop request that ended it early, else 0
-  io::SweepTable table;
+  results::SweepTable table;
 };
 
 /// Reads and checks the sweep file and every cell's inputs (nothing runs before all are valid),

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "io/mesh_io.hpp"
-#include "io/scenario_yaml.hpp"
+#include "settings/scenario_yaml.hpp"
 #include "sim/msis.hpp"
 #include "sim/random.hpp"
 
@@ -38,7 +38,7 @@ sim::Scenario lean(sim::Scenario scenario) {
 }
 
 struct Fixture {
-  sim::Scenario scenario = io::read_scenario(kSource + "/scenarios/stpere_replica.yaml");
+  sim::Scenario scenario = settings::read_scenario(kSource + "/scenarios/stpere_replica.yaml");
   sim::TriangleMesh mesh = io::read_mesh(
       scenario.scene.mesh_path,
       io::MeshMaterials{scenario.scene.default_material, scenario.scene.group_materials});

@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "io/dataset.hpp"
+#include "dataset/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/stpere_logs.hpp"
 #include "slam/dead_reckoning.hpp"
@@ -41,8 +41,8 @@ BENCHMARK(BM_ReadDetections)->Unit(benchmark::kMillisecond);
 
 void BM_DeadReckoningWholeRun(benchmark::State& state) {
   if (!have_stpere(state)) return;
-  const auto files = msislab::io::find_dataset_files(kStPere);
-  const auto navigation = msislab::io::load_navigation(files, msislab::Calibration{});
+  const auto files = msislab::dataset::find_dataset_files(kStPere);
+  const auto navigation = msislab::dataset::load_navigation(files, msislab::Calibration{});
   msislab::StampedPose start;
   start.t_s = navigation.heading.front().t_s;
   start.pose.mean = msislab::Pose2(0.0, 0.0, navigation.heading.front().yaw_rad);

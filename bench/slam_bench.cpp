@@ -71,8 +71,8 @@ template <class Filter>
 void BM_Step(benchmark::State& state) {
   const auto state_scans = static_cast<std::size_t>(state.range(0));
   TrajectorySlamConfig config;
-  config.compass_updates = state.range(1) != 0;
-  config.update_whole_state = state.range(2) != 0;
+  config.front_end.compass_updates = state.range(1) != 0;
+  config.filter.update_whole_state = state.range(2) != 0;
   const std::size_t timed = 10;
   const std::vector<Scan> scans = loop_scans(state_scans + timed);
   for (auto _ : state) {
@@ -113,7 +113,7 @@ void BM_PoseGraphStep(benchmark::State& state) {
   const std::vector<Scan> scans = loop_scans(graph_scans + timed);
   for (auto _ : state) {
     state.PauseTiming();
-    PoseGraphSlam slam(TrajectorySlamConfig{}, config, GaussianPose2{});
+    PoseGraphSlam slam(ScanFrontEndConfig{}, CalibrationStatesConfig{}, config, GaussianPose2{});
     for (std::size_t k = 0; k < graph_scans; ++k) slam.add_scan(scans[k]);
     state.ResumeTiming();
     for (std::size_t k = graph_scans; k < scans.size(); ++k) {

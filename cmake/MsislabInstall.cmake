@@ -3,8 +3,9 @@
 # core libraries (stats, geometry, sim, slam, eval), their headers under include/msislab/ and a
 # CMake package, so that another project's `find_package(msislab)` gives msislab::stats,
 # msislab::geometry, msislab::sim, msislab::slam and msislab::eval (examples/ holds two such
-# projects). The file formats, figures, pages and commands (io/, plot/, report/, app/) are not a
-# library API: use the executable.
+# projects). The file formats, settings, datasets, result folders, figures, pages and commands
+# (io/, settings/, dataset/, results/, plot/, report/, app/) are not a library API: use the
+# executable.
 include(CMakePackageConfigHelpers)
 
 install(TARGETS msislab RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)

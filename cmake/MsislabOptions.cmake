@@ -9,6 +9,18 @@ function(msislab_target_options target)
   endif()
 endfunction()
 
+# msislab_glue_code(<target>): code whose speed is not what a user waits for (the commands'
+# options and glue, the pages, the settings' YAML, the tools' own mains, the tests' assertions and
+# fixtures) compiles at -O1 in Release builds; the libraries that compute (slam, sim, eval,
+# geometry, stats, io, dataset, results, plot) stay at -O3. Without fast-math the optimisation
+# level does not change a floating-point result, so the outputs are the same bytes
+# (docs/architecture.md, "Build notes").
+function(msislab_glue_code target)
+  if(CMAKE_BUILD_TYPE STREQUAL "Release")
+    target_compile_options(${target} PRIVATE -O1)
+  endif()
+endfunction()
+
 # msislab_core_library(<name> <sources...>): the installed library msislab_<name> (msislab::<name>
 # in this tree and to find_package(msislab) users), headers included as "<dir>/<file>.hpp" from
 # the source tree here and from include/msislab once installed; the language standard and

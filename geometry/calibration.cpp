@@ -31,7 +31,9 @@ double mru_yaw_from_vehicle(double yaw_vehicle_rad, const MruMount& mount) {
 }
 
 Eigen::Matrix2d R_vehicle_dvl(const DvlMount& mount) {
-  return Pose2(0.0, 0.0, mount.yaw_deg * kDegToRad).rotation();
+  const Eigen::Matrix2d R = Pose2(0.0, 0.0, mount.yaw_deg * kDegToRad).rotation();
+  if (!mount.y_to_starboard) return R;
+  return R * Eigen::Vector2d(1.0, -1.0).asDiagonal();  // the DVL's y mirrored, then rotated
 }
 
 double sonar_bearing_in_vehicle(double transducer_angle_rad, const SonarMount& mount) {

@@ -20,8 +20,12 @@ struct MruMount {
 /// [x, y].
 struct DvlMount {
   double yaw_deg = 293.5;  ///< rotation from the DVL frame to the vehicle frame, deg
-  double x_m = 0.0;        ///< lever arm, vehicle frame, m
-  double y_m = 0.0;        ///< lever arm, vehicle frame, m
+  /// The DVL frame's y axis points to starboard of its x (a unit whose z points down, as most
+  /// DVLs' x forward, y starboard, z down): its readings' y is mirrored before the rotation.
+  /// false: to port, as the vehicle frame's (x forward, y port, z up).
+  bool y_to_starboard = false;
+  double x_m = 0.0;  ///< lever arm, vehicle frame, m
+  double y_m = 0.0;  ///< lever arm, vehicle frame, m
   /// The DVL reports this many times the true velocity; the pipeline divides by it.
   double scale_factor = 1.0;
 };

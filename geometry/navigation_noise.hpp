@@ -1,7 +1,7 @@
 // The navigation sensors' errors as the dead reckoning models them: the plain struct behind a
 // simulated dataset's navigation_noise.yaml (docs/formats.md). Its names and units are the SLAM
 // config's dead_reckoning keys, so a run fed a simulated dataset can take the noise the dataset
-// was made with (io::slam_config_for_dataset).
+// was made with (settings::slam_config_for_dataset).
 #pragma once
 
 namespace msislab {

@@ -4,25 +4,26 @@
 #include <array>
 #include <string_view>
 
+#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 
 namespace msislab::io {
 namespace {
 
-constexpr std::string_view kHeader =
+constexpr std::string_view kBeamTruthHeader =
     "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
     "strongest_surface";
-constexpr std::array<std::string_view, 9> kNames = {"t_s",
-                                                    "x_m",
-                                                    "y_m",
-                                                    "yaw_rad",
-                                                    "bearing_rad",
-                                                    "first_hit_range_m",
-                                                    "strongest_range_m",
-                                                    "strongest_multipath",
-                                                    "strongest_surface"};
-using Fields = std::array<std::string_view, kNames.size()>;
+constexpr std::array<std::string_view, 9> kBeamTruthNames = {"t_s",
+                                                             "x_m",
+                                                             "y_m",
+                                                             "yaw_rad",
+                                                             "bearing_rad",
+                                                             "first_hit_range_m",
+                                                             "strongest_range_m",
+                                                             "strongest_multipath",
+                                                             "strongest_surface"};
+using BeamTruthFields = std::array<std::string_view, kBeamTruthNames.size()>;
 
 std::optional<double> parse_optional(std::string_view token, const FieldAt& at) {
   if (token.empty()) return std::nullopt;
@@ -34,9 +35,12 @@ bool parse_flag(std::string_view token, const FieldAt& at) {
   return token == "1";
 }
 
-BeamTruthRow parse_row(std::string_view line, std::size_t line_number, const std::string& path) {
-  const Fields f = split_csv<kNames.size()>(line, path, line_number);
-  const auto at = [&](std::size_t i) { return FieldAt{path, line_number, i + 1, kNames[i]}; };
+BeamTruthRow parse_beam_truth_row(std::string_view line, std::size_t line_number,
+                                  const std::string& path) {
+  const BeamTruthFields f = split_csv<kBeamTruthNames.size()>(line, path, line_number);
+  const auto at = [&](std::size_t i) {
+    return FieldAt{path, line_number, i + 1, kBeamTruthNames[i]};
+  };
   BeamTruthRow row;
   row.t_s = parse_finite(f[0], at(0));
   row.x_m = parse_finite(f[1], at(1));
@@ -60,10 +64,28 @@ bool BeamTruthRow::operator==(const BeamTruthRow& other) const {
          strongest_surface == other.strongest_surface;
 }
 
+void write_beam_truth(const std::string& path, const std::vector<BeamTruthRow>& rows) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    std::string text = std::string(kBeamTruthHeader) + "\n";
+    for (const BeamTruthRow& r : rows) {
+      for (const double v : {r.t_s, r.x_m, r.y_m, r.yaw_rad, r.bearing_rad}) {
+        append_number(text, v);
+        text += ',';
+      }
+      for (const std::optional<double>& range : {r.first_hit_range_m, r.strongest_range_m}) {
+        if (range) text += format_number(*range);
+        text += ',';
+      }
+      text += std::string(r.strongest_multipath ? "1" : "0") + "," + r.strongest_surface + "\n";
+    }
+    out << text;
+  });
+}
+
 std::vector<BeamTruthRow> read_beam_truth(const std::string& path) {
   std::vector<BeamTruthRow> rows;
-  for_each_csv_row(path, kHeader, [&](std::string_view line, std::size_t line_number) {
-    rows.push_back(parse_row(line, line_number, path));
+  for_each_csv_row(path, kBeamTruthHeader, [&](std::string_view line, std::size_t line_number) {
+    rows.push_back(parse_beam_truth_row(line, line_number, path));
     if (rows.size() > 1 && rows.back().t_s < rows[rows.size() - 2].t_s) {
       fail_at(path, line_number,
               "t_s goes backwards (" + format_number(rows.back().t_s) + " after " +

@@ -1,7 +1,7 @@
-// Reader of the simulator's per-beam truth, truth/beams.csv (docs/formats.md); the writer is
-// io::write_beam_truth in io/sim_dataset.hpp. Strict: the exact header, 9 comma-separated fields,
-// finite numbers, an empty field only for the optional ranges, multipath 0 or 1, time never going
-// backwards; any other line is an InputError "file:line: what".
+// The simulator's per-beam truth, truth/beams.csv (docs/formats.md): its rows, reader and writer
+// (dataset/sim_dataset writes a simulation's beams through it). The reader is strict: the exact
+// header, 9 comma-separated fields, finite numbers, an empty field only for the optional ranges,
+// multipath 0 or 1, time never going backwards; any other line is an InputError "file:line: what".
 #pragma once
 
 #include <optional>
@@ -25,5 +25,8 @@ struct BeamTruthRow {
 };
 
 std::vector<BeamTruthRow> read_beam_truth(const std::string& path);
+/// Writes the rows atomically, numbers in the shortest form that reads back exactly (the inverse
+/// of read_beam_truth).
+void write_beam_truth(const std::string& path, const std::vector<BeamTruthRow>& rows);
 
 }  // namespace msislab::io

@@ -28,7 +28,7 @@ const char* type_name(const Json& value) {
   return "an object";
 }
 
-std::string quoted(const std::string& text) {
+std::string json_string_literal(const std::string& text) {
   return Json(text).dump(-1, ' ', false, Json::error_handler_t::replace);
 }
 
@@ -45,7 +45,7 @@ class Printer {
       const double number = v.get<double>();
       text_ += std::isfinite(number) ? format_number(number) : "null";
     } else if (v.is_string()) {
-      text_ += quoted(v.get<std::string>());
+      text_ += json_string_literal(v.get<std::string>());
     } else {
       text_ += v.dump();  // null, booleans and integers
     }
@@ -64,7 +64,7 @@ class Printer {
       first = false;
       bool expand_child = level + 1 < layout_.expanded_levels;
       if (v.is_object()) {
-        text_ += quoted(it.key()) + ": ";
+        text_ += json_string_literal(it.key()) + ": ";
         expand_child = expand_child || std::count(layout_.expanded_members.begin(),
                                                   layout_.expanded_members.end(), it.key()) > 0;
       }

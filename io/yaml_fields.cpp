@@ -217,6 +217,20 @@ bool YamlMap::numbers(const std::string& key, std::vector<double>& out) {
   return true;
 }
 
+bool YamlMap::texts(const std::string& key, std::vector<std::string>& out) {
+  read_.insert(key);
+  if (!has(key)) return false;
+  const YAML::Node value = node_[key];
+  if (!value.IsSequence())
+    fail_node(value, key, "expected a list of words, got " + describe(value));
+  out.clear();
+  for (const YAML::Node& item : value) {
+    if (!item.IsScalar()) fail_node(item, key, "expected words in the list, got " + describe(item));
+    out.push_back(item.Scalar());
+  }
+  return true;
+}
+
 YamlMap YamlMap::map(const std::string& key) {
   read_.insert(key);
   return YamlMap(has(key) ? node_[key] : YAML::Node(), file_, path_of(key), key_line(key));

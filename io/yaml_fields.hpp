@@ -37,6 +37,8 @@ class YamlMap {
   bool boolean(const std::string& key, bool& out);
   /// A sequence of finite numbers.
   bool numbers(const std::string& key, std::vector<double>& out);
+  /// A sequence of words (scalars).
+  bool texts(const std::string& key, std::vector<std::string>& out);
   /// A child mapping (empty when absent).
   YamlMap map(const std::string& key);
   /// The keys of this mapping in file order (for user-named entries such as segments).

@@ -5,10 +5,10 @@
 #include <limits>
 #include <map>
 
+#include "dataset/navigation_data.hpp"
+#include "dataset/sonar_readings.hpp"
 #include "io/detections.hpp"
 #include "io/input_error.hpp"
-#include "io/navigation_data.hpp"
-#include "io/sonar_readings.hpp"
 #include "io/text_lines.hpp"
 #include "report/fidelity_report.hpp"
 
@@ -40,7 +40,7 @@ std::int32_t pick_revolution(const FidelitySide& side, std::optional<std::int32_
 FidelitySide open_side(const std::string& dir) {
   FidelitySide side;
   side.dir = dir;
-  side.files = io::find_dataset_files(dir);
+  side.files = dataset::find_dataset_files(dir);
   if (!side.files.detections) {
     io::fail_file(dir, "no *_detections.csv[.gz] file (fidelity compares detected bins)");
   }
@@ -48,23 +48,23 @@ FidelitySide open_side(const std::string& dir) {
     io::fail_file(dir, "no *_IS_timestamps.log file (the detections need the beam times)");
   }
   side.setup = side.files.setup ? io::read_setup_log(*side.files.setup) : io::SonarSetup{};
-  side.calibration = io::load_calibration(side.files);
+  side.calibration = dataset::load_calibration(side.files);
   return side;
 }
 
 /// The detections and beam times, checked and reduced to statistics.
 void load_detections(FidelitySide& side, std::optional<std::int32_t> revolution,
                      const std::string& revolution_option) {
-  const io::DatasetFiles& files = side.files;
+  const dataset::DatasetFiles& files = side.files;
   const std::vector<io::BeamTimeRecord> times = io::read_beam_times_log(*files.beam_times);
   const std::vector<io::DetectionRecord> rows = io::read_detections(*files.detections);
   side.beam_times = times.size();
   const int per_revolution = io::steps_per_revolution(side.setup);
-  side.beams = io::group_detections(rows, *files.detections, times.size(), per_revolution,
-                                    side.setup.range_m);
+  side.beams = dataset::group_detections(rows, *files.detections, times.size(), per_revolution,
+                                         side.setup.range_m);
   side.stats = sonar_statistics(side.beams, times_s(times), per_revolution, side.setup.bin_m,
                                 side.setup.step_rad);
-  const io::SonarInput readings = io::readings_from_detections(
+  const dataset::SonarInput readings = dataset::readings_from_detections(
       files, times, rows, side.setup, side.calibration.sonar, SegmentationConfig{});
   side.stats.readings_per_revolution = readings_per_keyframe(side.beams, readings.beams);
   side.revolution = pick_revolution(side, revolution, revolution_option);
@@ -124,7 +124,7 @@ void check_same_setup(const FidelitySide& real, const FidelitySide& sim) {
 }
 
 bool has_navigation_logs(const std::string& dir) {
-  const io::DatasetFiles files = io::find_dataset_files(dir);
+  const dataset::DatasetFiles files = dataset::find_dataset_files(dir);
   return files.dvl && files.mti;
 }
 
@@ -132,8 +132,8 @@ bool has_navigation_logs(const std::string& dir) {
 /// 100 m against the truth (docs/simulator.md, "Navigation noise from the real logs").
 void append_navigation_rows(const std::string& real_dir, const std::string& sim_dir,
                             FidelityTable& table) {
-  const NavigationStatistics real = navigation_statistics(io::load_navigation_data(real_dir));
-  const NavigationStatistics sim = navigation_statistics(io::load_navigation_data(sim_dir));
+  const NavigationStatistics real = navigation_statistics(dataset::load_navigation_data(real_dir));
+  const NavigationStatistics sim = navigation_statistics(dataset::load_navigation_data(sim_dir));
   const std::string section = "Navigation";
   table.push_back({section, "dvl_noise_surge_mps", "DVL velocity noise, surge (sample differences)",
                    real.dvl.surge_mps.sigma_sd, sim.dvl.surge_mps.sigma_sd, std::nullopt, "m/s",

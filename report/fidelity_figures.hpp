@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "dataset/detected_beams.hpp"
 #include "geometry/calibration.hpp"
-#include "io/detected_beams.hpp"
 #include "plot/chart.hpp"
 
 namespace msislab::report {

@@ -3,9 +3,9 @@
 #include <filesystem>
 
 #include "io/atomic_file.hpp"
-#include "io/results.hpp"
 #include "io/text_lines.hpp"
 #include "report/fidelity_report.hpp"
+#include "results/results.hpp"
 #include "slam/beam_segmentation.hpp"
 
 namespace msislab::report {
@@ -101,7 +101,7 @@ std::string definitions(const FidelityReport& r) {
          "normal incidence, so the rows measure the beam's effective width and the echo's "
          "tail.\n"
          "- **Points per scan after segmentation**: the readings the project's front end takes "
-         "from the detections (`io::load_sonar_readings` on detections, default "
+         "from the detections (`dataset::load_sonar_readings` on detections, default "
          "`SegmentationConfig`: " +
          to_string(seg.method) + ", bins under " + io::format_number(seg.min_range_m) +
          " m ignored, " + readings_rule(seg) +

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "dataset/dataset.hpp"
+#include "dataset/detected_beams.hpp"
 #include "geometry/calibration.hpp"
-#include "io/dataset.hpp"
-#include "io/detected_beams.hpp"
 #include "io/json.hpp"
 #include "io/stpere_logs.hpp"
 #include "report/fidelity_table.hpp"
@@ -30,7 +30,7 @@ struct FidelityOptions {
 /// One dataset's detections, read, checked and reduced to statistics.
 struct FidelitySide {
   std::string dir;
-  io::DatasetFiles files;
+  dataset::DatasetFiles files;
   io::SonarSetup setup;
   Calibration calibration;
   std::size_t beam_times = 0;  ///< rows of *_IS_timestamps.log

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/results.hpp"
 #include "io/text_lines.hpp"
+#include "results/results.hpp"
 #include "stats/sample_statistics.hpp"
 
 namespace msislab::report {

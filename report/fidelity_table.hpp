@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "io/detected_beams.hpp"
+#include "dataset/detected_beams.hpp"
 #include "io/json.hpp"
 
 namespace msislab::report {

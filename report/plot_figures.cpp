@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "io/text_lines.hpp"
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 
 namespace msislab::report {
 
@@ -32,7 +32,7 @@ std::string ordinal(std::size_t k) {
   return std::to_string(k) + suffix;
 }
 
-std::string truth_label(const io::Truth& truth) {
+std::string truth_label(const dataset::Truth& truth) {
   return truth.kind == "gps" ? "GPS" : truth.kind + " truth";
 }
 
@@ -42,7 +42,7 @@ double title_error_m(const std::vector<ErrorSample>& errors) {
   return stats ? stats->mean_m : 0.0;
 }
 
-plot::Series ellipses(const ResultData& result, int every) {
+plot::Series ellipses(const MethodStyles& styles, const ResultData& result, int every) {
   const std::size_t n = result.scans.size();
   const std::size_t k =
       every > 0 ? static_cast<std::size_t>(every)
@@ -50,7 +50,7 @@ plot::Series ellipses(const ResultData& result, int every) {
   plot::Series series;
   series.label =
       "2-sigma position, " + (k == 1 ? std::string("every scan") : "every " + ordinal(k) + " scan");
-  series.rgb = darker(method_colour(result.method), 0.6);
+  series.rgb = darker(styles.colour(result.method), 0.6);
   series.width_px = 1.5f;
   for (std::size_t i = 0; i < n; i += k) {
     const GaussianPose2& s = result.scans[i].pose;
@@ -60,10 +60,10 @@ plot::Series ellipses(const ResultData& result, int every) {
 }
 
 /// Rows of one method, in file order.
-std::vector<std::pair<std::string, std::vector<io::NeesRow>>> by_method(
-    const std::vector<io::NeesRow>& rows) {
-  std::vector<std::pair<std::string, std::vector<io::NeesRow>>> groups;
-  for (const io::NeesRow& row : rows) {
+std::vector<std::pair<std::string, std::vector<results::NeesRow>>> by_method(
+    const std::vector<results::NeesRow>& rows) {
+  std::vector<std::pair<std::string, std::vector<results::NeesRow>>> groups;
+  for (const results::NeesRow& row : rows) {
     auto it = std::find_if(groups.begin(), groups.end(),
                            [&](const auto& g) { return g.first == row.method; });
     if (it == groups.end()) it = groups.insert(groups.end(), {row.method, {}});
@@ -73,25 +73,25 @@ std::vector<std::pair<std::string, std::vector<io::NeesRow>>> by_method(
 }
 
 /// The bounds per scan when every method has the same ones (the same number of runs), else none.
-std::optional<std::vector<io::NeesRow>> shared_bounds(
-    const std::vector<std::pair<std::string, std::vector<io::NeesRow>>>& groups) {
-  std::map<long long, io::NeesRow> bounds;
+std::optional<std::vector<results::NeesRow>> shared_bounds(
+    const std::vector<std::pair<std::string, std::vector<results::NeesRow>>>& groups) {
+  std::map<long long, results::NeesRow> bounds;
   for (const auto& [method, rows] : groups) {
-    for (const io::NeesRow& r : rows) {
+    for (const results::NeesRow& r : rows) {
       const auto [it, inserted] = bounds.try_emplace(r.scan, r);
       if (!inserted && (it->second.lower != r.lower || it->second.upper != r.upper)) {
         return std::nullopt;
       }
     }
   }
-  std::vector<io::NeesRow> rows;
+  std::vector<results::NeesRow> rows;
   for (const auto& [scan, row] : bounds) rows.push_back(row);
   return rows;
 }
 
 /// The share of scans whose run-averaged NEES lies inside its bounds, as "82%".
-std::string in_bounds_percent(const std::vector<io::NeesRow>& rows) {
-  const auto inside = std::count_if(rows.begin(), rows.end(), [](const io::NeesRow& r) {
+std::string in_bounds_percent(const std::vector<results::NeesRow>& rows) {
+  const auto inside = std::count_if(rows.begin(), rows.end(), [](const results::NeesRow& r) {
     return r.lower <= r.mean_nees && r.mean_nees <= r.upper;
   });
   return io::format_fixed(100.0 * static_cast<double>(inside) / static_cast<double>(rows.size()),
@@ -99,11 +99,11 @@ std::string in_bounds_percent(const std::vector<io::NeesRow>& rows) {
          "%";
 }
 
-void add_bounds(plot::ChartSpec& chart, const std::vector<io::NeesRow>& rows,
+void add_bounds(plot::ChartSpec& chart, const std::vector<results::NeesRow>& rows,
                 const std::string& label, std::uint32_t rgb) {
   plot::Series lower{label, {}, {}, plot::SeriesStyle::kDashedLine, rgb, 2.0f};
   plot::Series upper{"", {}, {}, plot::SeriesStyle::kDashedLine, rgb, 2.0f};
-  for (const io::NeesRow& r : rows) {
+  for (const results::NeesRow& r : rows) {
     lower.x.push_back(static_cast<double>(r.scan));
     lower.y.push_back(r.lower);
     upper.x.push_back(static_cast<double>(r.scan));
@@ -134,11 +134,11 @@ plot::ChartSpec empty_chart(const std::string& x_label, const std::string& y_lab
   return chart;
 }
 
-plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, int width_px,
-                                 int height_px) {
+plot::ChartSpec trajectory_chart(const MethodStyles& styles, const ResultData& result,
+                                 int ellipse_every, int width_px, int height_px) {
   plot::ChartSpec chart = empty_chart("x (East) [m]", "y (North) [m]", width_px, height_px);
   chart.equal_aspect = true;
-  chart.title = method_title(result.method);
+  chart.title = styles.title(result.method);
   if (result.truth) chart.title += " vs " + truth_label(*result.truth);
   if (!result.errors.empty()) {
     chart.title += ": mean error " + io::format_fixed(title_error_m(result.errors), 2) + " m";
@@ -165,18 +165,19 @@ plot::ChartSpec trajectory_chart(const ResultData& result, int ellipse_every, in
     }
     chart.series.push_back(std::move(truth));
   }
-  plot::Series estimate{method_title(result.method),  {},  {}, plot::SeriesStyle::kLine,
-                        method_colour(result.method), 2.5f};
+  plot::Series estimate{styles.title(result.method),  {},  {}, plot::SeriesStyle::kLine,
+                        styles.colour(result.method), 2.5f};
   for (const StampedPose& p : result.trajectory) {
     estimate.x.push_back(p.pose.mean.x());
     estimate.y.push_back(p.pose.mean.y());
   }
   chart.series.push_back(std::move(estimate));
-  if (!result.scans.empty()) chart.series.push_back(ellipses(result, ellipse_every));
+  if (!result.scans.empty()) chart.series.push_back(ellipses(styles, result, ellipse_every));
   return chart;
 }
 
-plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int width_px,
+plot::ChartSpec error_chart(const MethodStyles& styles,
+                            const std::vector<const ResultData*>& results, int width_px,
                             int height_px) {
   plot::ChartSpec chart = empty_chart("time [s]", "position error [m]", width_px, height_px);
   double t_max_s = 0.0, error_max_m = 0.0;
@@ -184,11 +185,11 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
     if (r->errors.empty()) continue;
     const double t0_s = r->truth->positions.front().t_s;
     plot::Series line{
-        method_title(r->method) + " (mean " + io::format_fixed(title_error_m(r->errors), 2) + " m)",
+        styles.title(r->method) + " (mean " + io::format_fixed(title_error_m(r->errors), 2) + " m)",
         {},
         {},
-        method_style(r->method),
-        method_colour(r->method),
+        styles.line(r->method),
+        styles.colour(r->method),
         2.5f};
     for (const ErrorSample& e : r->errors) {
       line.x.push_back(e.t_s - t0_s);
@@ -200,7 +201,7 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
     if (chart.title.empty()) chart.title = "Position error against " + truth_label(*r->truth);
   }
   if (chart.series.size() == 1) {
-    chart.title = "Position error of " + method_title(results.front()->method) + " against " +
+    chart.title = "Position error of " + styles.title(results.front()->method) + " against " +
                   truth_label(*results.front()->truth);
   }
   chart.x_range = plot::AxisRange{0.0, std::max(t_max_s, 1.0)};
@@ -208,14 +209,15 @@ plot::ChartSpec error_chart(const std::vector<const ResultData*>& results, int w
   return chart;
 }
 
-plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, int height_px) {
+plot::ChartSpec nees_chart(const MethodStyles& styles, const std::vector<results::NeesRow>& rows,
+                           int width_px, int height_px) {
   plot::ChartSpec chart = empty_chart("scan index", "NEES", width_px, height_px);
   chart.log_y = true;
   const auto groups = by_method(rows);
-  const std::optional<std::vector<io::NeesRow>> shared = shared_bounds(groups);
+  const std::optional<std::vector<results::NeesRow>> shared = shared_bounds(groups);
   long long runs_min = rows.front().runs, runs_max = rows.front().runs;
   double scan_min = static_cast<double>(rows.front().scan), scan_max = scan_min;
-  for (const io::NeesRow& r : rows) {
+  for (const results::NeesRow& r : rows) {
     runs_min = std::min(runs_min, r.runs);
     runs_max = std::max(runs_max, r.runs);
     scan_min = std::min(scan_min, static_cast<double>(r.scan));
@@ -234,15 +236,15 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
   if (shared) add_bounds(chart, *shared, "95% bounds", kBoundColour);
   for (const auto& [method, method_rows] : groups) {
     if (!shared) {
-      add_bounds(chart, method_rows, method_title(method) + " 95% bounds", method_colour(method));
+      add_bounds(chart, method_rows, styles.title(method) + " 95% bounds", styles.colour(method));
     }
-    plot::Series mean{method_title(method) + " (" + in_bounds_percent(method_rows) + " in bounds)",
+    plot::Series mean{styles.title(method) + " (" + in_bounds_percent(method_rows) + " in bounds)",
                       {},
                       {},
-                      method_style(method),
-                      method_colour(method),
+                      styles.line(method),
+                      styles.colour(method),
                       2.5f};
-    for (const io::NeesRow& r : method_rows) {
+    for (const results::NeesRow& r : method_rows) {
       mean.x.push_back(static_cast<double>(r.scan));
       mean.y.push_back(r.mean_nees);
     }
@@ -252,12 +254,13 @@ plot::ChartSpec nees_chart(const std::vector<io::NeesRow>& rows, int width_px, i
   return chart;
 }
 
-plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, int width_px,
+plot::ChartSpec error_spread_chart(const MethodStyles& styles,
+                                   const std::vector<results::ErrorSpreadRow>& rows, int width_px,
                                    int height_px) {
   plot::ChartSpec chart = empty_chart("time [s]", "position error [m]", width_px, height_px);
   int runs = 0;
   std::vector<std::string> order;
-  for (const io::ErrorSpreadRow& r : rows) {
+  for (const results::ErrorSpreadRow& r : rows) {
     runs = std::max(runs, r.spread.runs);
     if (std::find(order.begin(), order.end(), r.method) == order.end()) order.push_back(r.method);
   }
@@ -265,16 +268,16 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
   for (const std::string& method : order) {
     // The mean in the method's own style (world-centric dashed over the robocentric line it
     // coincides with), the band dotted.
-    plot::Series mean{method_title(method) + " mean", {},  {}, method_style(method),
-                      method_colour(method),          2.5f};
-    plot::Series low{method_title(method) + " 5-95 %",
+    plot::Series mean{styles.title(method) + " mean", {},  {}, styles.line(method),
+                      styles.colour(method),          2.5f};
+    plot::Series low{styles.title(method) + " 5-95 %",
                      {},
                      {},
                      plot::SeriesStyle::kDottedLine,
-                     method_colour(method),
+                     styles.colour(method),
                      1.5f};
-    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, method_colour(method), 1.5f};
-    for (const io::ErrorSpreadRow& r : rows) {
+    plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, styles.colour(method), 1.5f};
+    for (const results::ErrorSpreadRow& r : rows) {
       if (r.method != method) continue;
       for (plot::Series* s : {&mean, &low, &high}) s->x.push_back(r.spread.t_s);
       mean.y.push_back(r.spread.mean_m);
@@ -288,15 +291,16 @@ plot::ChartSpec error_spread_chart(const std::vector<io::ErrorSpreadRow>& rows, 
   return chart;
 }
 
-plot::ChartSpec error_distribution_chart(const std::vector<ErrorHistogram>& histograms,
+plot::ChartSpec error_distribution_chart(const MethodStyles& styles,
+                                         const std::vector<ErrorHistogram>& histograms,
                                          int width_px, int height_px) {
   plot::ChartSpec chart =
       empty_chart("position error [m]", "fraction of samples per bin", width_px, height_px);
   chart.title = "Position error distribution (all runs, once a second)";
   for (const ErrorHistogram& h : histograms) {
     // The histogram's outline: up and down each bin's edges.
-    plot::Series outline{method_title(h.method),  {},  {}, method_style(h.method),
-                         method_colour(h.method), 2.5f};
+    plot::Series outline{styles.title(h.method),  {},  {}, styles.line(h.method),
+                         styles.colour(h.method), 2.5f};
     outline.x.push_back(h.edges_m.front());
     outline.y.push_back(0.0);
     for (std::size_t b = 0; b < h.fractions.size(); ++b) {

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <map>
 
-#include "io/dataset.hpp"
+#include "dataset/dataset.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/tum.hpp"
@@ -28,13 +28,14 @@ std::vector<StampedPose> read_trajectory(const std::string& path) {
 /// Each dataset's truth is loaded once, however many results were run on it.
 class Datasets {
  public:
-  std::shared_ptr<const io::Truth> truth(const std::string& dir) {
+  std::shared_ptr<const dataset::Truth> truth(const std::string& dir) {
     remember(dir);
     auto [it, inserted] = truths_.try_emplace(dir);
     if (inserted) {
-      const io::DatasetFiles files = io::find_dataset_files(dir);
-      io::Truth truth = io::load_truth(files, io::load_calibration(files));
-      if (!truth.kind.empty()) it->second = std::make_shared<const io::Truth>(std::move(truth));
+      const dataset::DatasetFiles files = dataset::find_dataset_files(dir);
+      dataset::Truth truth = dataset::load_truth(files, dataset::load_calibration(files));
+      if (!truth.kind.empty())
+        it->second = std::make_shared<const dataset::Truth>(std::move(truth));
     }
     return it->second;
   }
@@ -44,7 +45,7 @@ class Datasets {
   const std::vector<std::string>& in_order() const { return order_; }
 
  private:
-  std::map<std::string, std::shared_ptr<const io::Truth>> truths_;
+  std::map<std::string, std::shared_ptr<const dataset::Truth>> truths_;
   std::vector<std::string> order_;
 };
 
@@ -67,15 +68,15 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
   result.method = result.name;
   result.trajectory = read_trajectory((dir / "trajectory.tum").string());
   if (fs::is_regular_file(dir / "scans.csv")) {
-    result.scans = io::read_scans_csv((dir / "scans.csv").string());
+    result.scans = results::read_scans_csv((dir / "scans.csv").string());
   }
   if (fs::is_regular_file(dir / "map.ply")) {
-    result.map_points_m = io::read_points_ply((dir / "map.ply").string());
+    result.map_points_m = results::read_points_ply((dir / "map.ply").string());
   }
   std::string recorded;
   const fs::path metrics = dir / "metrics.json";
   if (fs::is_regular_file(metrics)) {
-    const io::StoredMetrics stored = io::read_metrics_json(metrics.string());
+    const results::StoredMetrics stored = results::read_metrics_json(metrics.string());
     result.method = stored.metrics.method;
     recorded = stored.dataset_dir;
   }
@@ -86,9 +87,9 @@ ResultData load_result(const fs::path& dir, const PlotOptions& options, Datasets
 }
 
 /// The revolution of the first dataset (--dataset first) that has a raw sonar log.
-std::optional<io::SonarRevolution> find_revolution(const Datasets& datasets, int revolution) {
+std::optional<dataset::SonarRevolution> find_revolution(const Datasets& datasets, int revolution) {
   for (const std::string& dir : datasets.in_order()) {
-    if (io::find_dataset_files(dir).is_log) return io::read_revolution(dir, revolution);
+    if (dataset::find_dataset_files(dir).is_log) return dataset::read_revolution(dir, revolution);
   }
   if (revolution >= 0) {
     throw io::InputError("--revolution " + std::to_string(revolution) +
@@ -103,7 +104,7 @@ std::vector<fs::path> result_subdirs(const fs::path& dir) {
   std::vector<fs::path> subdirs;
   // A dataset's truth/ holds a trajectory.tum too, but it is what the results are scored against.
   const bool dataset = io::output_kind(dir.string()) == "dataset" ||
-                       io::find_dataset_files(dir.string()).dvl.has_value();
+                       dataset::find_dataset_files(dir.string()).dvl.has_value();
   for (const fs::directory_entry& entry : fs::directory_iterator(dir)) {
     const std::string name = entry.path().filename().string();
     if (dataset && name == "truth") continue;
@@ -124,7 +125,7 @@ PlotInputs load_plot_inputs(const PlotOptions& options) {
   if (!options.dataset_dir.empty()) datasets.remember(options.dataset_dir);
   if (fs::is_regular_file(dir / "sweep.csv")) {
     // A sweep directory: its cells are Monte Carlo directories; plot one by naming its folder.
-    in.sweep = io::read_sweep_csv((dir / "sweep.csv").string());
+    in.sweep = results::read_sweep_csv((dir / "sweep.csv").string());
     if (in.sweep->rows.empty()) io::fail_file((dir / "sweep.csv").string(), "no rows to plot");
     return in;
   }
@@ -133,12 +134,13 @@ PlotInputs load_plot_inputs(const PlotOptions& options) {
     in.results.push_back(load_result(dir, options, datasets));
   } else if (fs::is_regular_file(dir / "nees.csv")) {
     // A Monte Carlo directory: its per-run results are many; plot one by naming its folder.
-    in.nees = io::read_montecarlo_nees((dir / "nees.csv").string());
+    in.nees = results::read_montecarlo_nees((dir / "nees.csv").string());
     if (fs::is_regular_file(dir / "errors.csv")) {
-      in.error_spread = io::read_error_spread_csv((dir / "errors.csv").string());
+      in.error_spread = results::read_error_spread_csv((dir / "errors.csv").string());
     }
     if (fs::is_regular_file(dir / "error_histogram.csv")) {
-      in.error_histograms = io::read_error_histogram_csv((dir / "error_histogram.csv").string());
+      in.error_histograms =
+          results::read_error_histogram_csv((dir / "error_histogram.csv").string());
     }
   } else {
     for (const fs::path& subdir : result_subdirs(dir)) {

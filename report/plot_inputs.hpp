@@ -10,12 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "dataset/sonar_revolution.hpp"
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/result_readers.hpp"
-#include "io/results.hpp"
-#include "io/sonar_revolution.hpp"
-#include "io/sweep_files.hpp"
-#include "io/truth.hpp"
+#include "results/result_readers.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
 
 namespace msislab::report {
 
@@ -34,10 +34,10 @@ struct ResultData {
   std::string name;    ///< the folder's name
   std::string method;  ///< from metrics.json; the folder's name when there is none
   std::vector<StampedPose> trajectory;
-  std::vector<StampedPose> scans;             ///< scans.csv; empty when absent
-  std::vector<Eigen::Vector2d> map_points_m;  ///< map.ply; empty when absent
-  std::shared_ptr<const io::Truth> truth;     ///< null when the dataset is unknown or has none
-  std::vector<ErrorSample> errors;            ///< position errors against the truth
+  std::vector<StampedPose> scans;               ///< scans.csv; empty when absent
+  std::vector<Eigen::Vector2d> map_points_m;    ///< map.ply; empty when absent
+  std::shared_ptr<const dataset::Truth> truth;  ///< null when the dataset is unknown or has none
+  std::vector<ErrorSample> errors;              ///< position errors against the truth
 };
 
 struct PlotInputs {
@@ -45,11 +45,11 @@ struct PlotInputs {
   /// DIR itself when it holds trajectory.tum; else its subdirectories that do (a comparison).
   std::vector<ResultData> results;
   bool comparison = false;
-  std::vector<io::NeesRow> nees;                  ///< DIR/nees.csv of a Monte Carlo directory
-  std::vector<io::ErrorSpreadRow> error_spread;   ///< its errors.csv, when present
-  std::vector<ErrorHistogram> error_histograms;   ///< its error_histogram.csv, when present
-  std::optional<io::SweepTable> sweep;            ///< DIR/sweep.csv of a sweep directory
-  std::optional<io::SonarRevolution> revolution;  ///< when the dataset has a *_IS.log
+  std::vector<results::NeesRow> nees;                  ///< DIR/nees.csv of a Monte Carlo directory
+  std::vector<results::ErrorSpreadRow> error_spread;   ///< its errors.csv, when present
+  std::vector<ErrorHistogram> error_histograms;        ///< its error_histogram.csv, when present
+  std::optional<results::SweepTable> sweep;            ///< DIR/sweep.csv of a sweep directory
+  std::optional<dataset::SonarRevolution> revolution;  ///< when the dataset has a *_IS.log
 };
 
 /// Reads everything `plot` needs. Throws io::InputError for a missing DIR, a malformed file, a

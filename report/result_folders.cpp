@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "io/dataset.hpp"
+#include "dataset/dataset.hpp"
 #include "io/input_error.hpp"
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 #include "report/plot_inputs.hpp"
 #include "report/results_page.hpp"
 
@@ -14,8 +14,10 @@ namespace msislab::report {
 namespace fs = std::filesystem;
 
 namespace {
-/// PNG files of DIR/figures, sorted; InputError when the folder is missing or holds none.
-std::vector<std::string> figures_of(const std::string& dir) {
+/// PNG files of DIR/figures, sorted; InputError when the folder is missing or holds none, or when
+/// a figure is older than one of `data` (the files it was drawn from, written again since: a
+/// Monte Carlo resumed with another method, a result scored again).
+std::vector<std::string> figures_of(const std::string& dir, const std::vector<fs::path>& data) {
   const fs::path folder = fs::path(dir) / "figures";
   std::vector<std::string> names;
   std::error_code ec;
@@ -28,6 +30,16 @@ std::vector<std::string> figures_of(const std::string& dir) {
     io::fail_file(folder.string(), "no figures (draw them first: msislab plot " + dir + ")");
   }
   std::sort(names.begin(), names.end());
+  for (const std::string& name : names) {
+    const fs::file_time_type drawn = fs::last_write_time(folder / name);
+    for (const fs::path& file : data) {
+      if (fs::last_write_time(file) > drawn) {
+        io::fail_file((folder / name).string(),
+                      "was drawn before " + file.string() +
+                          " was written (draw the figures again: msislab plot " + dir + ")");
+      }
+    }
+  }
   return names;
 }
 
@@ -36,7 +48,7 @@ std::vector<std::string> figures_of(const std::string& dir) {
 std::string dataset_name(const std::string& dataset_dir) {
   if (dataset_dir.empty()) return "";
   if (fs::is_directory(dataset_dir)) {
-    const io::DatasetFiles files = io::find_dataset_files(dataset_dir);
+    const dataset::DatasetFiles files = dataset::find_dataset_files(dataset_dir);
     if (files.dvl) {
       const std::string log = fs::path(*files.dvl).filename().string();
       return log.substr(0, log.size() - std::string("_DVL.log").size());
@@ -47,14 +59,18 @@ std::string dataset_name(const std::string& dataset_dir) {
 
 }  // namespace
 
-ResultFolder read_result_folder(const std::string& dir, const std::string& label) {
+ResultFolder read_result_folder(const MethodStyles& styles, const std::string& dir,
+                                const std::string& label) {
   if (!fs::is_directory(dir)) io::fail_file(dir, "not a directory");
   ResultFolder folder;
   folder.label = label;
   folder.dir = dir;
+  std::vector<fs::path> data;
   for (const fs::path& sub : result_subdirs(dir)) {
     if (!fs::is_regular_file(sub / "metrics.json")) continue;  // run without truth: no scores
-    const io::StoredMetrics stored = io::read_metrics_json((sub / "metrics.json").string());
+    data.push_back(sub / "metrics.json");
+    const results::StoredMetrics stored =
+        results::read_metrics_json((sub / "metrics.json").string());
     if (folder.dataset.empty()) folder.dataset = stored.dataset_dir;
     folder.results.push_back(stored.metrics);
   }
@@ -62,10 +78,10 @@ ResultFolder read_result_folder(const std::string& dir, const std::string& label
     io::fail_file(dir, "no result directories (subdirectories with a metrics.json)");
   }
   std::stable_sort(folder.results.begin(), folder.results.end(),
-                   [](const RunMetrics& a, const RunMetrics& b) {
-                     return method_rank(a.method) < method_rank(b.method);
+                   [&](const RunMetrics& a, const RunMetrics& b) {
+                     return styles.rank(a.method) < styles.rank(b.method);
                    });
-  folder.figures = figures_of(dir);
+  folder.figures = figures_of(dir, data);
   folder.scenario = dataset_name(folder.dataset);
   return folder;
 }
@@ -75,13 +91,13 @@ MonteCarloFolder read_montecarlo_folder(const std::string& dir) {
   MonteCarloFolder mc;
   mc.label = "montecarlo";
   mc.dir = dir;
-  mc.manifest = io::read_manifest_json((fs::path(dir) / "montecarlo.json").string());
+  mc.manifest = results::read_manifest_json((fs::path(dir) / "montecarlo.json").string());
   const fs::path summary = fs::path(dir) / "summary.json";
   if (!fs::is_regular_file(summary)) {
     io::fail_file(summary.string(), "missing (the Monte Carlo has not finished or been merged)");
   }
-  mc.methods = io::read_summary_json(summary.string());
-  mc.figures = figures_of(dir);
+  mc.methods = results::read_summary_json(summary.string());
+  mc.figures = figures_of(dir, {summary});
   return mc;
 }
 

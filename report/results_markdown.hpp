@@ -22,12 +22,12 @@ std::string percent(const std::optional<double>& fraction);
 /// A sweep's sweep.csv as a table: a row per cell, per method its mean error and ANEES, each
 /// further method's paired difference to the first with its 95 % interval, and the linearisation
 /// errors when measured; then the cells where the paired difference is beyond the noise.
-void sweep_section(std::ostringstream& md, const SweepFolder& sweep);
+void sweep_section(const MethodStyles& styles, std::ostringstream& md, const SweepFolder& sweep);
 
 /// The real result's sensitivity (tools/real_sensitivity.sh): a row per parameter, its error
 /// moved down and up with the change in percent, the parameters that move it by more than a
 /// quarter in bold, and how many they are.
-void sensitivity_section(std::ostringstream& md, const std::string& source,
-                         const std::vector<io::SensitivityRow>& rows);
+void sensitivity_section(const MethodStyles& styles, std::ostringstream& md,
+                         const std::string& source, const std::vector<io::SensitivityRow>& rows);
 
 }  // namespace msislab::report

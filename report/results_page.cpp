@@ -3,7 +3,7 @@
 #include <filesystem>
 
 #include "io/text_lines.hpp"
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 #include "report/results_markdown.hpp"
 #include "stats/chi_square.hpp"
 
@@ -52,7 +52,8 @@ const RunMetrics* find_method(const ResultFolder& folder, const std::string& met
   return nullptr;
 }
 
-void table_one(std::ostringstream& md, const ResultFolder& folder, const std::string& truth_name) {
+void table_one(const MethodStyles& styles, std::ostringstream& md, const ResultFolder& folder,
+               const std::string& truth_name) {
   const std::vector<std::string> segments = segment_names(
       folder.results, [](const RunMetrics& m) -> const auto& { return m.segments; });
   const bool with_nees = std::any_of(folder.results.begin(), folder.results.end(),
@@ -64,7 +65,7 @@ void table_one(std::ostringstream& md, const ResultFolder& folder, const std::st
   for (std::size_t i = 0; i < segments.size(); ++i) md << " ---: |";
   md << " ---: | ---: | ---: | ---: |" << (with_nees ? " ---: |" : "") << " ---: |\n";
   for (const RunMetrics& m : folder.results) {
-    md << "| " << method_title(m.method) << " | **" << fixed(m.errors.mean_m, 2) << "** |";
+    md << "| " << styles.title(m.method) << " | **" << fixed(m.errors.mean_m, 2) << "** |";
     for (const std::string& s : segments) md << " " << fixed(segment_of(m.segments, s), 2) << " |";
     md << " " << fixed(m.errors.final_m, 2) << " | " << fixed(m.errors.max_m, 2) << " | "
        << (m.scans > 0 ? std::to_string(m.scans) : "") << " | "
@@ -93,7 +94,7 @@ void table_one(std::ostringstream& md, const ResultFolder& folder, const std::st
         std::find_if(m.diagnostics.begin(), m.diagnostics.end(),
                      [](const auto& d) { return d.first == "smoothed_mean_error_m"; });
     if (smoothed == m.diagnostics.end()) continue;
-    md << "- " << method_title(m.method) << ": " << fixed(smoothed->second, 2)
+    md << "- " << styles.title(m.method) << ": " << fixed(smoothed->second, 2)
        << " m mean error smoothed (trajectory_smoothed.tum), " << fixed(m.errors.mean_m, 2)
        << " m online (the table, docs/pose_graph.md).\n";
   }
@@ -151,18 +152,20 @@ void figure_list(std::ostringstream& md, const std::string& figures_dir, const s
 
 /// The Monte Carlo table: a row per method, its runs, mean error (overall and per segment), ANEES,
 /// share of scan steps in the NEES bounds and run time.
-void montecarlo_table(std::ostringstream& md, const MonteCarloFolder& mc) {
+void montecarlo_table(const MethodStyles& styles, std::ostringstream& md,
+                      const MonteCarloFolder& mc) {
   const std::vector<std::string> segments = segment_names(
-      mc.methods, [](const io::StoredSummary& s) -> const auto& { return s.summary.segments; });
+      mc.methods,
+      [](const results::StoredSummary& s) -> const auto& { return s.summary.segments; });
   md << "| method | runs | failed | mean error [m] |";
   for (const std::string& s : segments) md << " " << s << " [m] |";
   md << " ANEES | scan steps with NEES in the 95% bounds | bounds | run time per run [s] |\n"
      << "| --- | ---: | ---: | ---: |";
   for (std::size_t i = 0; i < segments.size(); ++i) md << " ---: |";
   md << " ---: | ---: | --- | ---: |\n";
-  for (const io::StoredSummary& stored : mc.methods) {
+  for (const results::StoredSummary& stored : mc.methods) {
     const MethodSummary& s = stored.summary;
-    md << "| " << method_title(s.method) << " | " << s.runs << " | " << s.failed << " | "
+    md << "| " << styles.title(s.method) << " | " << s.runs << " | " << s.failed << " | "
        << fixed(s.mean_error_m, 2) << " |";
     for (const std::string& name : segments) {
       md << " " << fixed(segment_of(s.segments, name), 2) << " |";
@@ -182,7 +185,7 @@ void montecarlo_table(std::ostringstream& md, const MonteCarloFolder& mc) {
 void robocentric_verdict(std::ostringstream& md, const MonteCarloFolder& mc) {
   const MethodSummary* rc = nullptr;
   const MethodSummary* wc = nullptr;
-  for (const io::StoredSummary& stored : mc.methods) {
+  for (const results::StoredSummary& stored : mc.methods) {
     const MethodSummary& s = stored.summary;
     if (s.method == "robocentric") rc = &s;
     if (s.method == "worldcentric") wc = &s;
@@ -212,15 +215,15 @@ void robocentric_verdict(std::ostringstream& md, const MonteCarloFolder& mc) {
 
 /// A Monte Carlo folder's section; `first`: the page's consistency test, else titled by its
 /// scenario.
-void montecarlo_section(std::ostringstream& md, const MonteCarloFolder& mc,
-                        const std::string& figures_dir, bool first) {
-  const io::MonteCarloManifest& m = mc.manifest;
+void montecarlo_section(const MethodStyles& styles, std::ostringstream& md,
+                        const MonteCarloFolder& mc, const std::string& figures_dir, bool first) {
+  const results::MonteCarloManifest& m = mc.manifest;
   const std::string scenario = fs::path(m.scenario_source).filename().string();
   md << "\n## Monte Carlo consistency" << (first ? "" : ": `" + scenario + "`") << "\n\n"
      << m.runs << " seeded runs of the scenario `" << scenario << "` (seeds " << m.first_seed
      << " to " << m.first_seed + static_cast<std::uint64_t>(m.runs) - 1
      << "), each simulated and run by every method; `" << mc.dir << "`.\n\n";
-  montecarlo_table(md, mc);
+  montecarlo_table(styles, md, mc);
   md << "\nThe NEES of the 3-DOF scan pose is averaged over the runs at each scan step; N runs "
         "times that average is chi-square with 3N degrees of freedom for a consistent filter, so "
         "the two-sided 95% bounds apply to each step (docs/trajectory_slam.md). The ANEES averages "
@@ -273,7 +276,7 @@ std::string results_markdown(const ResultsReport& report) {
       md << ", dataset `" << fs::path(folder.dataset).filename().string() << "`";
     }
     md << ".\n\n";
-    table_one(md, folder, truth_name);
+    table_one(report.styles, md, folder, truth_name);
     figure_list(md, report.figures_dir_name, folder.label, truth_name, folder.figures);
   };
   if (report.sim) section(*report.sim, simulated_title(*report.sim), "simulation truth");
@@ -282,12 +285,12 @@ std::string results_markdown(const ResultsReport& report) {
     md << "\nThe paper on the same data: robocentric 1.15 m, world-centric 2.05 m mean error.\n";
   }
   for (std::size_t i = 0; i < report.montecarlo.size(); ++i) {
-    montecarlo_section(md, report.montecarlo[i], report.figures_dir_name, i == 0);
+    montecarlo_section(report.styles, md, report.montecarlo[i], report.figures_dir_name, i == 0);
   }
   if (!report.sensitivity.empty()) {
-    sensitivity_section(md, report.sensitivity_source, report.sensitivity);
+    sensitivity_section(report.styles, md, report.sensitivity_source, report.sensitivity);
   }
-  for (const SweepFolder& sweep : report.sweeps) sweep_section(md, sweep);
+  for (const SweepFolder& sweep : report.sweeps) sweep_section(report.styles, md, sweep);
   return md.str();
 }
 

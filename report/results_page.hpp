@@ -12,10 +12,11 @@
 
 #include "eval/evaluation.hpp"
 #include "eval/monte_carlo.hpp"
-#include "io/montecarlo_files.hpp"
-#include "io/results.hpp"
 #include "io/sensitivity_csv.hpp"
-#include "io/sweep_files.hpp"
+#include "report/method_styles.hpp"
+#include "results/montecarlo_files.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
 
 namespace msislab::report {
 
@@ -33,14 +34,14 @@ struct ResultFolder {
 struct MonteCarloFolder {
   std::string label;  ///< prefix of its copied figures: "montecarlo", then "montecarlo_<scenario>"
   std::string dir;
-  io::MonteCarloManifest manifest;
-  std::vector<io::StoredSummary> methods;
+  results::MonteCarloManifest manifest;
+  std::vector<results::StoredSummary> methods;
   std::vector<std::string> figures;  ///< PNG file names in DIR/figures/, sorted
 };
 
 struct SweepFolder {
   std::string dir;  ///< as given; its name titles the section
-  io::SweepTable table;
+  results::SweepTable table;
 };
 
 struct ResultsReport {
@@ -51,11 +52,14 @@ struct ResultsReport {
   std::string sensitivity_source;            ///< the CSV's path as given (empty: no section)
   std::vector<io::SensitivityRow> sensitivity;
   std::string figures_dir_name;  ///< where the page links its figures, relative to it
+  MethodStyles styles;           ///< the methods' titles
 };
 
 /// Reads a result folder: every subdirectory with a metrics.json, and DIR/figures/*.png (which
 /// must exist: `msislab plot DIR` draws them). Throws io::InputError.
-ResultFolder read_result_folder(const std::string& dir, const std::string& label);
+/// Its methods in the order of `styles`.
+ResultFolder read_result_folder(const MethodStyles& styles, const std::string& dir,
+                                const std::string& label);
 /// Reads summary.json, montecarlo.json and DIR/figures/*.png; labels it "montecarlo" (the
 /// caller renames further folders). Throws io::InputError.
 MonteCarloFolder read_montecarlo_folder(const std::string& dir);

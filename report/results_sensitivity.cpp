@@ -1,7 +1,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 #include "report/results_markdown.hpp"
 
 namespace msislab::report {
@@ -27,8 +27,8 @@ std::string moved_error(double error_m, double default_m, bool& cliff) {
 
 }  // namespace
 
-void sensitivity_section(std::ostringstream& md, const std::string& source,
-                         const std::vector<io::SensitivityRow>& rows) {
+void sensitivity_section(const MethodStyles& styles, std::ostringstream& md,
+                         const std::string& source, const std::vector<io::SensitivityRow>& rows) {
   md << "\n## How far the real result can be trusted\n\n"
      << "`" << source << "` (`tools/real_sensitivity.sh`): the real St. Pere run with each "
      << "parameter of the front end and back end that the default config sets moved down and up "
@@ -46,7 +46,7 @@ void sensitivity_section(std::ostringstream& md, const std::string& source,
     const std::string low = moved_error(r.low_mean_error_m, r.mean_error_m, cliff);
     const std::string high = moved_error(r.high_mean_error_m, r.mean_error_m, cliff);
     cliffs += cliff ? 1 : 0;
-    md << "| `" << r.parameter << "` | " << r.default_value << " | " << method_title(r.method)
+    md << "| `" << r.parameter << "` | " << r.default_value << " | " << styles.title(r.method)
        << " | " << fixed(r.mean_error_m, 2) << " | " << r.low_value << " | " << low << " | "
        << r.high_value << " | " << high << " |\n";
   }

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "io/input_error.hpp"
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 #include "report/results_markdown.hpp"
 
 namespace msislab::report {
@@ -29,13 +29,13 @@ std::string millimetres(double metres) {
 /// The shape of a sweep's table: its methods and cells in order of appearance, and whether the
 /// linearisation errors were measured.
 struct SweepShape {
-  const io::SweepTable& table;
+  const results::SweepTable& table;
   std::vector<std::string> methods;
   std::vector<int> cells;
   bool linearisation = false;
 
-  const io::SweepRow* row(int cell, const std::string& method) const {
-    for (const io::SweepRow& r : table.rows) {
+  const results::SweepRow* row(int cell, const std::string& method) const {
+    for (const results::SweepRow& r : table.rows) {
       if (r.cell == cell && r.method == method) return &r;
     }
     return nullptr;
@@ -44,7 +44,7 @@ struct SweepShape {
 
 SweepShape shape_of(const SweepFolder& sweep) {
   SweepShape shape{sweep.table, {}, {}, false};
-  for (const io::SweepRow& r : sweep.table.rows) {
+  for (const results::SweepRow& r : sweep.table.rows) {
     if (std::find(shape.methods.begin(), shape.methods.end(), r.method) == shape.methods.end())
       shape.methods.push_back(r.method);
     if (std::find(shape.cells.begin(), shape.cells.end(), r.cell) == shape.cells.end())
@@ -58,13 +58,14 @@ SweepShape shape_of(const SweepFolder& sweep) {
 }
 
 /// The title, the paragraph and the table's header and rule.
-void sweep_header(std::ostringstream& md, const SweepFolder& sweep, const SweepShape& shape) {
+void sweep_header(const MethodStyles& styles, std::ostringstream& md, const SweepFolder& sweep,
+                  const SweepShape& shape) {
   const std::vector<std::string>& methods = shape.methods;
   const std::string name = fs::path(sweep.dir).lexically_normal().filename().string();
   md << "\n## Sweep: `" << name << "`\n\n"
      << "`" << sweep.dir << "/sweep.csv`, " << shape.cells.size()
      << " cells. Mean error over the runs; the paired difference is each run's mean error minus "
-     << method_title(methods.front())
+     << styles.title(methods.front())
      << "'s on the same simulated data, averaged, with its 95 % interval (docs/formats.md)"
      << (shape.linearisation ? "; epsilon is the linearisation error (docs/robocentric.md)" : "")
      << ".\n\n|";
@@ -74,11 +75,11 @@ void sweep_header(std::ostringstream& md, const SweepFolder& sweep, const SweepS
     rule += " ---: |";
   }
   for (const std::string& m : methods) {
-    md << " " << method_title(m) << " [m] |";
+    md << " " << styles.title(m) << " [m] |";
     rule += " ---: |";
   }
   for (std::size_t i = 1; i < methods.size(); ++i) {
-    md << " " << method_title(methods[i]) << " minus " << method_title(methods.front())
+    md << " " << styles.title(methods[i]) << " minus " << styles.title(methods.front())
        << " [mm] |";
     rule += " ---: |";
   }
@@ -95,14 +96,14 @@ void sweep_header(std::ostringstream& md, const SweepFolder& sweep, const SweepS
 void sweep_row(std::ostringstream& md, const SweepShape& shape, int cell,
                std::vector<std::string>& beyond) {
   const std::vector<std::string>& methods = shape.methods;
-  const io::SweepRow* first = shape.row(cell, methods.front());
+  const results::SweepRow* first = shape.row(cell, methods.front());
   md << "|";
   for (std::size_t k = 0; k < shape.table.keys.size(); ++k) {
     md << " " << (first ? first->values[k] : "") << " |";
   }
   std::string anees, match, inversion, pose;
   for (const std::string& m : methods) {
-    const io::SweepRow* r = shape.row(cell, m);
+    const results::SweepRow* r = shape.row(cell, m);
     md << " " << (r ? fixed(r->mean_error_m, 3) : "n/a") << " |";
     const std::string sep = m == methods.front() ? "" : " / ";
     anees += sep + (r ? fixed(r->anees, 2) : "n/a");
@@ -114,7 +115,7 @@ void sweep_row(std::ostringstream& md, const SweepShape& shape, int cell,
     }
   }
   for (std::size_t i = 1; i < methods.size(); ++i) {
-    const io::SweepRow* r = shape.row(cell, methods[i]);
+    const results::SweepRow* r = shape.row(cell, methods[i]);
     if (!r || !r->paired_difference_m) {
       md << " n/a |";
       continue;
@@ -134,9 +135,9 @@ void sweep_row(std::ostringstream& md, const SweepShape& shape, int cell,
 
 }  // namespace
 
-void sweep_section(std::ostringstream& md, const SweepFolder& sweep) {
+void sweep_section(const MethodStyles& styles, std::ostringstream& md, const SweepFolder& sweep) {
   const SweepShape shape = shape_of(sweep);
-  sweep_header(md, sweep, shape);
+  sweep_header(styles, md, sweep, shape);
   std::vector<std::string> beyond;
   for (const int cell : shape.cells) sweep_row(md, shape, cell, beyond);
   md << "\nPaired differences beyond the Monte Carlo noise (95 % interval without 0, in bold): ";

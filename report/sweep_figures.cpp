@@ -9,7 +9,7 @@
 #include <set>
 #include <stdexcept>
 
-#include "report/methods.hpp"
+#include "report/method_styles.hpp"
 #include "report/plot_figures.hpp"
 
 namespace msislab::report {
@@ -22,12 +22,13 @@ struct SweepMetric {
   std::string y_label, title;
   std::vector<std::string> kinds;  ///< "" for a metric of one kind
   bool log_y = false;
-  std::optional<double> value(const io::SweepRow& r, std::size_t kind) const;
-  std::optional<std::pair<double, double>> band(const io::SweepRow& r) const;
+  std::optional<double> value(const results::SweepRow& r, std::size_t kind) const;
+  std::optional<std::pair<double, double>> band(const results::SweepRow& r) const;
   std::string name;
+  std::string reference;  ///< paired_difference: the method the differences are taken against
 };
 
-SweepMetric sweep_metric(const std::string& metric, const io::SweepTable& table) {
+SweepMetric sweep_metric(const std::string& metric, const results::SweepTable& table) {
   SweepMetric m;
   m.name = metric;
   m.kinds = {""};
@@ -39,11 +40,9 @@ SweepMetric sweep_metric(const std::string& metric, const io::SweepTable& table)
     m.title = "ANEES";
     m.log_y = true;
   } else if (metric == "paired_difference") {
-    std::string reference;
-    for (const io::SweepRow& r : table.rows) {
-      if (!r.paired_reference.empty()) reference = r.paired_reference;
-    }
-    m.y_label = "mean error minus " + method_title(reference) + "'s, same runs [m]";
+    for (const results::SweepRow& r : table.rows) {
+      if (!r.paired_reference.empty()) m.reference = r.paired_reference;
+    }  // the y label names it, in the chart's styles (sweep_chart)
     m.title = "Paired difference (dotted: 95 % interval)";
   } else if (metric == "linearisation") {
     m.y_label = "linearisation error epsilon";
@@ -56,7 +55,7 @@ SweepMetric sweep_metric(const std::string& metric, const io::SweepTable& table)
   return m;
 }
 
-std::optional<double> SweepMetric::value(const io::SweepRow& r, std::size_t kind) const {
+std::optional<double> SweepMetric::value(const results::SweepRow& r, std::size_t kind) const {
   if (name == "mean_error") return r.mean_error_m;
   if (name == "anees") return r.anees;
   if (name == "paired_difference") return r.paired_difference_m;
@@ -65,7 +64,7 @@ std::optional<double> SweepMetric::value(const io::SweepRow& r, std::size_t kind
   return v && *v > 0.0 ? v : std::nullopt;  // a log axis
 }
 
-std::optional<std::pair<double, double>> SweepMetric::band(const io::SweepRow& r) const {
+std::optional<std::pair<double, double>> SweepMetric::band(const results::SweepRow& r) const {
   if (name == "mean_error" && r.p05_m && r.p95_m) return std::pair{*r.p05_m, *r.p95_m};
   if (name == "paired_difference" && r.paired_ci95_lower_m && r.paired_ci95_upper_m) {
     return std::pair{*r.paired_ci95_lower_m, *r.paired_ci95_upper_m};
@@ -75,9 +74,9 @@ std::optional<std::pair<double, double>> SweepMetric::band(const io::SweepRow& r
 
 }  // namespace
 
-bool sweep_has_metric(const io::SweepTable& table, const std::string& metric) {
+bool sweep_has_metric(const results::SweepTable& table, const std::string& metric) {
   const SweepMetric m = sweep_metric(metric, table);
-  for (const io::SweepRow& r : table.rows) {
+  for (const results::SweepRow& r : table.rows) {
     for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
       if (m.value(r, kind)) return true;
     }
@@ -100,10 +99,10 @@ struct SweepAxis {
   }
 };
 
-SweepAxis sweep_axis(const io::SweepTable& table, std::size_t key) {
+SweepAxis sweep_axis(const results::SweepTable& table, std::size_t key) {
   SweepAxis axis;
   bool numeric = true;
-  for (const io::SweepRow& r : table.rows) {
+  for (const results::SweepRow& r : table.rows) {
     if (std::find(axis.values.begin(), axis.values.end(), r.values[key]) == axis.values.end()) {
       axis.values.push_back(r.values[key]);
     }
@@ -130,16 +129,20 @@ SweepAxis sweep_axis(const io::SweepTable& table, std::size_t key) {
 /// models) does not split the lines.
 class SweepLineNames {
  public:
-  SweepLineNames(const io::SweepTable& table, std::size_t key, const SweepMetric& metric,
-                 std::size_t value_count)
-      : table_(table), key_(key), metric_(metric), follows_(table.keys.size(), false) {
+  SweepLineNames(const MethodStyles& styles, const results::SweepTable& table, std::size_t key,
+                 const SweepMetric& metric, std::size_t value_count)
+      : styles_(styles),
+        table_(table),
+        key_(key),
+        metric_(metric),
+        follows_(table.keys.size(), false) {
     std::set<int> cells;
-    for (const io::SweepRow& r : table.rows) cells.insert(r.cell);
+    for (const results::SweepRow& r : table.rows) cells.insert(r.cell);
     one_cell_per_value_ = cells.size() == value_count;
     for (std::size_t k = 0; k < table.keys.size(); ++k) {
       std::map<std::string, std::string> value_at;
       bool determined = true;
-      for (const io::SweepRow& r : table.rows) {
+      for (const results::SweepRow& r : table.rows) {
         const auto [it, inserted] = value_at.emplace(r.values[key], r.values[k]);
         determined = determined && (inserted || it->second == r.values[k]);
       }
@@ -147,8 +150,8 @@ class SweepLineNames {
     }
   }
 
-  std::string operator()(const io::SweepRow& r, std::size_t kind) const {
-    std::string name = method_title(r.method);
+  std::string operator()(const results::SweepRow& r, std::size_t kind) const {
+    std::string name = styles_.title(r.method);
     if (!metric_.kinds[kind].empty()) name += ": " + metric_.kinds[kind];
     for (std::size_t k = 0; k < table_.keys.size() && !one_cell_per_value_; ++k) {
       if (k != key_ && !follows_[k])
@@ -158,7 +161,8 @@ class SweepLineNames {
   }
 
  private:
-  const io::SweepTable& table_;
+  const MethodStyles& styles_;
+  const results::SweepTable& table_;
   std::size_t key_;
   const SweepMetric& metric_;
   std::vector<bool> follows_;
@@ -168,21 +172,22 @@ class SweepLineNames {
 /// Adds one line (its band dotted when the metric has one); `shade` counts each method's lines so
 /// far, each a darker shade. A line needs two points (VTK refuses shorter ones); a single value is
 /// drawn as its point, labelled.
-void add_sweep_line(plot::ChartSpec& chart, const io::SweepTable& table, std::size_t key,
-                    const SweepMetric& m, const SweepAxis& axis, const SweepLineNames& line_of,
+void add_sweep_line(const MethodStyles& styles, plot::ChartSpec& chart,
+                    const results::SweepTable& table, std::size_t key, const SweepMetric& m,
+                    const SweepAxis& axis, const SweepLineNames& line_of,
                     const std::pair<std::string, std::size_t>& line,
                     std::map<std::string, int>& shade) {
   const auto& [name, kind] = line;
   std::string method;
-  std::vector<std::pair<double, const io::SweepRow*>> points;
-  for (const io::SweepRow& r : table.rows) {
+  std::vector<std::pair<double, const results::SweepRow*>> points;
+  for (const results::SweepRow& r : table.rows) {
     if (line_of(r, kind) != name) continue;
     method = r.method;
     points.emplace_back(axis.x(r.values[key]), &r);
   }
   std::sort(points.begin(), points.end(),
             [](const auto& a, const auto& b) { return a.first < b.first; });
-  plot::Series mid{name, {}, {}, method_style(method), 0, 2.5f};
+  plot::Series mid{name, {}, {}, styles.line(method), 0, 2.5f};
   plot::Series low{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
   plot::Series high{"", {}, {}, plot::SeriesStyle::kDottedLine, 0, 1.5f};
   for (const auto& [x, r] : points) {
@@ -198,7 +203,7 @@ void add_sweep_line(plot::ChartSpec& chart, const io::SweepTable& table, std::si
     }
   }
   if (mid.x.empty()) return;
-  const std::uint32_t rgb = darker(method_colour(method), std::pow(0.6, shade[method]++));
+  const std::uint32_t rgb = darker(styles.colour(method), std::pow(0.6, shade[method]++));
   mid.rgb = low.rgb = high.rgb = rgb;
   if (low.x.size() > 1) {
     chart.series.push_back(std::move(low));
@@ -216,24 +221,29 @@ void add_sweep_line(plot::ChartSpec& chart, const io::SweepTable& table, std::si
 
 }  // namespace
 
-plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
-                            int width_px, int height_px) {
-  const SweepMetric m = sweep_metric(metric, table);
+plot::ChartSpec sweep_chart(const MethodStyles& styles, const results::SweepTable& table,
+                            std::size_t key, const std::string& metric, int width_px,
+                            int height_px) {
+  SweepMetric m = sweep_metric(metric, table);
+  if (m.name == "paired_difference") {
+    m.y_label = "mean error minus " + styles.title(m.reference) + "'s, same runs [m]";
+  }
   plot::ChartSpec chart = empty_chart(table.keys[key], m.y_label, width_px, height_px);
   chart.log_y = m.log_y;
   const SweepAxis axis = sweep_axis(table, key);
   chart.title = m.title + " vs " + table.keys[key].substr(table.keys[key].rfind('.') + 1) +
                 (axis.ranks.empty() ? "" : " (" + axis.ranks + ")");
-  const SweepLineNames line_of(table, key, m, axis.values.size());
+  const SweepLineNames line_of(styles, table, key, m, axis.values.size());
   std::vector<std::pair<std::string, std::size_t>> lines;  // name, kind
   for (std::size_t kind = 0; kind < m.kinds.size(); ++kind) {
-    for (const io::SweepRow& r : table.rows) {
+    for (const results::SweepRow& r : table.rows) {
       const std::pair line{line_of(r, kind), kind};
       if (std::find(lines.begin(), lines.end(), line) == lines.end()) lines.push_back(line);
     }
   }
   std::map<std::string, int> shade;
-  for (const auto& line : lines) add_sweep_line(chart, table, key, m, axis, line_of, line, shade);
+  for (const auto& line : lines)
+    add_sweep_line(styles, chart, table, key, m, axis, line_of, line, shade);
   const double x_min = *std::min_element(axis.x_of.begin(), axis.x_of.end());
   const double x_max = *std::max_element(axis.x_of.begin(), axis.x_of.end());
   if (metric == "anees" || metric == "paired_difference") {

@@ -5,13 +5,14 @@
 #include <cstddef>
 #include <string>
 
-#include "io/sweep_files.hpp"
 #include "plot/chart.hpp"
+#include "report/method_styles.hpp"
+#include "results/sweep_files.hpp"
 
 namespace msislab::report {
 
 /// Whether any row has a value of the metric (the figures drawn are those with data).
-bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
+bool sweep_has_metric(const results::SweepTable& table, const std::string& metric);
 
 /// A sweep: a metric of the cells against one swept key, one line per method and per value of the
 /// other keys: "mean_error" with its 5-95 % band over the runs' mean errors, "anees",
@@ -19,7 +20,8 @@ bool sweep_has_metric(const io::SweepTable& table, const std::string& metric);
 /// interval) or "linearisation" (epsilon of the match update, the inversion and the pose read-out:
 /// a line per method and kind, log axis). Numeric values are placed at their value, others at
 /// their rank (named in the title). std::invalid_argument for another metric.
-plot::ChartSpec sweep_chart(const io::SweepTable& table, std::size_t key, const std::string& metric,
-                            int width_px, int height_px);
+plot::ChartSpec sweep_chart(const MethodStyles& styles, const results::SweepTable& table,
+                            std::size_t key, const std::string& metric, int width_px,
+                            int height_px);
 
 }  // namespace msislab::report

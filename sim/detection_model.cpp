@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace msislab {
+namespace msislab::sim {
 
 std::vector<double> moving_mean(const std::vector<double>& x, int window) {
   const int n = static_cast<int>(x.size());
@@ -111,4 +111,4 @@ std::vector<int> detect_bins(const std::vector<std::uint8_t>& intensity, double 
   return detected;
 }
 
-}  // namespace msislab
+}  // namespace msislab::sim

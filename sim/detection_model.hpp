@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace msislab {
+namespace msislab::sim {
 
 struct DetectionModelConfig {
   int smoothing_bins = 5;  ///< movmean window along range, bins; 0: MATLAB's default window,
@@ -49,4 +49,4 @@ std::vector<double> kept_bins(const std::vector<std::uint8_t>& intensity, double
 std::vector<int> detect_bins(const std::vector<std::uint8_t>& intensity, double bin_m,
                              const DetectionModelConfig& config);
 
-}  // namespace msislab
+}  // namespace msislab::sim

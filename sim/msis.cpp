@@ -42,12 +42,24 @@ Eigen::Vector3f mirror(const Eigen::Vector3f& v, const Eigen::Vector3f& normal) 
 std::vector<BeamSlot> beam_schedule(const SonarConfig& sonar, double t_begin_s, double t_end_s) {
   const double period_s = sonar.revolution_s / sonar.steps_per_revolution;
   const double step_rad = 2.0 * M_PI / sonar.steps_per_revolution;
+  const auto n = static_cast<std::int64_t>(sonar.steps_per_revolution);
+  const std::int64_t direction = sonar.rotation == SonarRotation::kIncreasing ? 1 : -1;
+  const auto wrap = [n](std::int64_t i) { return ((i % n) + n) % n; };
+  // A sector: its sweep is m steps long in the rotation's direction; beam k lies p steps from
+  // the first index, p running 0..m then back down to 1 (a triangle wave of period 2m).
+  const std::int64_t first = sonar.sector ? sonar.sector->first_index : 0;
+  const std::int64_t m =
+      sonar.sector ? wrap(direction * (sonar.sector->last_index - sonar.sector->first_index)) : 0;
   std::vector<BeamSlot> slots;
   for (std::uint64_t k = 0;; ++k) {
     const double t_s = t_begin_s + static_cast<double>(k) * period_s;
     if (t_s > t_end_s) break;
-    const auto n = static_cast<std::uint64_t>(sonar.steps_per_revolution);
-    const std::uint64_t angle_index = (n - k % n) % n;
+    std::int64_t steps = static_cast<std::int64_t>(k % static_cast<std::uint64_t>(n));
+    if (m > 0) {
+      const std::int64_t phase = static_cast<std::int64_t>(k % static_cast<std::uint64_t>(2 * m));
+      steps = phase <= m ? phase : 2 * m - phase;
+    }
+    const std::int64_t angle_index = wrap(first + direction * steps);
     slots.push_back({k, t_s, static_cast<double>(angle_index) * step_rad});
   }
   return slots;

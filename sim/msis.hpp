@@ -17,8 +17,10 @@
 
 namespace msislab::sim {
 
-/// When each beam is transmitted and where the head points: one step per beam, the transducer
-/// angle index decreasing by one per step as in the St. Pere logs.
+/// When each beam is transmitted and where the head points: one step per beam every
+/// revolution_s / steps_per_revolution, the transducer angle index stepping by one in the
+/// rotation's direction from 0 (whole turns), or back and forth over the sector from its first
+/// index.
 struct BeamSlot {
   std::uint64_t index = 0;  ///< beam number from the start
   double t_s = 0.0;

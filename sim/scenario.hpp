@@ -51,9 +51,25 @@ enum class BeamPattern {
   kSinc,      ///< sinc^2 of a uniformly driven line aperture: nulls and -13 dB sidelobes
 };
 
+/// Which way the transducer angle of the logs steps from beam to beam.
+enum class SonarRotation {
+  kDecreasing,  ///< one step down per beam, as the St. Pere MiniKing's logs
+  kIncreasing,  ///< one step up per beam
+};
+
+/// A sector scan: the head sweeps from first_index to last_index (transducer angle step indices,
+/// 0..steps_per_revolution - 1) in the rotation's direction, then back, and so on, turning at
+/// each end without repeating it (the Ping360's and the Tritech heads' sector modes).
+struct SonarSector {
+  int first_index = 0;
+  int last_index = 0;
+};
+
 struct SonarConfig {
   int steps_per_revolution = 200;
-  double revolution_s = 13.8;
+  double revolution_s = 13.8;  ///< time of steps_per_revolution beams (a full turn's worth)
+  SonarRotation rotation = SonarRotation::kDecreasing;
+  std::optional<SonarSector> sector;  ///< none: whole turns
   /// The sonar logs beams until this time, s after the run's start (absent: the whole run), as
   /// the real St. Pere sonar log ends 3020 s into its GPS track.
   std::optional<double> stop_s;
@@ -161,6 +177,9 @@ struct Scenario {
   /// scenario's `stated_calibration`): an error left for the estimators to find. Absent: the
   /// file states the sensors' own mounts, deviation, clock offset and scale factors.
   std::optional<Calibration> stated_calibration;
+  /// The scenario checks' warnings not to print (names of sim::kScenarioWarnings): what the
+  /// author knows and means.
+  std::vector<std::string> quiet_warnings;
 };
 
 /// The calibration the sensors of this scenario have (their mounts, deviation, clock offset, DVL

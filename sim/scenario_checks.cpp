@@ -91,7 +91,7 @@ class LegCheck {
       if (!faces.empty() && faces.front().distance_m < t_m - kOnFace_m) {
         error = ScenarioFinding{
             ScenarioKey::kWaypoint, from_ + 1, true,
-            leg() + " crosses the mesh " + face_at(faces.front()) + ", and leaves the water"};
+            leg() + " crosses the mesh " + face_at(faces.front()) + ", and leaves the water", ""};
       }
       return {*error};
     }
@@ -101,7 +101,8 @@ class LegCheck {
       out.push_back({ScenarioKey::kWaypoint, from_ + 1, false,
                      leg() + format(" passes %.2f m from the mesh", nearest_wall_m_) + " (group " +
                          nearest_group_ + ") at " + xy(nearest_at_) +
-                         format(", closer than the %.1f m clearance", config_.wall_clearance_m)});
+                         format(", closer than the %.1f m clearance", config_.wall_clearance_m),
+                     "wall_clearance"});
     }
     return out;
   }
@@ -149,7 +150,8 @@ class LegCheck {
     return ScenarioFinding{ScenarioKey::kWaypoint, from_ + 1, false,
                            leg() + format(" runs %.2f m through the mesh ", longest_m) +
                                face_at(faces[entry]) +
-                               ": the simulator has no collisions, the vehicle passes through it"};
+                               ": the simulator has no collisions, the vehicle passes through it",
+                           "through_object"};
   }
 
   /// Point j of the leg's points_ + 1.
@@ -172,11 +174,12 @@ class LegCheck {
                              format("%g m puts the vehicle under the mesh (group ", v_.depth_m) +
                                  group_of(scene_, up) +
                                  format(" at %.2f m depth) at ", -z_m_ - up.distance_m) +
-                                 where(p, j) + ": below the floor or inside a solid"};
+                                 where(p, j) + ": below the floor or inside a solid",
+                             ""};
     }
     if (!down.hit) {
       return ScenarioFinding{ScenarioKey::kWaypoint, key_index, true,
-                             where(p, j) + " has no floor under it: the path leaves the scene"};
+                             where(p, j) + " has no floor under it: the path leaves the scene", ""};
     }
     if (down.distance_m < lowest.altitude_m) lowest = {down.distance_m, where(p, j)};
     for (int k = 0; k < config_.directions; ++k) {
@@ -225,7 +228,8 @@ std::vector<ScenarioFinding> check_path(const VehicleConfig& vehicle, const Scen
                    format("%g m leaves the vehicle %.2f m above the floor at ", vehicle.depth_m,
                           lowest.altitude_m) +
                        lowest.where +
-                       format(", under the %.1f m clearance", config.bottom_clearance_m)});
+                       format(", under the %.1f m clearance", config.bottom_clearance_m),
+                   "bottom_clearance"});
   }
   return out;
 }
@@ -238,13 +242,15 @@ std::vector<ScenarioFinding> check_segments(const std::vector<TimeSegment>& segm
     if (s.begin_s >= duration_s) {
       out.push_back({ScenarioKey::kSegment, i, true,
                      format("[%g, %g] s begins after the run, which lasts %.1f s: nothing to score",
-                            s.begin_s, s.end_s, duration_s)});
+                            s.begin_s, s.end_s, duration_s),
+                     ""});
     } else if (s.end_s - duration_s > 0.5 * (s.end_s - s.begin_s)) {
       out.push_back({ScenarioKey::kSegment, i, false,
                      format("[%g, %g] s ends after the run, which lasts %.1f s: ", s.begin_s,
                             s.end_s, duration_s) +
                          format("less than half of it is scored (%.0f s of %.0f)",
-                                duration_s - s.begin_s, s.end_s - s.begin_s)});
+                                duration_s - s.begin_s, s.end_s - s.begin_s),
+                     "segment_after_run"});
     }
   }
   return out;

@@ -34,7 +34,14 @@ struct ScenarioFinding {
   std::size_t index = 0;  ///< waypoint or segment, 0-based
   bool error = false;     ///< false: a warning (the run is still meaningful, the user may mean it)
   std::string what;       ///< what is wrong, in words and scene coordinates
+  std::string name;       ///< a warning's name (kScenarioWarnings), which quiet_warnings silences
 };
+
+/// The names of the warnings a scenario's `quiet_warnings` may silence: a leg through an object,
+/// a leg near a wall, an altitude under the clearance, a segment mostly after the run's end, and
+/// a floor about as bright as the walls (settings/scenario_scene).
+inline const std::vector<std::string> kScenarioWarnings = {
+    "through_object", "wall_clearance", "bottom_clearance", "segment_after_run", "bright_floor"};
 
 /// The written legs at the vehicle's depth against the scene. Errors: a point with no floor under
 /// it (the path leaves the water; named as the face crossed when it lies beyond one), a point

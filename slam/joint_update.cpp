@@ -117,14 +117,14 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   for (std::size_t i = 0; i < matches.size(); ++i) {
     if (matches[i].rejection == MatchRejection::kNone) used.push_back(i);
   }
-  stack_covariance(matches, used, config_.match_cross_covariance, points_[k], stacked);
+  stack_covariance(matches, used, config_.filter.match_cross_covariance, points_[k], stacked);
   const std::size_t n = used.size();
   std::vector<RelativePoseObservation> z;
   Eigen::MatrixXd R;
   const auto compatible = [&](const std::vector<std::size_t>& set, double* nis) {
     stacked.select(set, z, R);
     *nis = innovation_nis(k, z, R);
-    return *nis <= gate_for_dimensions(config_.innovation_gate_chi2, R.rows());
+    return *nis <= gate_for_dimensions(config_.front_end.innovation_gate_chi2, R.rows());
   };
   // Each match's own NIS against the prediction: the greedy search of jointly_compatible drops
   // the largest first, and matches.csv reports it.

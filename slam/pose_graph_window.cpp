@@ -1,16 +1,50 @@
-// The pose-graph SLAM's online window (PoseGraphSlamConfig::online_window_scans > 0; the
-// header of slam/pose_graph_slam.hpp and docs/pose_graph.md, "Long missions"): the candidates
-// older than the window joining the belief, and the window kept from scan to scan.
+// The pose-graph SLAM's online window (WindowedOnline, PoseGraphSlamConfig::online_window_scans >
+// 0; slam/pose_graph_online.hpp and docs/pose_graph.md, "Long missions"): each scan's node
+// composed onto the window, the candidates older than the window joining the belief, and the
+// window kept from scan to scan.
 #include <algorithm>
 #include <limits>
+#include <optional>
 
-#include "slam/pose_graph_slam.hpp"
+#include "slam/pose_graph_online.hpp"
 
 namespace msislab {
 
-std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
-    PoseGraphBelief& belief, const std::vector<std::pair<double, std::size_t>>& candidates,
-    std::size_t k) {
+WindowedOnline::WindowedOnline(PoseGraph& graph, const PoseGraphCalibration& calibration,
+                               const std::vector<GaussianPose2>& motions,
+                               const Eigen::MatrixXd& start_joint, int window_scans, int old_nodes,
+                               int old_chain_scans)
+    : graph_(graph),
+      calibration_(calibration),
+      motions_(motions),
+      window_scans_(window_scans),
+      old_nodes_max_(old_nodes),
+      old_chain_scans_(old_chain_scans),
+      window_cov_(start_joint) {}
+
+PoseGraphBelief WindowedOnline::odometry_belief(std::size_t node, const GaussianPose2& motion) {
+  // The odometry edge (Eq. 2) in the joint of the kept old nodes and the window: the newest node
+  // composed onto the previous one.
+  PoseGraphBelief belief;
+  belief.parameters =
+      calibration_.graph_parameters(node == 1 ? std::nullopt : std::optional(node - 1));
+  for (const std::size_t i : old_nodes_) {
+    belief.nodes.push_back(i);
+    belief.means.push_back(graph_.pose(i));
+  }
+  for (std::size_t i = window_first_; i < node; ++i) {
+    belief.nodes.push_back(i);
+    belief.means.push_back(graph_.pose(i));
+  }
+  belief.cov = window_cov_;
+  calibration_.append_odometry(belief, node, static_cast<Eigen::Index>(belief.nodes.size()) - 1,
+                               motion);
+  return belief;
+}
+
+std::vector<Eigen::Index> WindowedOnline::join_candidates(std::size_t k,
+                                                          const PoseGraphCandidates& candidates,
+                                                          PoseGraphBelief& belief) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   std::vector<Eigen::Index> in_belief;
   for (const auto& candidate : candidates) {
@@ -32,7 +66,7 @@ std::vector<Eigen::Index> PoseGraphSlam::append_outside_window(
   return in_belief;
 }
 
-void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
+void WindowedOnline::append_old(PoseGraphBelief& belief, std::size_t i) {
   // The nearest node of the belief along the odometry chain.
   Eigen::Index from = -1;
   std::size_t chain = std::numeric_limits<std::size_t>::max();
@@ -44,28 +78,28 @@ void PoseGraphSlam::append_old(PoseGraphBelief& belief, std::size_t i) {
       from = static_cast<Eigen::Index>(b);
     }
   }
-  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans) && calibrates_odometry()) {
+  if (chain <= static_cast<std::size_t>(old_chain_scans_) && calibration_.calibrates_odometry()) {
     append_old_through_calibration(belief, i, from);
     return;
   }
-  if (chain <= static_cast<std::size_t>(config_.online_old_chain_scans)) {
+  if (chain <= static_cast<std::size_t>(old_chain_scans_)) {
     const std::size_t j = belief.nodes[static_cast<std::size_t>(from)];
     GaussianPose2 relative;  // node j to node i along the odometry: motions_[m] is node m to m + 1
     for (std::size_t m = std::min(i, j); m < std::max(i, j); ++m) {
       relative = compose(relative, motions_[m]);
     }
     if (j > i) relative = invert(relative);
-    relative.mean = belief.means[static_cast<std::size_t>(from)].between(graph_->pose(i));
+    relative.mean = belief.means[static_cast<std::size_t>(from)].between(graph_.pose(i));
     belief.append_relative(i, from, relative);
     return;
   }
   // Its correlation with the belief is not known: the window's one approximation left.
-  belief.append_independent(i, {graph_->pose(i), left_window_cov_.at(i)});
+  belief.append_independent(i, {graph_.pose(i), left_window_cov_.at(i)});
   ++old_uncorrelated_;
 }
 
-void PoseGraphSlam::append_old_through_calibration(PoseGraphBelief& belief, std::size_t i,
-                                                   Eigen::Index from) {
+void WindowedOnline::append_old_through_calibration(PoseGraphBelief& belief, std::size_t i,
+                                                    Eigen::Index from) const {
   // The odometry from node j to node i a motion at a time, each through the calibration (as
   // append_odometry; backward when i is older, the motions_[m] of node m to m + 1 inverted), at the
   // graph's headings; the nodes between marginalised, node i kept at the graph's mean.
@@ -75,21 +109,21 @@ void PoseGraphSlam::append_old_through_calibration(PoseGraphBelief& belief, std:
   for (std::size_t n = j; n != i;) {
     const std::size_t next = i < j ? n - 1 : n + 1;
     const std::size_t m = std::min(n, next);  // motions_[m] runs from node m to node m + 1
-    const CalibratedMotion g =
-        calibrated_step(belief.parameters, motions_[m].mean, graph_->pose(m).yaw(),
-                        graph_->pose(m + 1).yaw(), m + 1);
-    belief.append_through(next, at, motions_[m], g, odometry_k_at(), odometry_ab_at(), i < j);
+    const CalibratedMotion g = calibration_.calibrated_step(
+        belief.parameters, motions_[m].mean, graph_.pose(m).yaw(), graph_.pose(m + 1).yaw(), m + 1);
+    belief.append_through(next, at, motions_[m], g, calibration_.odometry_k_at(),
+                          calibration_.odometry_ab_at(), i < j);
     at = static_cast<Eigen::Index>(belief.nodes.size()) - 1;
     n = next;
   }
   belief.drop(first, at - first);  // the nodes between
-  belief.means.back() = graph_->pose(i);
+  belief.means.back() = graph_.pose(i);
 }
 
-void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
+void WindowedOnline::keep(const PoseGraphBelief& belief, std::size_t k) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   const Eigen::Index kept = belief.newest - window_at + 1;  // the window's nodes, in order
-  const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, config_.online_window_scans);
+  const Eigen::Index dropped = kept - std::min<Eigen::Index>(kept, window_scans_);
   left_window_cov_.resize(window_first_ + static_cast<std::size_t>(dropped),
                           Eigen::Matrix3d::Zero());
   for (Eigen::Index d = 0; d < dropped; ++d) {
@@ -99,14 +133,14 @@ void PoseGraphSlam::keep_window(const PoseGraphBelief& belief, std::size_t k) {
   for (Eigen::Index b = window_at + dropped; b <= belief.newest; ++b) kept_at.push_back(b);
   window_cov_ = belief.marginal(kept_at);
   window_first_ += static_cast<std::size_t>(dropped);
-  graph_->hold_before(window_first_);
+  graph_.hold_before(window_first_);
   // The constants too, once nodes are held: the belief estimates them online (with its nodes,
   // jointly); a solve over the held nodes' edges would inform them from nodes it takes as exact.
-  graph_->hold_constants(window_first_ > 0);
+  graph_.hold_constants(window_first_ > 0);
 }
 
-std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& belief,
-                                                        std::size_t k) {
+std::vector<Eigen::Index> WindowedOnline::keep_old_nodes(const PoseGraphBelief& belief,
+                                                         std::size_t k) {
   const auto window_at = static_cast<Eigen::Index>(old_nodes_.size());
   // The old nodes, most recently used first (this scan's first uses are used now).
   std::vector<std::pair<std::size_t, Eigen::Index>> old;  // (last used, index in the belief)
@@ -118,7 +152,7 @@ std::vector<Eigen::Index> PoseGraphSlam::keep_old_nodes(const PoseGraphBelief& b
   std::stable_sort(old.begin(), old.end(),
                    [](const auto& a, const auto& b) { return a.first > b.first; });
   const std::size_t keep_old =
-      std::min(old.size(), static_cast<std::size_t>(std::max(0, config_.online_old_nodes)));
+      std::min(old.size(), static_cast<std::size_t>(std::max(0, old_nodes_max_)));
   for (std::size_t o = keep_old; o < old.size(); ++o) {
     left_window_cov_.at(belief.nodes[static_cast<std::size_t>(old[o].second)]) =
         belief.node_cov(old[o].second);

@@ -19,8 +19,6 @@ class RoboCentricSlam : public TrajectorySlam {
   using TrajectorySlam::TrajectorySlam;
 
   GaussianPose2 scan_pose_world(std::size_t i) const override;
-  Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const override;
-  Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const override;
 
   /// Whether the newest element is still the un-inverted motion (inside a step).
   bool newest_inverted() const { return newest_inverted_; }
@@ -28,12 +26,18 @@ class RoboCentricSlam : public TrajectorySlam {
  protected:
   void predict(const GaussianPose2& motion) override;
   void finish_step() override;
-  std::vector<double> distances_to_newest() const override;
+  std::vector<double> newest_scan_distances_m() const override;
+  Pose2 relative_pose_of(const std::vector<Pose2>& elements, std::size_t a, std::size_t b,
+                         Eigen::MatrixXd* H) const override;
+  Pose2 pose_in_start_frame_of(const std::vector<Pose2>& elements, std::size_t b,
+                               Eigen::MatrixXd* H) const override;
 
  private:
   /// The pose of scan b in the frame of scan first-1 (the start frame for first = 0) from
-  /// elements first..b, with its Jacobian with respect to them (3 x 3(b - first + 1)).
-  Pose2 chain_pose(std::size_t first, std::size_t b, Eigen::MatrixXd* H) const;
+  /// elements first..b (of `elements`, the state's or a sample of it), with its Jacobian with
+  /// respect to them (3 x 3(b - first + 1)).
+  Pose2 chain_pose(const std::vector<Pose2>& elements, std::size_t first, std::size_t b,
+                   Eigen::MatrixXd* H) const;
   bool is_raw(std::size_t i) const { return !newest_inverted_ && i + 1 == elements_.size(); }
 
   bool newest_inverted_ = true;

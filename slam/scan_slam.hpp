@@ -37,11 +37,15 @@ class ScanSlam {
   /// Adds a scan (its points in its own frame, its motion from the previous scan's frame) and
   /// closes the loops it finds.
   virtual SlamStepStats add_scan(const Scan& scan) = 0;
+  /// Ends the run after the last scan: a back end that smooths (the pose graph) solves once
+  /// more, so that scan_pose_world gives its final estimate; nothing for the filters. A scan
+  /// added afterwards continues the run, and the next finish ends it again.
+  virtual void finish() {}
   virtual std::size_t scans() const = 0;
   virtual const SlamTotals& totals() const = 0;
   /// The world pose of scan i with its covariance, as known after the last scan (for the
   /// filters, their final estimate of the whole trajectory; for the pose graph, its smoothed
-  /// solution).
+  /// solution, after finish()).
   virtual GaussianPose2 scan_pose_world(std::size_t i) const = 0;
   /// The world pose of each scan as it was known when that scan was added (the online
   /// estimate), where the back end tells it apart from scan_pose_world; nullopt for the filters,

@@ -17,7 +17,8 @@ std::unique_ptr<ScanSlam> make_scan_slam(ScanSlamBackend backend, const SlamConf
     case ScanSlamBackend::kWorldcentric:
       return std::make_unique<WorldCentricSlam>(config.trajectory_slam, start_world);
     case ScanSlamBackend::kPoseGraph:
-      return std::make_unique<PoseGraphSlam>(config.trajectory_slam, config.pose_graph,
+      return std::make_unique<PoseGraphSlam>(config.trajectory_slam.front_end,
+                                             config.trajectory_slam.calibration, config.pose_graph,
                                              start_world);
   }
   return nullptr;
@@ -71,6 +72,7 @@ ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigatio
     out.matches.insert(out.matches.end(), std::make_move_iterator(step.matches.begin()),
                        std::make_move_iterator(step.matches.end()));
   }
+  backend.finish();  // the pose graph's smoothing solve
   std::vector<StampedPose> dead_reckoning_at_scans;
   for (std::size_t i = 0; i < out.scans.size(); ++i) {
     dead_reckoning_at_scans.push_back(out.scans[i].centre_world);

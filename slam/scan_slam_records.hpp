@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "geometry/gaussian_pose.hpp"
-#include "slam/linearisation_error.hpp"
 #include "slam/match_validation.hpp"
 
 namespace msislab {
@@ -89,11 +88,6 @@ struct SlamTotals {
   int accepted = 0;
   int compass_accepted = 0;
   MatchRejectionCounts rejections;
-  /// epsilon per linearisation, with linearisation_samples > 0: each accepted match update's
-  /// h(X) at the prior (in the innovation covariance), each robocentric inversion (-)e_k (in
-  /// J- P J-^T), and after each step the newest scan's pose in the start frame, the chain's
-  /// read-out (in its propagated covariance, what NEES is scored with).
-  LinearisationTally linearisation_observation, linearisation_inversion, linearisation_pose;
 };
 
 }  // namespace msislab

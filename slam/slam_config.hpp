@@ -17,6 +17,10 @@ struct SlamConfig {
   TrajectorySlamConfig trajectory_slam;  ///< the filters, and the front end of every SLAM method
   PoseGraphSlamConfig pose_graph;        ///< the pose-graph back end (method posegraph)
   std::vector<TimeSegment> segments;     ///< named windows scored separately in metrics.json
+  /// A study's switch (trajectory_slam.linearisation_samples in the file): measure the filters'
+  /// linearisation error epsilon with this many samples each (slam/linearisation_probe.hpp; in
+  /// metrics.json). It does not change the estimate. 0: off.
+  int linearisation_samples = 0;
   /// Take the dead reckoning's noise keys the config does not set from the dataset's own
   /// (a simulated dataset's navigation_noise.yaml: its scenario's sensors); false: the defaults.
   bool navigation_noise_from_dataset = false;

@@ -106,11 +106,11 @@ void TrajectorySlam::note_deviation_change(double compass_yaw_world_rad) {
   previous_deviation_basis_ = basis;
 }
 
-Eigen::VectorXd TrajectorySlam::compass_residual(std::size_t b, double yaw_world_rad,
-                                                 Eigen::MatrixXd* H) const {
+Eigen::VectorXd TrajectorySlam::compass_residual(const std::vector<Pose2>& elements, std::size_t b,
+                                                 double yaw_world_rad, Eigen::MatrixXd* H) const {
   // z = the MRU heading observes the yaw of scan b in the world: start yaw + the chain's yaw.
   Eigen::MatrixXd H_pose;
-  const Pose2 pose = pose_in_start_frame(b, H ? &H_pose : nullptr);
+  const Pose2 pose = pose_in_start_frame_of(elements, b, H ? &H_pose : nullptr);
   const Eigen::Index c = calibration_.size();
   if (H) {
     H->setZero(1, c + H_pose.cols());

@@ -35,14 +35,14 @@ ValidatedMatch TrajectorySlam::match(std::size_t j, std::size_t k, GaussianPose2
         calibration_and_rows(c, element_row(j + 1), H.cols() - c);
     predicted.cov = H * P_(rows, rows) * H.transpose();
   }
-  return match_and_validate(points_[j], points_[k], predicted, config_.matching,
-                            config_.validation);
+  return match_and_validate(points_[j], points_[k], predicted, config_.front_end.matching,
+                            config_.front_end.validation);
 }
 
-Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
-                                             Eigen::MatrixXd* H) const {
+Pose2 TrajectorySlam::observed_relative_pose_of(const std::vector<Pose2>& elements, std::size_t a,
+                                                std::size_t b, Eigen::MatrixXd* H) const {
   Eigen::MatrixXd H_pose;
-  Pose2 h = relative_pose(a, b, H ? &H_pose : nullptr);
+  Pose2 h = relative_pose_of(elements, a, b, H ? &H_pose : nullptr);
   const Eigen::Index c = calibration_.size();
   if (H) {
     H->setZero(3, c + H_pose.cols());
@@ -70,7 +70,7 @@ Pose2 TrajectorySlam::observed_relative_pose(std::size_t a, std::size_t b,
   return Pose2(s * h.x(), s * h.y(), h.yaw());
 }
 
-Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
+Eigen::VectorXd TrajectorySlam::stacked_residual(const std::vector<Pose2>& elements, std::size_t b,
                                                  const std::vector<RelativePoseObservation>& z,
                                                  Eigen::MatrixXd* H) const {
   const std::size_t first = first_involved(b, z);
@@ -84,8 +84,8 @@ Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
     // z observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the directions A = observed:
     // A (z - h(X)) with Jacobian A H on the calibration and the elements a+1..b.
     Eigen::MatrixXd H_o;
-    const Eigen::Vector3d r_o =
-        pose_difference(o.z, observed_relative_pose(o.reference, b, H ? &H_o : nullptr));
+    const Eigen::Vector3d r_o = pose_difference(
+        o.z, observed_relative_pose_of(elements, o.reference, b, H ? &H_o : nullptr));
     const Eigen::Index d = o.observed.rows();
     r.segment(row, d) = o.observed * r_o;
     if (H) {
@@ -102,7 +102,7 @@ Eigen::VectorXd TrajectorySlam::stacked_residual(std::size_t b,
 double TrajectorySlam::innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
                                       const Eigen::MatrixXd& R) const {
   Eigen::MatrixXd H;
-  const Eigen::VectorXd r = stacked_residual(b, z, &H);
+  const Eigen::VectorXd r = stacked_residual(elements_, b, z, &H);
   const Eigen::Index c = calibration_.size();
   const Eigen::Index first = element_row(first_involved(b, z));
   Eigen::MatrixXd S;

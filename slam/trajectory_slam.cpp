@@ -28,24 +28,6 @@ MatchRecord record_of(std::size_t j, std::size_t k, const ValidatedMatch& m,
   return record;
 }
 
-std::vector<std::pair<double, std::size_t>> nearest_candidates(
-    const std::vector<double>& distances_m, const std::vector<std::vector<ScanPoint>>& points,
-    const TrajectorySlamConfig& config) {
-  const std::size_t k = points.size() - 1;
-  std::vector<std::pair<double, std::size_t>> candidates;
-  for (std::size_t j = 0; j + static_cast<std::size_t>(config.min_scan_gap) <= k; ++j) {
-    if (distances_m[j] < config.association_distance_m &&
-        static_cast<int>(points[j].size()) >= config.matching.min_inliers) {
-      candidates.emplace_back(distances_m[j], j);
-    }
-  }
-  std::sort(candidates.begin(), candidates.end());
-  if (static_cast<int>(candidates.size()) > config.max_matches_per_scan) {
-    candidates.resize(static_cast<std::size_t>(config.max_matches_per_scan));
-  }
-  return candidates;
-}
-
 void MatchRejectionCounts::count(const ValidatedMatch& match) {
   if (match.rejection == MatchRejection::kNone) {
     direction_dropped += match.direction_dropped;
@@ -87,47 +69,30 @@ bool TrajectorySlam::state_finite() const {
   return P_.allFinite();
 }
 
-SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
-  SlamStepStats stats;
-  const bool motion_ok = scan.motion.mean.vector().allFinite() && scan.motion.cov.allFinite();
+void TrajectorySlam::predict_scan(const Scan& scan, const GaussianPose2& motion) {
   walk_heading_bias(scan.t_s);
   note_deviation_change(scan.compass_yaw_world_rad);
-  velocities_.push_back(scan.velocity_vehicle.allFinite() ? scan.velocity_vehicle
-                                                          : Eigen::Vector3d::Zero());
-  predict(motion_ok ? scan.motion : unknown_motion());
+  predict(motion);
   group_start_.push_back(elements_.size() - 1);
-  points_.push_back(finite_points(scan.points));
-  ++totals_.scans;
+  require_finite(state_finite(), "trajectory SLAM", elements_.size() - 1, scan.t_s, "prediction");
+}
 
+bool TrajectorySlam::update_compass_reading(const Scan& scan, SlamStepStats& stats) {
   const std::size_t k = elements_.size() - 1;
-  require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "prediction");
-  if (config_.compass_updates && std::isfinite(scan.compass_yaw_world_rad) &&
-      scan.compass_sigma_rad > 0.0) {
-    const std::optional<std::size_t> window =
-        update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
-    stats.compass_accepted = window.has_value();
-    if (window) stats.note_window(*window);
-    totals_.compass_accepted += stats.compass_accepted;
-    if (stats.compass_accepted)
-      require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "compass update");
-  }
-  if (!motion_ok || static_cast<int>(points_[k].size()) < config_.matching.min_inliers) {
-    stats.skipped = true;
-    ++totals_.skipped;
-    finish_step();
-    measure_pose_linearisation();
-    return stats;
-  }
+  const std::optional<std::size_t> window =
+      update_compass(k, scan.compass_yaw_world_rad, scan.compass_sigma_rad);
+  if (!window) return false;
+  stats.note_window(*window);
+  require_finite(state_finite(), "trajectory SLAM", k, scan.t_s, "compass update");
+  return true;
+}
 
-  // Associate (paper Eq. 3-4): past scans within gamma, nearest first.
-  const std::vector<std::pair<double, std::size_t>> candidates =
-      nearest_candidates(distances_to_newest(), points_, config_);
-  stats.candidates = static_cast<int>(candidates.size());
-
+void TrajectorySlam::update_with_matches(std::size_t k, const ScanCandidates& candidates,
+                                         const Scan& scan, SlamStepStats& stats) {
   // Observe and update (Eq. 5-10): one match after the other, or all together (Eq. 8).
   std::vector<std::size_t> references;
   for (const auto& candidate : candidates) references.push_back(candidate.second);
-  if (config_.joint_update) {
+  if (config_.front_end.joint_update) {
     update_jointly(k, references, stats);
   } else {
     update_sequentially(k, references, stats);
@@ -137,16 +102,15 @@ SlamStepStats TrajectorySlam::add_scan(const Scan& scan) {
   for (std::size_t c = 0; c < stats.matches.size(); ++c) {
     stats.matches[c].distance_m = candidates[c].first;
   }
-  totals_.candidates += stats.candidates;
-  totals_.matched += stats.matched;
-  totals_.accepted += stats.accepted;
-  finish_step();
-  measure_pose_linearisation();
-  return stats;
 }
 
-void TrajectorySlam::measure_pose_linearisation() {
-  if (config_.linearisation_samples < 1) return;
+void TrajectorySlam::finish_scan_step(std::size_t /*k*/, const Scan& /*scan*/) {
+  finish_step();
+  observe_pose_linearisation();
+}
+
+void TrajectorySlam::observe_pose_linearisation() const {
+  if (!observer_) return;
   const std::size_t k = elements_.size() - 1;
   Eigen::MatrixXd H;
   const Pose2 pose_hat = pose_in_start_frame(k, &H);
@@ -154,23 +118,19 @@ void TrajectorySlam::measure_pose_linearisation() {
   for (std::size_t j = 0; j < elements_.size(); ++j) {
     x_hat.segment<3>(static_cast<Eigen::Index>(3 * j)) = elements_[j].vector();
   }
-  const std::vector<Pose2> saved = elements_;
+  std::vector<Pose2> sample(elements_.size());
   const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
-    for (std::size_t j = 0; j < elements_.size(); ++j) {
-      elements_[j] = Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
+    for (std::size_t j = 0; j < sample.size(); ++j) {
+      sample[j] = Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
     }
-    const Pose2 pose = pose_in_start_frame(k, nullptr);
-    elements_ = saved;
-    return pose_difference(pose, pose_hat);
+    return pose_difference(pose_in_start_frame_of(sample, k, nullptr), pose_hat);
   };
   const Eigen::MatrixXd P_elements = P_.bottomRightCorner(x_hat.size(), x_hat.size());
-  totals_.linearisation_pose.add(linearisation_error(deviation, x_hat, P_elements, H,
-                                                     propagate(0, H), config_.linearisation_samples,
-                                                     linearisation_rng_));
+  observer_->linearised(Linearisation::kPose, deviation, x_hat, P_elements, H, propagate(0, H));
 }
 
-void TrajectorySlam::measure_inversion_linearisation() {
-  if (config_.linearisation_samples < 1) return;
+void TrajectorySlam::observe_inversion_linearisation() const {
+  if (!observer_) return;
   const Pose2 e_hat = elements_.back();
   const Eigen::Index k = element_row(elements_.size() - 1);
   Eigen::Matrix3d J;
@@ -179,49 +139,44 @@ void TrajectorySlam::measure_inversion_linearisation() {
   const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
     return pose_difference(Pose2(Eigen::Vector3d(x)).inverse(), inverse_hat);
   };
-  totals_.linearisation_inversion.add(
-      linearisation_error(deviation, e_hat.vector(), P_e, J, J * P_e * J.transpose(),
-                          config_.linearisation_samples, linearisation_rng_));
+  observer_->linearised(Linearisation::kInversion, deviation, e_hat.vector(), P_e, J,
+                        J * P_e * J.transpose());
 }
 
-namespace {
-
-/// epsilon of h at the prior over the involved elements first_involved..b (x_tail, their
-/// covariance P_tail, h's Jacobian H_tail on them): A (h(X) - h(X^)) = r(X^) - r(X), each sample
-/// set into elements and put back before the next.
 template <class Residual>
-double observation_linearisation(std::vector<Pose2>& elements, std::size_t first_involved,
-                                 std::size_t b, const Residual& residual,
-                                 const Eigen::VectorXd& z_minus_h, const Eigen::VectorXd& x_tail,
-                                 const Eigen::MatrixXd& P_tail, const Eigen::MatrixXd& H_tail,
-                                 const Eigen::MatrixXd& S, int samples, std::mt19937_64& rng) {
-  const std::vector<Pose2> saved(elements.begin() + static_cast<long>(first_involved),
-                                 elements.begin() + static_cast<long>(b) + 1);
+void TrajectorySlam::observe_observation_linearisation(std::size_t first_involved, std::size_t b,
+                                                       const Residual& residual,
+                                                       const Eigen::VectorXd& z_minus_h,
+                                                       const Eigen::VectorXd& x_involved,
+                                                       const Eigen::MatrixXd& P_involved,
+                                                       const Eigen::MatrixXd& H_involved,
+                                                       const Eigen::MatrixXd& S) const {
+  // h of the involved elements first_involved..b, sampled on a copy of the state (at the prior
+  // here): A (h(X) - h(X^)) = r(X^) - r(X).
+  std::vector<Pose2> sample = elements_;
   const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
-    for (std::size_t j = 0; j < saved.size(); ++j) {
-      elements[first_involved + j] =
-          Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * j))));
+    for (std::size_t j = first_involved; j <= b; ++j) {
+      sample[j] =
+          Pose2(Eigen::Vector3d(x.segment<3>(static_cast<Eigen::Index>(3 * (j - first_involved)))));
     }
-    const Eigen::VectorXd r = residual(nullptr);
-    std::copy(saved.begin(), saved.end(), elements.begin() + first_involved);
-    return z_minus_h - r;
+    return z_minus_h - residual(sample, nullptr);
   };
-  return linearisation_error(deviation, x_tail, P_tail, H_tail, S, samples, rng);
+  observer_->linearised(Linearisation::kObservation, deviation, x_involved, P_involved, H_involved,
+                        S);
 }
-
-}  // namespace
 
 template <class Residual>
 std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, std::size_t b,
                                                   const Residual& residual,
                                                   const Eigen::MatrixXd& R, double gate_chi2,
-                                                  bool measure_linearisation) {
+                                                  bool observe_linearisation) {
   // The window: from the start of the group holding the first involved element to b (the newest
   // element), which takes in every element correlated with the ones h depends on. Calibration
   // states correlate with every element: the window is then the whole state, the calibration
   // first (P's first c rows).
   const Eigen::Index c = calibration_.size();
-  const std::size_t first = config_.update_whole_state || c > 0 ? 0 : group_start_[first_involved];
+  const std::size_t first =
+      config_.filter.update_whole_state || c > 0 ? 0 : group_start_[first_involved];
   const std::size_t count = b + 1 - first;
   const Eigen::Index m = c + static_cast<Eigen::Index>(3 * count);
   const Eigen::Index f = static_cast<Eigen::Index>(3 * first);  // 0 whenever c > 0
@@ -233,7 +188,7 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
   // the calibration's and the involved elements' columns.
   Eigen::MatrixXd H_involved, K, PHt;
   const auto residual_window = [&](Eigen::MatrixXd* H) -> Eigen::VectorXd {
-    const Eigen::VectorXd z_minus_h = residual(&H_involved);
+    const Eigen::VectorXd z_minus_h = residual(elements_, &H_involved);
     H->setZero(d, m);
     H->leftCols(c) = H_involved.leftCols(c);
     H->middleCols(h_col, H_involved.cols() - c) = H_involved.rightCols(H_involved.cols() - c);
@@ -244,18 +199,17 @@ std::optional<std::size_t> TrajectorySlam::update(std::size_t first_involved, st
     if (innovation.dot(S.ldlt().solve(innovation)) > gate_chi2) {
       return false;  // the observation disagrees with the prediction: leave the state as it was
     }
-    if (measure_linearisation && config_.linearisation_samples > 0) {
+    if (observe_linearisation && observer_) {
       const Eigen::Index n = m - h_col;
-      totals_.linearisation_observation.add(observation_linearisation(
-          elements_, first_involved, b, residual, z_minus_h, x_prior.tail(n),
-          P_window.bottomRightCorner(n, n), H_involved.rightCols(n), S,
-          config_.linearisation_samples, linearisation_rng_));
+      observe_observation_linearisation(first_involved, b, residual, z_minus_h, x_prior.tail(n),
+                                        P_window.bottomRightCorner(n, n), H_involved.rightCols(n),
+                                        S);
     }
     return true;
   };
   if (!iterated_ekf_update(calibration_, elements_.begin() + static_cast<long>(first), count,
-                           P_window, residual_window, R, config_.iekf_iterations, at_first, K,
-                           PHt)) {
+                           P_window, residual_window, R, config_.front_end.iekf_iterations,
+                           at_first, K, PHt)) {
     return std::nullopt;
   }
   // P = (I - K H) P on the window, as the symmetric rank-d downdate P - K (P H^T)^T; the rest of
@@ -298,18 +252,22 @@ std::optional<std::size_t> TrajectorySlam::update_relative_poses(
   for (const RelativePoseObservation& o : z) {
     if (o.reference >= b) return std::nullopt;  // h is the pose of b in an earlier scan's frame
   }
-  const auto residual = [&](Eigen::MatrixXd* H) { return stacked_residual(b, z, H); };
+  const auto residual = [&](const std::vector<Pose2>& elements, Eigen::MatrixXd* H) {
+    return stacked_residual(elements, b, z, H);
+  };
   return update(first_involved(b, z), b, residual, R,
-                gate_for_dimensions(config_.innovation_gate_chi2, R.rows()), true);
+                gate_for_dimensions(config_.front_end.innovation_gate_chi2, R.rows()), true);
 }
 
 std::optional<std::size_t> TrajectorySlam::update_compass(std::size_t b, double yaw_world_rad,
                                                           double sigma_rad) {
-  const auto residual = [&](Eigen::MatrixXd* H) { return compass_residual(b, yaw_world_rad, H); };
+  const auto residual = [&](const std::vector<Pose2>& elements, Eigen::MatrixXd* H) {
+    return compass_residual(elements, b, yaw_world_rad, H);
+  };
   const Eigen::MatrixXd R = Eigen::MatrixXd::Constant(1, 1, sigma_rad * sigma_rad);
   // The chain's yaw is the sum of its elements' yaws (with a deviation, h is nearly linear):
   // nothing to measure.
-  return update(0, b, residual, R, config_.compass_gate_chi2, false);
+  return update(0, b, residual, R, config_.front_end.compass_gate_chi2, false);
 }
 
 }  // namespace msislab

@@ -17,17 +17,19 @@ Eigen::MatrixXd side_by_side(const std::vector<Eigen::Matrix3d>& J) {
 
 }  // namespace
 
-Pose2 WorldCentricSlam::relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const {
-  const std::vector<Pose2> chain(elements_.begin() + static_cast<long>(a) + 1,
-                                 elements_.begin() + static_cast<long>(b) + 1);
+Pose2 WorldCentricSlam::relative_pose_of(const std::vector<Pose2>& elements, std::size_t a,
+                                         std::size_t b, Eigen::MatrixXd* H) const {
+  const std::vector<Pose2> chain(elements.begin() + static_cast<long>(a) + 1,
+                                 elements.begin() + static_cast<long>(b) + 1);
   std::vector<Eigen::Matrix3d> J;
   const Pose2 pose = compose_chain(chain, H ? &J : nullptr);
   if (H) *H = side_by_side(J);
   return pose;
 }
 
-Pose2 WorldCentricSlam::pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const {
-  const std::vector<Pose2> chain(elements_.begin(), elements_.begin() + static_cast<long>(b) + 1);
+Pose2 WorldCentricSlam::pose_in_start_frame_of(const std::vector<Pose2>& elements, std::size_t b,
+                                               Eigen::MatrixXd* H) const {
+  const std::vector<Pose2> chain(elements.begin(), elements.begin() + static_cast<long>(b) + 1);
   std::vector<Eigen::Matrix3d> J;
   const Pose2 pose = compose_chain(chain, H ? &J : nullptr);
   if (H) *H = side_by_side(J);
@@ -41,7 +43,7 @@ GaussianPose2 WorldCentricSlam::scan_pose_world(std::size_t i) const {
                         "trajectory SLAM", i);
 }
 
-std::vector<double> WorldCentricSlam::distances_to_newest() const {
+std::vector<double> WorldCentricSlam::newest_scan_distances_m() const {
   // Scan poses in the start frame, then each past one's distance to the newest.
   std::vector<Pose2> poses(elements_.size());
   Pose2 pose;

@@ -14,11 +14,13 @@ class WorldCentricSlam : public TrajectorySlam {
   using TrajectorySlam::TrajectorySlam;
 
   GaussianPose2 scan_pose_world(std::size_t i) const override;
-  Pose2 relative_pose(std::size_t a, std::size_t b, Eigen::MatrixXd* H) const override;
-  Pose2 pose_in_start_frame(std::size_t b, Eigen::MatrixXd* H) const override;
 
  protected:
-  std::vector<double> distances_to_newest() const override;
+  std::vector<double> newest_scan_distances_m() const override;
+  Pose2 relative_pose_of(const std::vector<Pose2>& elements, std::size_t a, std::size_t b,
+                         Eigen::MatrixXd* H) const override;
+  Pose2 pose_in_start_frame_of(const std::vector<Pose2>& elements, std::size_t b,
+                               Eigen::MatrixXd* H) const override;
 };
 
 }  // namespace msislab

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The layering of docs/architecture.md, checked on the sources: each library includes project
-# headers only from the libraries below it (stats, geometry < sim, slam < eval < io < plot <
-# report < app), so the dependency graph has no cycle and sim/ and slam/ do not know each other.
+# headers only from the libraries below it (stats, geometry < sim, slam < eval; sim < io, the file
+# formats, which know no SLAM and no evaluation; eval, io < settings < dataset; eval, io < results
+# < plot < report < app), so the dependency graph has no cycle, sim/ and slam/ do not know each
+# other, and io/ reads and writes formats only.
 # Prints every include that breaks it as file:line and fails; CMake's target links say the same,
 # this says it before anything is linked. And app/ defines no statistics or numerical estimation
 # (below).
@@ -15,23 +17,54 @@ declare -A allowed=(
   [sim]="stats geometry sim"
   [slam]="stats geometry slam"
   [eval]="stats geometry sim slam eval"
-  [io]="stats geometry sim slam eval io"
-  [plot]="stats geometry sim slam eval io plot"
-  [report]="stats geometry sim slam eval io plot report"
-  [app]="stats geometry sim slam eval io plot report app"
+  [io]="stats geometry sim io"
+  [settings]="stats geometry sim slam eval io settings"
+  [dataset]="stats geometry sim slam eval io settings dataset"
+  [results]="stats geometry sim slam eval io results"
+  [plot]="stats geometry sim slam eval io results plot"
+  [report]="stats geometry sim slam eval io settings dataset results plot report"
+  [app]="stats geometry sim slam eval io settings dataset results plot report app"
 )
 status=0
 dirs=$(printf '%s\n' "${!allowed[@]}" | sort | tr '\n' ' ')
 for dir in $dirs; do
   [ -d "$dir" ] || continue
-  while IFS=: read -r file line text; do
-    used=$(sed -n 's/.*#include "\([a-z_]*\)\/.*/\1/p' <<<"$text")
-    [ -n "$used" ] || continue
-    case " ${allowed[$dir]} " in
-      *" $used "*) ;;
-      *) echo "$file:$line: $dir/ includes $used/ (allowed: ${allowed[$dir]})"; status=1 ;;
-    esac
-  done < <(grep -rn '#include "' "$dir" --include='*.hpp' --include='*.cpp')
+  # One awk over the folder's includes (file:line:text): the folder each names, against the list.
+  grep -rn '#include "' "$dir" --include='*.hpp' --include='*.cpp' |
+    awk -v dir="$dir" -v allowed="${allowed[$dir]}" '
+      { text = $0; sub(/^[^:]*:[^:]*:/, "", text) }
+      match(text, /#include "[a-z_]*\//) {
+        used = substr(text, RSTART + 10, RLENGTH - 11)
+        if (used != "" && index(" " allowed " ", " " used " ") == 0) {
+          split($0, at, ":")
+          print at[1] ":" at[2] ": " dir "/ includes " used "/ (allowed: " allowed ")"
+          bad = 1
+        }
+      }
+      END { exit bad }' || status=1
+done
+# One namespace convention: the core a user's method composes with (stats, geometry, slam, eval)
+# in msislab::, every other library in msislab::<its folder> (helpers nested inside either).
+core=" stats geometry slam eval "
+for dir in $dirs; do
+  [ -d "$dir" ] || continue
+  grep -rnE '^namespace msislab(::[a-z_:]+)? [{]' "$dir" --include='*.hpp' --include='*.cpp' |
+    awk -v dir="$dir" -v core="$core" -v folders=" $dirs " '
+      { split($0, at, ":"); text = $0; sub(/^[^:]*:[^:]*:namespace /, "", text); sub(/ [{].*/, "", text)
+        outer = text; sub(/^msislab::/, "", outer); sub(/::.*/, "", outer)
+        if (index(core, " " dir " ")) {
+          bad_here = text != "msislab" && index(folders, " " outer " ")
+          want = "msislab"
+        } else {
+          bad_here = outer != dir
+          want = "msislab::" dir
+        }
+        if (bad_here) {
+          print at[1] ":" at[2] ": " dir "/ code in namespace " text "; its namespace is " want
+          bad = 1
+        }
+      }
+      END { exit bad }' || status=1
 done
 # app/ reads inputs, calls the libraries and writes results: no statistics or numerical estimation
 # of its own (those live in stats/ and eval/, where users and tests can call them). Caught: the
@@ -61,6 +94,18 @@ if [ -d app ]; then
   done < <(grep -rnE '#include "app/[a-z_]+_command[.]hpp"' app --include='*_command.cpp' \
              --include='*_command.hpp')
 fi
-[ "$status" -eq 0 ] && echo "layering holds: $dirs; app/ computes no statistics; no command" \
-  "file includes another's"
+# Running a method knows nothing of presentation: in app/, only the commands that draw or write
+# pages (plot, report, fidelity) include report/; the method catalogue, run_method and the
+# commands that run methods hand names to those, never styles or figures.
+if [ -d app ]; then
+  while IFS=: read -r file line text; do
+    case "$(basename "$file")" in
+      plot_command.* | report_command.* | fidelity_command.*) continue ;;
+    esac
+    echo "$file:$line: only the plot, report and fidelity commands include report/: $text"
+    status=1
+  done < <(grep -rnE '#include "report/' app --include='*.cpp' --include='*.hpp')
+fi
+[ "$status" -eq 0 ] && echo "layering holds: $dirs; one namespace per folder; app/ computes no" \
+  "statistics; no command file includes another's; only the presentation commands include report/"
 exit "$status"

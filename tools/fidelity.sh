@@ -30,7 +30,7 @@ if [ ! -f "$real/_040825_1735_detections.csv.gz" ]; then
   exit 2
 fi
 
-cmake --preset release >/dev/null
+tools/configure.sh release >/dev/null
 cmake --build --preset release --target msislab
 msislab=build/release/tools/msislab
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Fuzzes every reader of outside input (tests/fuzz/reader_targets.cpp) with libFuzzer: builds the
-# fuzz preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, -O1) and runs each target for
+# Fuzzes every reader of outside input (tests/fuzz/reader_targets.cpp) with libFuzzer: builds its
+# executable in the asan preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, the readers'
+# libraries with libFuzzer's coverage; tools/sanitize.sh's build) and runs each target for
 # SECONDS (default 60), two at a time (FUZZ_JOBS). Seeds: tests/fuzz/corpus/<target> and
 # tests/fuzz/findings/<target> (read only); what the fuzzer adds goes to build/fuzz/corpus/<target>,
 # kept between runs. A finding (a crash, a sanitizer report, an exception other than
@@ -24,9 +25,9 @@ for target in "${targets[@]}"; do
 done
 
 tools/install_deps.sh
-cmake --preset fuzz >/dev/null
-cmake --build --preset fuzz
-fuzzer="$PWD/build/fuzz/tests/fuzz/msislab_fuzz_readers"
+tools/configure.sh asan >/dev/null
+cmake --build --preset asan --target msislab_fuzz_readers
+fuzzer="$PWD/build/asan/tests/fuzz/msislab_fuzz_readers"
 
 if [ ${#targets[@]} -eq 0 ]; then
   # tests/fuzz/corpus_test.cpp checks that these folders are exactly the targets.

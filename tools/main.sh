@@ -12,8 +12,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-tools/install_deps.sh
-cmake --preset release
+tools/install_deps.sh run
+tools/configure.sh release
 cmake --build --preset release --target msislab  # what it runs; the tests build in tools/test.sh
 
 msislab=build/release/tools/msislab

@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
+#include "dataset/dataset.hpp"
 #include "eval/evaluation.hpp"
 #include "geometry/calibration.hpp"
 #include "geometry/se2.hpp"
-#include "io/dataset.hpp"
 #include "io/detections.hpp"
 #include "io/mesh_io.hpp"
 #include "io/stpere_logs.hpp"
@@ -64,7 +64,7 @@ std::vector<msislab::StampedPose> gps_track(const std::vector<msislab::PositionF
 
 /// Every beam of the IS log inside the GPS time span, its nearest detection (if any) and its
 /// transducer angle: from its detections, else one step (1.8 deg) less than the beam before.
-std::vector<msislab::sim::TraceBeam> project_beams(const msislab::io::DatasetFiles& files,
+std::vector<msislab::sim::TraceBeam> project_beams(const msislab::dataset::DatasetFiles& files,
                                                    const std::vector<msislab::PositionFix>& gps,
                                                    const msislab::NavigationLog& navigation,
                                                    const msislab::Calibration& calibration) {
@@ -223,15 +223,16 @@ void print_summary(const msislab::sim::MarinaTrace& trace, const msislab::sim::T
 }
 
 void make_marina(const Options& options) {
+  namespace dataset = msislab::dataset;
   namespace io = msislab::io;
-  const io::DatasetFiles files = io::find_dataset_files(options.dataset_dir);
+  const dataset::DatasetFiles files = dataset::find_dataset_files(options.dataset_dir);
   if (!files.detections || !files.beam_times || !files.dvl) {
     throw std::runtime_error(options.dataset_dir +
                              ": needs *_detections.csv[.gz], *_IS_timestamps.log and *_DVL.log");
   }
-  const msislab::Calibration calibration = io::load_calibration(files);
-  const msislab::NavigationLog navigation = io::load_navigation(files, calibration);
-  const std::vector<msislab::PositionFix> gps = io::load_gps_fixes(files, calibration);
+  const msislab::Calibration calibration = dataset::load_calibration(files);
+  const msislab::NavigationLog navigation = dataset::load_navigation(files, calibration);
+  const std::vector<msislab::PositionFix> gps = dataset::load_gps_fixes(files, calibration);
   const std::vector<msislab::sim::TraceBeam> beams =
       project_beams(files, gps, navigation, calibration);
   if (beams.empty()) throw std::runtime_error("no beam inside the GPS time span");

@@ -17,9 +17,9 @@
 #include <string>
 #include <vector>
 
+#include "dataset/dataset.hpp"
 #include "eval/evaluation.hpp"
 #include "io/atomic_file.hpp"
-#include "io/dataset.hpp"
 #include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
@@ -223,7 +223,8 @@ void print_path_summary(const std::vector<msislab::PositionFix>& fixes, const Pa
 
 /// Writes --heading-out (when given) and returns its path relative to the scenario's folder;
 /// empty without it.
-std::string write_heading_history(const Options& options, const msislab::io::DatasetFiles& files,
+std::string write_heading_history(const Options& options,
+                                  const msislab::dataset::DatasetFiles& files,
                                   const msislab::Calibration& calibration,
                                   const std::vector<msislab::PositionFix>& fixes) {
   if (options.heading_out.empty()) return "";
@@ -232,7 +233,7 @@ std::string write_heading_history(const Options& options, const msislab::io::Dat
   const auto thousandths = [](double x) { return std::round(x * 1000.0) / 1000.0; };
   std::vector<Eigen::Vector2d> heading;
   for (const msislab::HeadingReading& h :
-       msislab::io::load_navigation(files, calibration).heading) {
+       msislab::dataset::load_navigation(files, calibration).heading) {
     const double t_s = h.t_s - fixes.front().t_s;
     if (t_s < 0.0 || t_s > fixes.back().t_s - fixes.front().t_s + 1.0) continue;
     if (heading.empty() || t_s >= heading.back().x() + 1.0) {
@@ -250,9 +251,11 @@ std::string write_heading_history(const Options& options, const msislab::io::Dat
 
 void make_scenario(const Options& options) {
   check_outputs(options);
-  const msislab::io::DatasetFiles files = msislab::io::find_dataset_files(options.dataset_dir);
-  const msislab::Calibration calibration = msislab::io::load_calibration(files);
-  const std::vector<msislab::PositionFix> fixes = msislab::io::load_gps_fixes(files, calibration);
+  const msislab::dataset::DatasetFiles files =
+      msislab::dataset::find_dataset_files(options.dataset_dir);
+  const msislab::Calibration calibration = msislab::dataset::load_calibration(files);
+  const std::vector<msislab::PositionFix> fixes =
+      msislab::dataset::load_gps_fixes(files, calibration);
   if (!files.beam_times) throw std::runtime_error(options.dataset_dir + ": no *_IS_timestamps.log");
   // The last beam on the navigation clock (docs/simulator.md, "Sonar clock offset").
   const double sonar_stop_s = msislab::io::read_beam_times_log(*files.beam_times).back().t_log_s +

@@ -5,6 +5,7 @@
 // the command, app/cli.hpp), 128 + the signal when a long command is stopped.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <string>
 
 #include "app/cli.hpp"
 #include "io/input_error.hpp"
@@ -20,6 +21,11 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "msislab " MSISLAB_VERSION);  // project(VERSION) in CMake
   msislab::app::CommandLine line{argc, argv};
   msislab::app::add_commands(app, line);
+  if (const std::string unknown = msislab::app::unknown_command_message(app, argc, argv);
+      !unknown.empty()) {
+    std::cerr << "msislab: " << unknown << "\n";
+    return kBadInput;
+  }
   try {
     app.parse(argc, argv);  // runs the chosen subcommand's callback
   } catch (const CLI::Success& e) {

@@ -18,9 +18,9 @@ while [ $# -gt 0 ]; do
   esac
 done
 
-tools/install_deps.sh
-cmake --preset release
-cmake --build --preset release
+tools/install_deps.sh run
+tools/configure.sh release
+cmake --build --preset release --target msislab
 msislab=build/release/tools/msislab
 source tools/run_fresh.sh
 # Each sweep and the key its figures are drawn against in docs/robocentric.md.

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the asan preset (clang, AddressSanitizer + UndefinedBehaviorSanitizer, no recovery: the
-# first finding ends the process with a report) and runs the unit and library tests under it (the
+# first finding ends the process with a report; the libraries file by file) and runs the unit and library tests under it (the
 # preset leaves out the end-to-end command tests, tests/app, which tools/test.sh runs).
 # LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) cover leaks inside third-party display
 # libraries only, each entry named and justified there. Extra arguments go to ctest (e.g. -L io,
@@ -17,11 +17,9 @@ if [ -d "$stpere" ]; then
   MSISLAB_STPERE_DIR=$(cd "$stpere" && pwd)
   export MSISLAB_STPERE_DIR MSISLAB_REQUIRE_REAL_DATA=1
 fi
-tools/asan_configure.sh
+tools/configure.sh asan
 # The test programs and what they link, not the commands (app/, tools/): nothing here runs them.
-mapfile -t tests < <(cmake --build --preset asan --target help |
-                       sed -n 's/^\.\.\. \([a-z0-9_]*_test\)$/\1/p')
-cmake --build --preset asan --target "${tests[@]}"
+cmake --build --preset asan --target msislab_test_programs
 # halt_on_error with UBSan's no-recovery build: a finding fails the test that hit it.
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:strict_init_order=1:check_initialization_order=1"
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

@@ -19,7 +19,7 @@ stamp() {
   echo "test.sh: $1 took $((now - stage)) s ($((now - start)) s in all)"
   stage=$now
 }
-tools/install_deps.sh
+tools/install_deps.sh test
 stamp "packages"
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
 real_data=0
@@ -38,7 +38,7 @@ else
   echo "test.sh: no real St. Pere dataset at $stpere (MSISLAB_STPERE_DIR), so its" \
     "${#real_tests[@]} tests skip: $(printf '%s, ' "${real_tests[@]}" | sed 's/, $//')"
 fi
-cmake --preset ci
+tools/configure.sh ci
 cmake --build --preset ci
 stamp "build"
 junit="$PWD/build/ci/Testing/test_sh_junit.xml"

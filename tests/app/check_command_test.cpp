@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cli_runner.hpp"
-#include "io/montecarlo_files.hpp"
-#include "io/results.hpp"
-#include "io/sweep_files.hpp"
+#include "results/montecarlo_files.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
 #include "test_support.hpp"
 
 namespace msislab {
@@ -37,8 +37,8 @@ std::string make_run(const TempDir& tmp, const std::string& folder, const std::s
   m.segments = {{"exit", 1.5 * mean_error_m}};
   m.scans = 3;
   m.anees = 2.0;
-  io::write_metrics_json((dir / "metrics.json").string(), m, "/data/sim");
-  io::write_nees_csv((dir / "nees.csv").string(), {{0.0, 1.0}, {1.0, 2.0}, {2.0, 3.0}});
+  results::write_metrics_json((dir / "metrics.json").string(), m, "/data/sim");
+  results::write_nees_csv((dir / "nees.csv").string(), {{0.0, 1.0}, {1.0, 2.0}, {2.0, 3.0}});
   return dir.string();
 }
 
@@ -57,7 +57,7 @@ std::string make_montecarlo(const TempDir& tmp) {
   dr.mean_error_m = 4.0;
   dr.anees = 9.0;
   dr.paired = PairedDifference{"robocentric", 20, 1.5, 0.5, 1.27, 1.73, 1};
-  io::write_summary_json((dir / "summary.json").string(), {rc, dr});
+  results::write_summary_json((dir / "summary.json").string(), {rc, dr});
   return dir.string();
 }
 
@@ -133,9 +133,9 @@ TEST(CheckCommand, FolderOfRunsAndSweepCellsByName) {
   make_run(tmp, "sim/dr", "deadreckoning", 3.0);
   const fs::path sweep = tmp.path() / "sweep";
   fs::create_directories(sweep);
-  io::SweepTable table;
+  results::SweepTable table;
   table.keys = {"scenario.seed"};
-  io::SweepRow row;
+  results::SweepRow row;
   row.values = {"1"};
   row.method = "robocentric";
   row.runs = 4;
@@ -144,7 +144,7 @@ TEST(CheckCommand, FolderOfRunsAndSweepCellsByName) {
   row.cell = 1;
   row.mean_error_m = 1.75;
   table.rows.push_back(row);
-  io::write_sweep_csv((sweep / "sweep.csv").string(), table);
+  results::write_sweep_csv((sweep / "sweep.csv").string(), table);
   const CliResult r = check(tmp,
                             "expectations:\n"
                             "  - {result: sim, method: robocentric, below: deadreckoning}\n"

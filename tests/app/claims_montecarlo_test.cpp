@@ -15,9 +15,9 @@
 #include <string>
 
 #include "app/montecarlo.hpp"
-#include "io/expectations_yaml.hpp"
-#include "io/results.hpp"
 #include "method_summary_lookup.hpp"
+#include "results/results.hpp"
+#include "settings/expectations_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab {
@@ -38,7 +38,7 @@ std::vector<double> per_run(const fs::path& mc, const std::string& method,
     char name[16];
     std::snprintf(name, sizeof name, "run_%04d", r);
     const RunMetrics m =
-        io::read_metrics_json((mc / "runs" / method / name / "metrics.json").string()).metrics;
+        results::read_metrics_json((mc / "runs" / method / name / "metrics.json").string()).metrics;
     if (metric == "mean_error_m") values.push_back(m.errors.mean_m);
     if (metric == "final_error_m") values.push_back(m.errors.final_m);
     if (metric == "anees") values.push_back(m.anees.value_or(NAN));
@@ -90,7 +90,7 @@ TEST(ClaimsMonteCarlo, TheReplicasFirstRunsHoldItsClaimsWithinTheirMonteCarloErr
   std::vector<Expectation> claims;
   std::vector<std::string> methods = {"robocentric", "deadreckoning"};  // robocentric the reference
   int claimed_runs = 0;
-  for (const Expectation& e : io::read_expectations_yaml(kSource + "/docs/claims.yaml")) {
+  for (const Expectation& e : settings::read_expectations_yaml(kSource + "/docs/claims.yaml")) {
     if (e.result != "replica_mc") continue;
     if (std::find(methods.begin(), methods.end(), e.method) == methods.end()) {
       methods.push_back(e.method);

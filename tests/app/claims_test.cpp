@@ -22,8 +22,8 @@
 #include "app/check_command.hpp"
 #include "app/montecarlo.hpp"
 #include "cli_runner.hpp"
-#include "io/expectations_yaml.hpp"
-#include "io/results.hpp"
+#include "results/results.hpp"
+#include "settings/expectations_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab {
@@ -40,7 +40,7 @@ const std::string kClaims = kSource + "/docs/claims.yaml";
 
 std::vector<Expectation> claims_on(const std::string& result) {
   std::vector<Expectation> on;
-  for (const Expectation& e : io::read_expectations_yaml(kClaims)) {
+  for (const Expectation& e : settings::read_expectations_yaml(kClaims)) {
     if (e.result == result) on.push_back(e);
   }
   return on;
@@ -62,7 +62,7 @@ void expect_claims_hold(const std::string& result, const std::string& dir) {
   options.expectations_path = kClaims;
   options.results = {result + "=" + dir};
   options.partial = true;
-  const std::vector<Expectation> all = io::read_expectations_yaml(kClaims);
+  const std::vector<Expectation> all = settings::read_expectations_yaml(kClaims);
   const std::vector<CheckOutcome> outcomes = app::run_check(options);
   ASSERT_EQ(outcomes.size(), all.size());
   int checked = 0;
@@ -105,7 +105,7 @@ TEST(Claims, EveryFigureOfTheReadmeOverviewIsAClaimOrASetting) {
   // The overview (before the first section), white space folded as the quotes are matched.
   const std::string text = fold_white_space(readme.substr(0, readme.find("\n## ")));
   std::vector<std::string> quotes = kSettings;
-  for (const Expectation& e : io::read_expectations_yaml(kClaims)) {
+  for (const Expectation& e : settings::read_expectations_yaml(kClaims)) {
     if (!e.quote_text.empty() && e.quote_file == "../README.md") quotes.push_back(quoted_text(e));
   }
   // Every character inside a quote, a link target or a file name (`...`) is covered; a figure

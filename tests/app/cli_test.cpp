@@ -70,6 +70,25 @@ TEST(Cli, UnknownOptionIsBadInput) {
   EXPECT_NE(result.err.find("frobnicate"), std::string::npos) << result.err;
 }
 
+TEST(Cli, AMisspeltCommandIsNamedWithTheNearest) {
+  // Also with --help after it: an error, not the main help with status 0.
+  const TempDir tmp;
+  for (const std::string args : {"simulat scenarios/x.yaml --out o", "simulat --help"}) {
+    const CliResult result = run_msislab(args, tmp);
+    EXPECT_EQ(result.exit_code, 2) << args;
+    expect_one_error_line(result);
+    EXPECT_NE(result.err.find("unknown command 'simulat' (did you mean 'simulate'?"),
+              std::string::npos)
+        << result.err;
+  }
+  const CliResult montecarlo = run_msislab("montecralo", tmp);
+  EXPECT_NE(montecarlo.err.find("did you mean 'montecarlo'?"), std::string::npos) << montecarlo.err;
+  // Nothing near: named without a guess.
+  const CliResult far = run_msislab("xyzzy", tmp);
+  EXPECT_EQ(far.exit_code, 2);
+  EXPECT_EQ(far.err, "msislab: unknown command 'xyzzy' (see msislab --help)\n");
+}
+
 TEST(Cli, MissingDatasetDirectory) {
   const TempDir tmp;
   const std::string missing = tmp.file("no_such_dataset");

@@ -19,7 +19,7 @@
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "cli_runner.hpp"
-#include "io/config_yaml.hpp"
+#include "settings/config_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -61,13 +61,14 @@ TEST(ClockOffsetFit, FindsTheOffsetCalibrationLeavesOnASimulatedLoop) {
   replace("seed: 1", "seed: 3");
   const std::string dataset = tmp.file("stated");
   simulate({testing::write_text(tmp.file("loop.yaml"), scenario), dataset, std::nullopt, 2});
-  Calibration calibration = io::read_calibration((fs::path(dataset) / "calibration.yaml").string());
+  Calibration calibration =
+      settings::read_calibration((fs::path(dataset) / "calibration.yaml").string());
   ASSERT_EQ(calibration.sonar.time_offset_s, 0.66);
   // The same dataset read as if its sonar clock had no offset.
   const std::string unstated = tmp.file("unstated");
   fs::copy(dataset, unstated, fs::copy_options::recursive);
   calibration.sonar.time_offset_s = 0.0;
-  io::write_calibration((fs::path(unstated) / "calibration.yaml").string(), calibration);
+  settings::write_calibration((fs::path(unstated) / "calibration.yaml").string(), calibration);
   run({dataset, "robocentric", tmp.file("run_stated"), ""});
   run({unstated, "robocentric", tmp.file("run_unstated"), ""});
 

@@ -20,9 +20,9 @@
 
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
-#include "io/config_yaml.hpp"
 #include "io/input_error.hpp"
 #include "method_summary_lookup.hpp"
+#include "settings/config_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -49,7 +49,8 @@ TEST(CompassDeviation, CalibratedMatchesAgreeAndAnUncalibratedCompassTripsTheGat
   scenario = replace_once(scenario, "seed: 1", "seed: 3");
   const std::string dataset = tmp.file("calibrated");
   simulate({testing::write_text(tmp.file("deviated.yaml"), scenario), dataset, std::nullopt, 2});
-  Calibration calibration = io::read_calibration((fs::path(dataset) / "calibration.yaml").string());
+  Calibration calibration =
+      settings::read_calibration((fs::path(dataset) / "calibration.yaml").string());
   ASSERT_EQ(calibration.mru.deviation_cos_deg, 0.62);
   ASSERT_EQ(calibration.mru.deviation_sin_deg, -3.39);
 
@@ -58,7 +59,7 @@ TEST(CompassDeviation, CalibratedMatchesAgreeAndAnUncalibratedCompassTripsTheGat
   fs::copy(dataset, uncalibrated, fs::copy_options::recursive);
   calibration.mru.deviation_cos_deg = 0.0;
   calibration.mru.deviation_sin_deg = 0.0;
-  io::write_calibration((fs::path(uncalibrated) / "calibration.yaml").string(), calibration);
+  settings::write_calibration((fs::path(uncalibrated) / "calibration.yaml").string(), calibration);
 
   const RunOutcome good = run({dataset, "robocentric", tmp.file("good"), ""});
   const RunOutcome bad = run({uncalibrated, "robocentric", tmp.file("bad"), ""});
@@ -116,7 +117,7 @@ TEST(CompassDeviation, CalibratedMatchesAgreeAndAnUncalibratedCompassTripsTheGat
   // the deviation added; read with it (run --calibration), the uncalibrated dataset gives the
   // calibrated run's figures without the state. Measured: 0.454 m, ANEES 2.10, none gated.
   const std::string carried = tmp.file("estimated") + "/calibration.yaml";
-  const Calibration next = io::read_calibration(carried);
+  const Calibration next = settings::read_calibration(carried);
   EXPECT_NEAR(next.mru.deviation_cos_deg, a, 1e-9);
   EXPECT_NEAR(next.mru.deviation_sin_deg, b_dev, 1e-9);
   EXPECT_EQ(next.sonar.time_offset_s, calibration.sonar.time_offset_s);

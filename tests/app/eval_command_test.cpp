@@ -13,8 +13,8 @@
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "io/input_error.hpp"
-#include "io/results.hpp"
 #include "io/tum.hpp"
+#include "results/results.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -99,17 +99,17 @@ TEST(EvalCommand, ReproducesWhatRunWrote) {
 }
 
 // Parses the "scan,t_s,nees" rows of nees.csv.
-std::vector<io::NeesSample> nees_rows(const fs::path& dir) {
-  return io::read_nees_csv((dir / "nees.csv").string());
+std::vector<results::NeesSample> nees_rows(const fs::path& dir) {
+  return results::read_nees_csv((dir / "nees.csv").string());
 }
 
 TEST(EvalCommand, NeesCsvMatchesAHandComputation) {
   const TempDir tmp;
   const fs::path out = run_method("worldcentric", tmp.path() / "wc");
-  const std::vector<StampedPose> scans = io::read_scans_csv((out / "scans.csv").string());
+  const std::vector<StampedPose> scans = results::read_scans_csv((out / "scans.csv").string());
   const std::vector<io::TumPose> truth =
       io::read_tum((small_basin().dataset / "truth" / "trajectory.tum").string());
-  const std::vector<io::NeesSample> nees = nees_rows(out);
+  const std::vector<results::NeesSample> nees = nees_rows(out);
   ASSERT_EQ(nees.size(), scans.size());
   double sum = 0.0;
   for (std::size_t k = 0; k < scans.size(); ++k) {
@@ -130,7 +130,7 @@ TEST(EvalCommand, NeesCsvMatchesAHandComputation) {
     EXPECT_EQ(nees[k].t_s, scans[k].t_s);
     sum += expected;
   }
-  const io::StoredMetrics stored = io::read_metrics_json((out / "metrics.json").string());
+  const results::StoredMetrics stored = results::read_metrics_json((out / "metrics.json").string());
   ASSERT_TRUE(stored.metrics.anees);
   EXPECT_NEAR(*stored.metrics.anees, sum / static_cast<double>(scans.size()), 1e-9);
 }
@@ -138,7 +138,7 @@ TEST(EvalCommand, NeesCsvMatchesAHandComputation) {
 TEST(EvalCommand, TruthFileAndConfigOverride) {
   const TempDir tmp;
   const fs::path out = run_method("worldcentric", tmp.path() / "wc");
-  const io::StoredMetrics before = io::read_metrics_json((out / "metrics.json").string());
+  const results::StoredMetrics before = results::read_metrics_json((out / "metrics.json").string());
   // The truth shifted 3 m north: every position error grows, and the NEES with it.
   std::vector<io::TumPose> shifted =
       io::read_tum((small_basin().dataset / "truth" / "trajectory.tum").string());
@@ -148,7 +148,7 @@ TEST(EvalCommand, TruthFileAndConfigOverride) {
   const std::string config = write_text(tmp.file("whole.yaml"), "segments:\n  all: [0, 1000]\n");
 
   const EvalOutcome outcome = evaluate(options_for(out.string(), truth_file, config));
-  const io::StoredMetrics after = io::read_metrics_json((out / "metrics.json").string());
+  const results::StoredMetrics after = results::read_metrics_json((out / "metrics.json").string());
   EXPECT_EQ(after.metrics.truth, "tum");
   EXPECT_GT(after.metrics.errors.mean_m, before.metrics.errors.mean_m + 1.0);
   EXPECT_GT(*after.metrics.anees, 3.0 * *before.metrics.anees);

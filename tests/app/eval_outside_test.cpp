@@ -14,10 +14,10 @@
 #include "app/run_command.hpp"
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
-#include "io/results.hpp"
 #include "io/stpere_logs.hpp"
 #include "io/text_lines.hpp"
 #include "io/tum.hpp"
+#include "results/results.hpp"
 #include "synthetic_dataset.hpp"
 #include "test_support.hpp"
 
@@ -91,8 +91,8 @@ struct Outside {
     o.align = align;
     return o;
   }
-  io::StoredMetrics metrics() const {
-    return io::read_metrics_json((result / "metrics.json").string());
+  results::StoredMetrics metrics() const {
+    return results::read_metrics_json((result / "metrics.json").string());
   }
 };
 
@@ -107,7 +107,7 @@ void expect_shift_recovered(const EstimateAlignment& a) {
 TEST(EvalOutside, OffsetAndSe2AlignmentRecoverAKnownShift) {
   const Outside outside(true);
   const EvalOutcome outcome = evaluate(outside.options("se2"));
-  const io::StoredMetrics stored = outside.metrics();
+  const results::StoredMetrics stored = outside.metrics();
   const RunMetrics& m = stored.metrics;
   ASSERT_TRUE(m.eval_scores.has_value());
   // Read back through the file's degrees; the outcome holds the fit itself.
@@ -130,7 +130,8 @@ TEST(EvalOutside, OffsetAndSe2AlignmentRecoverAKnownShift) {
   EXPECT_EQ(outcome.nees_rows, 10u);
   ASSERT_TRUE(m.anees.has_value());
   EXPECT_NEAR(*m.anees, 6.0, 1e-6);
-  for (const io::NeesSample& s : io::read_nees_csv((outside.result / "nees.csv").string())) {
+  for (const results::NeesSample& s :
+       results::read_nees_csv((outside.result / "nees.csv").string())) {
     EXPECT_NEAR(s.nees, 6.0, 1e-6);
     EXPECT_GT(s.t_s, kOffset_s);  // on the truth's clock
   }
@@ -181,7 +182,7 @@ TEST(EvalOutside, WithoutTheOffsetTheErrorGivesBothSpans) {
 TEST(EvalOutside, NameAndScanCountsOfAFolderWithoutMetrics) {
   const Outside outside(false);
   evaluate(outside.options("none"));
-  io::StoredMetrics stored = outside.metrics();
+  results::StoredMetrics stored = outside.metrics();
   EXPECT_EQ(stored.metrics.method, "outsideSLAM");
   EXPECT_EQ(stored.metrics.scans, 0);  // no scans.csv
   EXPECT_FALSE(stored.metrics.anees.has_value());
@@ -202,7 +203,7 @@ TEST(EvalOutside, NameAndScanCountsOfAFolderWithoutMetrics) {
   EXPECT_EQ(stored.metrics.method, "handEdited");
   EXPECT_EQ(stored.metrics.scans, 10);
   EXPECT_EQ(outcome.nees_rows, 10u);
-  EXPECT_EQ(io::read_nees_csv((outside.result / "nees.csv").string()).size(), 10u);
+  EXPECT_EQ(results::read_nees_csv((outside.result / "nees.csv").string()).size(), 10u);
 }
 
 TEST(EvalOutside, GpsTruthHasNoRpe) {

@@ -20,7 +20,7 @@
 
 #include "cli_runner.hpp"
 #include "io/json.hpp"
-#include "io/sweep_files.hpp"
+#include "results/sweep_files.hpp"
 #include "stats/chi_square.hpp"
 #include "test_support.hpp"
 
@@ -144,6 +144,20 @@ TEST(ExternalMethod, ExampleInMonteCarloBesideDeadReckoningAndInTheReport) {
   EXPECT_NE(md.find("Dead reckoning"), std::string::npos);
 }
 
+TEST(ExternalMethod, ARelativeOutWorksInMonteCarlo) {
+  // {out} is absolute whatever --out was: the example, run in its own folder, writes there.
+  const TempDir tmp;
+  const CliResult r =
+      run_shell("cd " + shell_quote(tmp.path().string()) + " && " + shell_quote(MSISLAB_EXE) +
+                    " montecarlo " + shell_quote(kScenario) +
+                    " --runs 1 --methods mydr --no-plot --out mc_ext "
+                    "--methods-file " +
+                    shell_quote(kExample),
+                tmp);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_json(tmp.path() / "mc_ext" / "summary.json").at("mydr").at("runs").get<int>(), 1);
+}
+
 TEST(ExternalMethod, ExampleInASweepRunsOnEachCellsOwnData) {
   // Two cells that differ in the MRU's heading noise: the program reads each cell's own logs (its
   // error differs between them, as the built-in dead reckoning's does), scored per cell.
@@ -161,10 +175,10 @@ TEST(ExternalMethod, ExampleInASweepRunsOnEachCellsOwnData) {
                       shell_quote(kExample) + " --out " + shell_quote(out.string()),
                   tmp);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const io::SweepTable table = io::read_sweep_csv((out / "sweep.csv").string());
+  const results::SweepTable table = results::read_sweep_csv((out / "sweep.csv").string());
   ASSERT_EQ(table.rows.size(), 4u);  // 2 cells x 2 methods
   std::vector<double> mydr_m, dr_m;
-  for (const io::SweepRow& row : table.rows) {
+  for (const results::SweepRow& row : table.rows) {
     EXPECT_EQ(row.runs, 2) << row.method;
     EXPECT_EQ(row.failed, 0) << row.method;
     ASSERT_TRUE(row.mean_error_m.has_value()) << row.method;

@@ -31,7 +31,7 @@
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
 #include "cli_runner.hpp"
-#include "io/config_yaml.hpp"
+#include "settings/config_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -133,9 +133,10 @@ TEST(MatchScale, DirectionCheckGivesTheScaleAndSeesATurnedSonar) {
     if (key == "consecutive_match_scale") scale = value;
   }
   // The same dataset read with the sonar turned 3 deg anticlockwise.
-  Calibration calibration = io::read_calibration((fs::path(dataset) / "calibration.yaml").string());
+  Calibration calibration =
+      settings::read_calibration((fs::path(dataset) / "calibration.yaml").string());
   calibration.sonar.bearing_offset_rad += 3.0 * M_PI / 180.0;
-  io::write_calibration(tmp.file("turned.yaml"), calibration);
+  settings::write_calibration(tmp.file("turned.yaml"), calibration);
   RunOptions turned{dataset, "robocentric", tmp.file("turned"), ""};
   turned.calibration_path = tmp.file("turned.yaml");
   run(turned);

@@ -28,8 +28,8 @@
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/json.hpp"
-#include "io/results.hpp"
 #include "io/text_lines.hpp"
+#include "results/results.hpp"
 #include "slam/scan_matching.hpp"
 #include "stats/chi_square.hpp"
 #include "test_support.hpp"
@@ -186,8 +186,8 @@ TEST(MonteCarloCommand, RunRIsTheScenarioSimulatedWithSeedPlusR) {
   const TempDir tmp;
   simulate({kScenario, tmp.file("dataset"), 3, 2});  // small_basin's seed is 1: run 2
   run({tmp.file("dataset"), "worldcentric", tmp.file("wc"), ""});
-  const io::StoredMetrics direct = io::read_metrics_json(tmp.file("wc/metrics.json"));
-  const io::StoredMetrics in_mc = io::read_metrics_json(
+  const results::StoredMetrics direct = results::read_metrics_json(tmp.file("wc/metrics.json"));
+  const results::StoredMetrics in_mc = results::read_metrics_json(
       (fs::path(run_dir(full.dir.string(), "worldcentric", 2)) / "metrics.json").string());
   EXPECT_EQ(in_mc.metrics.errors.mean_m, direct.metrics.errors.mean_m);
   EXPECT_EQ(in_mc.metrics.anees, direct.metrics.anees);
@@ -215,7 +215,7 @@ TEST(MonteCarloCommand, KeptDatasetsAreTheRunsOwn) {
   EXPECT_TRUE(fs::is_regular_file(dataset / "truth" / "trajectory.tum"));
   EXPECT_TRUE(fs::is_regular_file(dataset / "calibration.yaml"));
   const fs::path rd(run_dir((tmp.path() / "mc").string(), "worldcentric", 0));
-  EXPECT_EQ(io::read_metrics_json((rd / "metrics.json").string()).dataset_dir,
+  EXPECT_EQ(results::read_metrics_json((rd / "metrics.json").string()).dataset_dir,
             fs::absolute(dataset).lexically_normal().string());
   run({dataset.string(), "worldcentric", tmp.file("again"), ""});
   EXPECT_EQ(read_text(tmp.file("again/trajectory.tum")),
@@ -223,7 +223,7 @@ TEST(MonteCarloCommand, KeptDatasetsAreTheRunsOwn) {
   // Without the flag nothing is kept, and the run names its dataset as held in memory.
   EXPECT_FALSE(fs::exists(full_run().dir / "datasets"));
   EXPECT_EQ(
-      io::read_metrics_json(
+      results::read_metrics_json(
           (fs::path(run_dir(full_run().dir.string(), "worldcentric", 0)) / "metrics.json").string())
           .dataset_dir,
       "simulated small_basin (seed 1, in memory)");

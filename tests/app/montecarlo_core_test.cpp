@@ -221,24 +221,24 @@ TEST(MonteCarloDirectory, RunLayoutAndShards) {
   EXPECT_EQ(run_name(7), "run_0007");
   EXPECT_EQ(run_name(12345), "run_12345");
   EXPECT_EQ(run_dir("mc", "worldcentric", 3), "mc/runs/worldcentric/run_0003");
-  io::MonteCarloManifest manifest;
+  results::MonteCarloManifest manifest;
   manifest.runs = 7;
   EXPECT_EQ(runs_of(manifest), (std::vector<int>{0, 1, 2, 3, 4, 5, 6}));
   manifest.shard_index = 1;
   manifest.shard_count = 3;
   EXPECT_EQ(runs_of(manifest), (std::vector<int>{1, 4}));
   int index = 0, count = 0;
-  EXPECT_TRUE(io::parse_shard("3/10", index, count));
+  EXPECT_TRUE(results::parse_shard("3/10", index, count));
   EXPECT_EQ(index, 3);
   EXPECT_EQ(count, 10);
   for (const char* bad : {"1", "2/2", "a/b", "-1/2", "1/0", "1/2/3", "1 /2", "+1/2", ""}) {
-    EXPECT_FALSE(io::parse_shard(bad, index, count)) << bad;
+    EXPECT_FALSE(results::parse_shard(bad, index, count)) << bad;
   }
 }
 
 TEST(MonteCarloDirectory, ManifestRoundTrip) {
   const TempDir tmp;
-  io::MonteCarloManifest m;
+  results::MonteCarloManifest m;
   m.scenario_source = "/a/b \"c\".yaml";
   m.first_seed = 18446744073709551615ull;  // 2^64 - 1: more digits than a double holds
   m.runs = 500;
@@ -246,8 +246,8 @@ TEST(MonteCarloDirectory, ManifestRoundTrip) {
   m.has_config = true;
   m.shard_index = 3;
   m.shard_count = 10;
-  io::write_manifest_json(tmp.file("montecarlo.json"), m);
-  const io::MonteCarloManifest r = io::read_manifest_json(tmp.file("montecarlo.json"));
+  results::write_manifest_json(tmp.file("montecarlo.json"), m);
+  const results::MonteCarloManifest r = results::read_manifest_json(tmp.file("montecarlo.json"));
   EXPECT_EQ(r.scenario_source, m.scenario_source);
   EXPECT_EQ(r.first_seed, m.first_seed);
   EXPECT_EQ(r.runs, 500);

@@ -16,11 +16,11 @@
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "io/results.hpp"
-#include "io/sweep_files.hpp"
 #include "plot/display.hpp"
 #include "report/plot_figures.hpp"
 #include "report/sweep_figures.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -100,7 +100,7 @@ TEST_F(PlotCommand, ResultDirectoryGetsTrajectoryErrorAndAcousticImage) {
                                              (figures / "error.png").string(),
                                              (figures / "acoustic_image.png").string()};
   EXPECT_EQ(written, expected);
-  const std::uint32_t blue = report::method_colour("worldcentric");
+  const std::uint32_t blue = report::MethodStyles().colour("worldcentric");
   expect_figure(expected[0], 1200, 900, {blue, 0x202020});
   expect_figure(expected[1], 1200, 900, {blue});
   expect_figure(expected[2], 1200, 900, {});
@@ -119,8 +119,8 @@ TEST_F(PlotCommand, FolderOfResultsGetsComparisonFigures) {
   const std::vector<std::string> written = plot(options);
   EXPECT_EQ(written.size(), 8u);  // 3 comparison, 2 x 2 per result, 1 acoustic image
   const fs::path figures = tmp_->path() / "figures";
-  const std::uint32_t red = report::method_colour("deadreckoning"),
-                      blue = report::method_colour("worldcentric");
+  const std::uint32_t red = report::MethodStyles().colour("deadreckoning"),
+                      blue = report::MethodStyles().colour("worldcentric");
   expect_figure((figures / "deadreckoning.png").string(), 1000, 800, {red, 0x202020});
   expect_figure((figures / "worldcentric.png").string(), 1000, 800, {blue, 0x202020});
   expect_figure((figures / "errors.png").string(), 1000, 800, {red, blue});
@@ -158,7 +158,8 @@ TEST(PlotMonteCarlo, NeesFigure) {
   ASSERT_EQ(written.size(), 1u);
   EXPECT_EQ(written[0], mc + "/figures/nees.png");
   expect_figure(written[0], 1200, 900,
-                {report::method_colour("worldcentric"), report::method_colour("deadreckoning")});
+                {report::MethodStyles().colour("worldcentric"),
+                 report::MethodStyles().colour("deadreckoning")});
 }
 
 // With the spread files the Monte Carlo directory gets its three figures: NEES, the error against
@@ -190,7 +191,8 @@ TEST(PlotMonteCarlo, SpreadFigures) {
                                       mc + "/figures/error_distribution.png"}));
   for (const std::string& figure : written) {
     expect_figure(figure, 1200, 900,
-                  {report::method_colour("worldcentric"), report::method_colour("deadreckoning")});
+                  {report::MethodStyles().colour("worldcentric"),
+                   report::MethodStyles().colour("deadreckoning")});
   }
   // A malformed spread file is one clear error naming it.
   write_text(mc + "/errors.csv",
@@ -206,15 +208,15 @@ TEST(PlotMonteCarlo, SpreadFigures) {
 // A sweep directory: per swept key, the mean error (with its band) and the ANEES against it.
 /// A 3 x 2 grid of heading noise and IEKF iterations, robocentric and dead reckoning, with the
 /// paired differences and (robocentric) linearisation errors.
-io::SweepTable grid_table() {
-  io::SweepTable table;
+results::SweepTable grid_table() {
+  results::SweepTable table;
   table.keys = {"scenario.mru.heading_noise_deg", "slam.trajectory_slam.iekf_iterations"};
   int cell = 0;
   for (const double noise : {0.5, 1.0, 2.0}) {
     for (const int iterations : {1, 5}) {
       for (const auto& [method, scale] : {std::pair{"robocentric", 1.0}, {"deadreckoning", 2.0}}) {
         const double e = scale * noise * (1.0 + 0.1 * iterations);  // no two lines coincide
-        io::SweepRow r;
+        results::SweepRow r;
         r.cell = cell;
         r.values = {std::to_string(noise), std::to_string(iterations)};
         r.method = method;
@@ -249,7 +251,7 @@ TEST(PlotSweep, AFigurePerKeyAndMetric) {
   const TempDir tmp;
   const std::string dir = tmp.file("sweep");
   fs::create_directories(dir);
-  io::write_sweep_csv(dir + "/sweep.csv", grid_table());
+  results::write_sweep_csv(dir + "/sweep.csv", grid_table());
   const std::vector<std::string> written = plot({dir, "", 0, 1200, 900, -1});
   ASSERT_EQ(written.size(), 8u);  // 2 keys x mean error, ANEES, paired difference, linearisation
   EXPECT_EQ(written[0], dir + "/figures/sweep_scenario_mru_heading_noise_deg_mean_error.png");
@@ -261,14 +263,14 @@ TEST(PlotSweep, AFigurePerKeyAndMetric) {
     const bool paired = figure.find("paired") != std::string::npos;
     const bool linearisation = figure.find("linearisation") != std::string::npos;
     std::vector<std::uint32_t> colours;
-    if (!paired) colours.push_back(report::method_colour("robocentric"));
-    if (!linearisation) colours.push_back(report::method_colour("deadreckoning"));
+    if (!paired) colours.push_back(report::MethodStyles().colour("robocentric"));
+    if (!linearisation) colours.push_back(report::MethodStyles().colour("deadreckoning"));
     expect_figure(figure, 1200, 900, colours, 20);
   }
 }
 
 TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
-  io::SweepTable table = grid_table();
+  results::SweepTable table = grid_table();
   // Iterations split the lines against the noise: per method 2 lines (and their points).
   const auto labels = [](const plot::ChartSpec& chart) {
     std::vector<std::string> out;
@@ -277,21 +279,21 @@ TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
     }
     return out;
   };
-  EXPECT_EQ(labels(report::sweep_chart(table, 0, "mean_error", 800, 600)),
+  EXPECT_EQ(labels(report::sweep_chart(report::MethodStyles(), table, 0, "mean_error", 800, 600)),
             (std::vector<std::string>{
                 "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
                 "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
   // A filter sigma set with each noise (its value follows the noise) does not.
   table.keys.push_back("slam.dead_reckoning.heading_sigma_deg");
-  for (io::SweepRow& r : table.rows) r.values.push_back(r.values[0]);
-  EXPECT_EQ(labels(report::sweep_chart(table, 0, "mean_error", 800, 600)),
+  for (results::SweepRow& r : table.rows) r.values.push_back(r.values[0]);
+  EXPECT_EQ(labels(report::sweep_chart(report::MethodStyles(), table, 0, "mean_error", 800, 600)),
             (std::vector<std::string>{
                 "Robocentric SLAM, iekf_iterations=1", "Dead reckoning, iekf_iterations=1",
                 "Robocentric SLAM, iekf_iterations=5", "Dead reckoning, iekf_iterations=5"}));
   // Against the iterations, the noise and the sigma both split them; linearisation errors: a
   // line per kind, robocentric only.
   const std::vector<std::string> lines =
-      labels(report::sweep_chart(table, 1, "linearisation", 800, 600));
+      labels(report::sweep_chart(report::MethodStyles(), table, 1, "linearisation", 800, 600));
   ASSERT_EQ(lines.size(), 9u);
   EXPECT_EQ(lines[0],
             "Robocentric SLAM: match update, heading_noise_deg=0.500000, "
@@ -300,11 +302,13 @@ TEST(PlotSweep, LinesFollowTheOtherKeysUnlessTheirValueFollowsTheKey) {
             "Robocentric SLAM: pose read-out, heading_noise_deg=2.000000, "
             "heading_sigma_deg=2.000000");
   EXPECT_TRUE(report::sweep_has_metric(table, "paired_difference"));
-  table.rows.erase(std::remove_if(table.rows.begin(), table.rows.end(),
-                                  [](const io::SweepRow& r) { return r.method != "robocentric"; }),
-                   table.rows.end());
+  table.rows.erase(
+      std::remove_if(table.rows.begin(), table.rows.end(),
+                     [](const results::SweepRow& r) { return r.method != "robocentric"; }),
+      table.rows.end());
   EXPECT_FALSE(report::sweep_has_metric(table, "paired_difference"));
-  EXPECT_THROW(report::sweep_chart(table, 0, "speed", 800, 600), std::invalid_argument);
+  EXPECT_THROW(report::sweep_chart(report::MethodStyles(), table, 0, "speed", 800, 600),
+               std::invalid_argument);
 }
 
 TEST(PlotMonteCarlo, CliPrintsTheFilesItWrote) {
@@ -327,7 +331,8 @@ TEST(PlotMonteCarlo, CliWithoutDisplayRerunsUnderXvfb) {
   const CliResult rerun = run_msislab("plot " + shell_quote(mc), tmp, "env -u DISPLAY");
   EXPECT_EQ(rerun.exit_code, 0) << rerun.err;
   EXPECT_EQ(rerun.out, "wrote " + mc + "/figures/nees.png\n");
-  expect_figure(mc + "/figures/nees.png", 1200, 900, {report::method_colour("worldcentric")});
+  expect_figure(mc + "/figures/nees.png", 1200, 900,
+                {report::MethodStyles().colour("worldcentric")});
 }
 
 TEST(PlotMonteCarlo, CliWithoutDisplayOrXvfbIsOneClearError) {
@@ -392,7 +397,7 @@ TEST(PlotBadInput, RecordedDatasetThatMoved) {
   RunMetrics metrics;
   metrics.method = "deadreckoning";
   metrics.truth = "simulation";
-  io::write_metrics_json(tmp.file("r/metrics.json"), metrics, tmp.file("gone"));
+  results::write_metrics_json(tmp.file("r/metrics.json"), metrics, tmp.file("gone"));
   expect_bad_input(tmp.file("r"), "pass --dataset");
 }
 

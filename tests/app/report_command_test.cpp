@@ -7,16 +7,17 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <string>
 
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
-#include "io/montecarlo_files.hpp"
 #include "io/output_guard.hpp"
-#include "io/results.hpp"
 #include "io/sensitivity_csv.hpp"
-#include "io/sweep_files.hpp"
+#include "results/montecarlo_files.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -53,7 +54,7 @@ fs::path result_folder(const fs::path& dir, const std::vector<RunMetrics>& resul
   for (const RunMetrics& m : results) {
     fs::create_directories(dir / m.method);
     write_text((dir / m.method / "trajectory.tum").string(), "0 0 0 0 0 0 0 1\n1 1 0 0 0 0 0 1\n");
-    io::write_metrics_json((dir / m.method / "metrics.json").string(), m, dataset);
+    results::write_metrics_json((dir / m.method / "metrics.json").string(), m, dataset);
   }
   fs::create_directories(dir / "figures");
   for (const std::string& f : figures) write_text((dir / "figures" / f).string(), "png " + f);
@@ -64,12 +65,12 @@ fs::path montecarlo_folder(const fs::path& dir, double rc_anees, double wc_anees
                            double rc_fraction = 0.5,
                            const std::string& scenario = "stpere_replica.yaml") {
   fs::create_directories(dir / "figures");
-  io::MonteCarloManifest manifest;
+  results::MonteCarloManifest manifest;
   manifest.scenario_source = "/src/scenarios/" + scenario;
   manifest.first_seed = 42;
   manifest.runs = 50;
   manifest.methods = {"robocentric", "worldcentric"};
-  io::write_manifest_json((dir / "montecarlo.json").string(), manifest);
+  results::write_manifest_json((dir / "montecarlo.json").string(), manifest);
   std::vector<MethodSummary> methods(2);
   for (int i = 0; i < 2; ++i) {
     MethodSummary& s = methods[i];
@@ -82,7 +83,7 @@ fs::path montecarlo_folder(const fs::path& dir, double rc_anees, double wc_anees
     s.segments = {{"loop", 1.2}, {"canal", 4.47}};
     s.runtime_s = 250.0;
   }
-  io::write_summary_json((dir / "summary.json").string(), methods);
+  results::write_summary_json((dir / "summary.json").string(), methods);
   write_text((dir / "figures" / "nees.png").string(), "png nees");
   return dir;
 }
@@ -290,10 +291,10 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
   const TempDir tmp;
   const fs::path dir = tmp.path() / "heading_noise";
   fs::create_directories(dir);
-  io::SweepTable table;
+  results::SweepTable table;
   table.keys = {"scenario.mru.heading_noise_deg"};
   for (int cell = 0; cell < 2; ++cell) {
-    io::SweepRow rc;
+    results::SweepRow rc;
     rc.cell = cell;
     rc.values = {cell == 0 ? "1" : "30"};
     rc.method = "robocentric";
@@ -303,7 +304,7 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
     rc.linearisation_observation = 1e-4;
     rc.linearisation_inversion = 2e-4;
     rc.linearisation_pose = 3e-4;
-    io::SweepRow wc = rc;
+    results::SweepRow wc = rc;
     wc.method = "worldcentric";
     wc.linearisation_inversion.reset();
     wc.paired_reference = "robocentric";
@@ -314,7 +315,7 @@ TEST(ReportCommand, SweepTablesMarkTheDifferencesBeyondTheNoise) {
     table.rows.push_back(rc);
     table.rows.push_back(wc);
   }
-  io::write_sweep_csv((dir / "sweep.csv").string(), table);
+  results::write_sweep_csv((dir / "sweep.csv").string(), table);
   ReportOptions options;
   options.out_path = tmp.file("page.md");
   options.sweep_dirs = {dir.string()};
@@ -395,6 +396,23 @@ TEST(ReportCommand, BadInputNamesTheFolderAndWritesNothing) {
   options.montecarlo_dirs.clear();
   expect_error_and_nothing_written(options, "metrics.json");
   expect_error_and_nothing_written(ReportOptions{page, "", "", {}, {}, ""}, "nothing to report");
+}
+
+TEST(ReportCommand, FiguresDrawnBeforeTheirDataAreRefused) {
+  // A Monte Carlo resumed with another method after its figures were drawn, a result scored again:
+  // the page would show figures without it. Named, with how to draw them again.
+  const Inputs in;
+  const fs::path nees = in.mc / "figures" / "nees.png";
+  fs::last_write_time(nees, fs::last_write_time(in.mc / "summary.json") - std::chrono::seconds(5));
+  expect_error(in.options(),
+               nees.string() + ": was drawn before " + (in.mc / "summary.json").string() +
+                   " was written (draw the figures again: msislab plot " + in.mc.string() + ")");
+  EXPECT_FALSE(fs::exists(in.tmp.path() / "docs" / "results.md"));
+  fs::last_write_time(nees, fs::last_write_time(in.mc / "summary.json"));
+  const fs::path errors = in.real / "figures" / "errors.png";
+  fs::last_write_time(errors, fs::last_write_time(in.real / "robocentric" / "metrics.json") -
+                                  std::chrono::seconds(5));
+  expect_error(in.options(), errors.string() + ": was drawn before");
 }
 
 TEST(ReportCli, ExitsTwoWithOneLineOnBadInput) {

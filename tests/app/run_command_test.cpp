@@ -211,6 +211,13 @@ TEST(RunCommand, BadInputIsRejectedBeforeWriting) {
     expect_rejected(options_for(missing, "deadreckoning", tmp.path() / "out2"), {missing.string()});
   }
   {
+    SCOPED_TRACE("a scenario given where a dataset goes");
+    const std::string scenario = write_text(tmp.file("basin.yaml"), "seed: 1\n");
+    expect_rejected(options_for(scenario, "deadreckoning", tmp.path() / "out2b"),
+                    {scenario + ": is a file, not a dataset directory (a scenario?",
+                     "msislab simulate " + scenario + " --out DIR"});
+  }
+  {
     SCOPED_TRACE("no DVL log");
     const fs::path no_dvl = tmp.path() / "no_dvl";
     testing::write_synthetic_dataset(no_dvl, short_run);

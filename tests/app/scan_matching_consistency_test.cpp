@@ -12,9 +12,9 @@
 #include <Eigen/LU>
 
 #include "app/simulate_command.hpp"
+#include "dataset/sonar_readings.hpp"
+#include "dataset/truth.hpp"
 #include "eval/evaluation.hpp"
-#include "io/sonar_readings.hpp"
-#include "io/truth.hpp"
 #include "io/tum.hpp"
 #include "slam/scan_matching.hpp"
 #include "slam/trajectory_slam.hpp"
@@ -43,9 +43,9 @@ TEST(ScanMatchingConsistency, ReplicaScanPairs) {
   const std::string dataset = tmp.file("replica");
   simulate({std::string(MSISLAB_SOURCE_DIR) + "/scenarios/stpere_replica.yaml", dataset,
             std::nullopt, 2});
-  const io::RunInputs in = io::load_run_inputs(dataset, "");
-  const io::SonarInput sonar =
-      io::load_sonar_readings(in.files, in.calibration, in.config.segmentation);
+  const dataset::RunInputs in = dataset::load_run_inputs(dataset, "");
+  const dataset::SonarInput sonar =
+      dataset::load_sonar_readings(in.files, in.calibration, in.config.segmentation);
   ScanConfig builder;
   builder.beams_per_scan = sonar.beams_per_revolution;
   builder.p_vehicle_sonar_m = {in.calibration.sonar.x_m, in.calibration.sonar.y_m};
@@ -71,7 +71,7 @@ TEST(ScanMatchingConsistency, ReplicaScanPairs) {
     all.add(r.estimate, truth_motion);
     const Eigen::Vector3d innovation = pose_difference(r.estimate.mean, scans[k].scan.motion.mean);
     const Eigen::Matrix3d S = r.estimate.cov + scans[k].scan.motion.cov;
-    if (innovation.dot(S.inverse() * innovation) < TrajectorySlamConfig{}.innovation_gate_chi2) {
+    if (innovation.dot(S.inverse() * innovation) < ScanFrontEndConfig{}.innovation_gate_chi2) {
       passing.add(r.estimate, truth_motion);
     }
     return true;

@@ -9,11 +9,11 @@
 
 #include "app/run_command.hpp"
 #include "app/simulate_command.hpp"
-#include "io/dataset.hpp"
+#include "dataset/dataset.hpp"
 #include "io/input_error.hpp"
-#include "io/scenario_scene.hpp"
-#include "io/scenario_yaml.hpp"
 #include "io/stpere_logs.hpp"
+#include "settings/scenario_scene.hpp"
+#include "settings/scenario_yaml.hpp"
 #include "sim/scene.hpp"
 #include "test_support.hpp"
 
@@ -31,9 +31,9 @@ TEST(ShippedScenarios, EveryScenarioPassesTheChecksAndItsSceneBuilds) {
   for (const auto& entry : fs::directory_iterator(kScenarios)) {
     if (entry.path().extension() != ".yaml") continue;
     SCOPED_TRACE(entry.path().string());
-    io::CheckedScenario checked;
+    settings::CheckedScenario checked;
     try {
-      checked = io::read_checked_scenario(entry.path().string());
+      checked = settings::read_checked_scenario(entry.path().string());
     } catch (const io::InputError& e) {
       ADD_FAILURE() << e.what();
       continue;
@@ -97,11 +97,12 @@ TEST(ShippedScenarios, StPereReplicaSimulatesAndAgreesWithItsTruth) {
             << summary.duration_s / summary.render_s << "x real time)\n";
   // 200 beams per 13.8 s until the sonar stops, 3020 s into the 3341 s run (where the real
   // sonar log ends, sonar.stop_s).
-  const sim::Scenario scenario = io::read_scenario((kScenarios / "stpere_replica.yaml").string());
+  const sim::Scenario scenario =
+      settings::read_scenario((kScenarios / "stpere_replica.yaml").string());
   ASSERT_TRUE(scenario.sonar.stop_s);
   EXPECT_LT(*scenario.sonar.stop_s, summary.duration_s - 300.0);
   EXPECT_NEAR(static_cast<double>(summary.beams), *scenario.sonar.stop_s / 13.8 * 200.0, 2.0);
-  const io::DatasetFiles files = io::find_dataset_files(out);
+  const dataset::DatasetFiles files = dataset::find_dataset_files(out);
   ASSERT_TRUE(files.is_log && files.dvl && files.mti && files.gps && files.truth_beams);
   const auto beams = io::read_is_log(*files.is_log);
   EXPECT_EQ(beams.size(), summary.beams);

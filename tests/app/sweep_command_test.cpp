@@ -12,9 +12,9 @@
 
 #include "cli_runner.hpp"
 #include "io/input_error.hpp"
-#include "io/scenario_yaml.hpp"
-#include "io/sweep_files.hpp"
-#include "io/sweep_yaml.hpp"
+#include "results/sweep_files.hpp"
+#include "settings/scenario_yaml.hpp"
+#include "settings/sweep_yaml.hpp"
 #include "test_support.hpp"
 
 namespace msislab::app {
@@ -60,14 +60,14 @@ TEST(SweepCommand, GridCellsAndSweepCsv) {
   EXPECT_EQ(full.outcome.cells, 4u);
   EXPECT_EQ(full.outcome.executed, 8u);
   EXPECT_EQ(full.outcome.failed, 0u);
-  const io::SweepTable table = io::read_sweep_csv((full.dir / "sweep.csv").string());
+  const results::SweepTable table = results::read_sweep_csv((full.dir / "sweep.csv").string());
   EXPECT_EQ(table.keys, (std::vector<std::string>{"scenario.mru.heading_noise_deg",
                                                   "slam.trajectory_slam.max_matches_per_scan"}));
   ASSERT_EQ(table.rows.size(), 8u);  // 4 cells x 2 methods, the last key fastest
   EXPECT_EQ(table.rows[2].cell, 1);
   EXPECT_EQ(table.rows[2].values, (std::vector<std::string>{"0.5", "3"}));
   EXPECT_EQ(table.rows[2].method, "deadreckoning");
-  for (const io::SweepRow& r : table.rows) {
+  for (const results::SweepRow& r : table.rows) {
     EXPECT_EQ(r.runs, 2);
     EXPECT_EQ(r.failed, 0);
     ASSERT_TRUE(r.mean_error_m && r.p05_m && r.p95_m && r.anees);
@@ -226,7 +226,7 @@ TEST(SweepCli, AFailedRunExits3WithSweepCsvWritten) {
   ASSERT_GE(failing.err.size(), last_line.size());
   EXPECT_EQ(failing.err.substr(failing.err.size() - last_line.size()), last_line) << failing.err;
   EXPECT_TRUE(fs::exists(out + "/cells/cell_000/runs/deadreckoning/run_0001/failed.json"));
-  const io::SweepTable table = io::read_sweep_csv(out + "/sweep.csv");
+  const results::SweepTable table = results::read_sweep_csv(out + "/sweep.csv");
   ASSERT_EQ(table.rows.size(), 1u);
   EXPECT_EQ(table.rows[0].runs, 1);
   EXPECT_EQ(table.rows[0].failed, 1);
@@ -246,17 +246,17 @@ TEST(SweepCli, AFailedRunExits3WithSweepCsvWritten) {
 
 TEST(SweepYaml, CellsListAndGridOrder) {
   const TempDir tmp;
-  const io::Sweep grid =
-      io::read_sweep(write_text(tmp.file("g.yaml"),
-                                "scenario: s.yaml\nruns: 1\ngrid:\n  slam.a: [1, 2]\n  scenario.b: "
-                                "[x, [3, 4]]\n"));
+  const settings::Sweep grid = settings::read_sweep(
+      write_text(tmp.file("g.yaml"),
+                 "scenario: s.yaml\nruns: 1\ngrid:\n  slam.a: [1, 2]\n  scenario.b: "
+                 "[x, [3, 4]]\n"));
   ASSERT_EQ(grid.cells.size(), 4u);
-  EXPECT_EQ(io::describe_cell(grid.cells[1]), "slam.a=1, scenario.b=[3, 4]");
+  EXPECT_EQ(settings::describe_cell(grid.cells[1]), "slam.a=1, scenario.b=[3, 4]");
   EXPECT_EQ(grid.cells[2].overrides[0].second.number, 2.0);
   EXPECT_FALSE(grid.cells[0].overrides[1].second.number);
   EXPECT_EQ(grid.scenario_path, (tmp.path() / "s.yaml").lexically_normal().string());
   EXPECT_EQ(grid.methods, (std::vector<std::string>{"robocentric", "worldcentric"}));
-  const io::Sweep list = io::read_sweep(
+  const settings::Sweep list = settings::read_sweep(
       write_text(tmp.file("l.yaml"),
                  "scenario: s.yaml\nconfig: c.yaml\nruns: 3\nmethods: [deadreckoning]\n"
                  "cells:\n  - {slam.a: 1}\n  - {scenario.b: 2, slam.a: 5}\n"));
@@ -269,14 +269,14 @@ TEST(SweepYaml, CellsListAndGridOrder) {
 // base scenario names (the replica's mesh and its heading history) must still be found.
 TEST(SweepYaml, CellScenarioNamesItsFilesFromAnyFolder) {
   const TempDir tmp;
-  const io::Sweep sweep = io::read_sweep(write_text(
+  const settings::Sweep sweep = settings::read_sweep(write_text(
       tmp.file("s.yaml"), "scenario: " + std::string(MSISLAB_SOURCE_DIR) +
                               "/scenarios/stpere_replica.yaml\nruns: 1\n"
                               "cells:\n  - {slam.trajectory_slam.iekf_iterations: 2}\n"));
-  const io::CellInputs inputs = io::cell_inputs(sweep, 0);
+  const settings::CellInputs inputs = settings::cell_inputs(sweep, 0);
   fs::create_directories(tmp.path() / "elsewhere");
-  const sim::Scenario scenario =
-      io::read_scenario(write_text(tmp.file("elsewhere/scenario.yaml"), inputs.scenario_text));
+  const sim::Scenario scenario = settings::read_scenario(
+      write_text(tmp.file("elsewhere/scenario.yaml"), inputs.scenario_text));
   EXPECT_FALSE(scenario.vehicle.heading_deg.empty());
   EXPECT_TRUE(fs::path(scenario.scene.mesh_path).is_absolute());
 }

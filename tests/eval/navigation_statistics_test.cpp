@@ -8,13 +8,12 @@
 #include <cmath>
 #include <random>
 
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// A vehicle at 0.2 m/s whose yaw rate swings as turn_rate sin(2 pi t / 200) (curves both ways),
 /// with truth at 10 Hz, exact DVL at 1.5 Hz and heading at 10 Hz (plus an optional offset).

@@ -1,4 +1,4 @@
-// The libFuzzer entry (preset fuzz, tools/fuzz.sh): one executable for every reader target, the
+// The libFuzzer entry (preset asan, tools/fuzz.sh): one executable for every reader target, the
 // target chosen by the environment variable MSISLAB_FUZZ_TARGET (a name of reader_targets()).
 // Each input is written to a file in a private temporary folder and read. io::InputError is the
 // reader doing its job; any other exception aborts, so libFuzzer keeps the input as a finding, as

@@ -3,25 +3,25 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "dataset/dataset.hpp"
 #include "io/beam_truth.hpp"
-#include "io/config_yaml.hpp"
-#include "io/dataset.hpp"
 #include "io/detections.hpp"
-#include "io/expectations_yaml.hpp"
 #include "io/heading_csv.hpp"
 #include "io/input_error.hpp"
 #include "io/mesh_io.hpp"
-#include "io/methods_file.hpp"
-#include "io/montecarlo_files.hpp"
 #include "io/ply.hpp"
-#include "io/result_readers.hpp"
-#include "io/results.hpp"
-#include "io/scenario_yaml.hpp"
 #include "io/sensitivity_csv.hpp"
 #include "io/stpere_logs.hpp"
-#include "io/sweep_files.hpp"
-#include "io/sweep_yaml.hpp"
 #include "io/tum.hpp"
+#include "results/montecarlo_files.hpp"
+#include "results/result_readers.hpp"
+#include "results/results.hpp"
+#include "results/sweep_files.hpp"
+#include "settings/config_yaml.hpp"
+#include "settings/expectations_yaml.hpp"
+#include "settings/methods_file.hpp"
+#include "settings/scenario_yaml.hpp"
+#include "settings/sweep_yaml.hpp"
 
 namespace msislab::fuzz {
 namespace {
@@ -49,24 +49,24 @@ void read_sweep_cells(const std::string& path) {
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   write_file(dir / "scenario.yaml", kSweepScenario);
   write_file(dir / "config.yaml", "trajectory_slam: {iekf_iterations: 3}\n");
-  const io::Sweep sweep = io::read_sweep(path);
-  for (std::size_t i = 0; i < sweep.cells.size(); ++i) io::cell_inputs(sweep, i);
+  const settings::Sweep sweep = settings::read_sweep(path);
+  for (std::size_t i = 0; i < sweep.cells.size(); ++i) settings::cell_inputs(sweep, i);
 }
 
 /// A methods file, with the built-in names reserved as `msislab` reserves them, then each
 /// method's command with its placeholders filled in.
 void read_methods(const std::string& path) {
-  const io::MethodsFile file = io::read_methods_file(
+  const settings::MethodsFile file = settings::read_methods_file(
       path, {"robocentric", "worldcentric", "posegraph", "deadreckoning", "integration"});
-  for (const io::ExternalMethod& method : file.methods) {
-    io::expand_command(method, {"/data", "/out", "/config.yaml", 7});
+  for (const settings::ExternalMethod& method : file.methods) {
+    settings::expand_command(method, {"/data", "/out", "/config.yaml", 7});
   }
 }
 
 void read_truth_segments(const std::string& path) {
-  io::DatasetFiles files;
+  dataset::DatasetFiles files;
   files.truth_segments = path;
-  io::load_truth_segments(files);
+  dataset::load_truth_segments(files);
 }
 
 }  // namespace
@@ -91,35 +91,37 @@ const std::vector<ReaderTarget>& reader_targets() {
       {"beam_truth_csv", "beams.csv", [](const std::string& p) { io::read_beam_truth(p); }},
       {"segments_csv", "segments.csv", read_truth_segments},
       // YAML: scenario, SLAM config, calibration, sweep, methods file, expectations.
-      {"scenario_yaml", "scenario.yaml", [](const std::string& p) { io::read_scenario(p); }},
-      {"slam_config_yaml", "config.yaml", [](const std::string& p) { io::read_slam_config(p); }},
+      {"scenario_yaml", "scenario.yaml", [](const std::string& p) { settings::read_scenario(p); }},
+      {"slam_config_yaml", "config.yaml",
+       [](const std::string& p) { settings::read_slam_config(p); }},
       {"calibration_yaml", "calibration.yaml",
-       [](const std::string& p) { io::read_calibration(p); }},
+       [](const std::string& p) { settings::read_calibration(p); }},
       {"navigation_noise_yaml", "navigation_noise.yaml",
-       [](const std::string& p) { io::read_navigation_noise(p); }},
+       [](const std::string& p) { settings::read_navigation_noise(p); }},
       {"sweep_yaml", "sweep.yaml", read_sweep_cells},
       {"methods_yaml", "methods.yaml", read_methods},
       {"expectations_yaml", "expectations.yaml",
-       [](const std::string& p) { io::read_expectations_yaml(p); }},
+       [](const std::string& p) { settings::read_expectations_yaml(p); }},
       // Scene meshes and the map a run writes.
       {"obj_mesh", "scene.obj", read_scene_mesh},
       {"ply_mesh", "scene.ply", read_scene_mesh},
-      {"points_ply", "map.ply", [](const std::string& p) { io::read_points_ply(p); }},
+      {"points_ply", "map.ply", [](const std::string& p) { results::read_points_ply(p); }},
       // A result folder.
-      {"metrics_json", "metrics.json", [](const std::string& p) { io::read_metrics_json(p); }},
-      {"scans_csv", "scans.csv", [](const std::string& p) { io::read_scans_csv(p); }},
-      {"errors_csv", "errors.csv", [](const std::string& p) { io::read_errors_csv(p); }},
-      {"nees_csv", "nees.csv", [](const std::string& p) { io::read_nees_csv(p); }},
+      {"metrics_json", "metrics.json", [](const std::string& p) { results::read_metrics_json(p); }},
+      {"scans_csv", "scans.csv", [](const std::string& p) { results::read_scans_csv(p); }},
+      {"errors_csv", "errors.csv", [](const std::string& p) { results::read_errors_csv(p); }},
+      {"nees_csv", "nees.csv", [](const std::string& p) { results::read_nees_csv(p); }},
       // A Monte Carlo directory and a sweep.
-      {"manifest_json", "montecarlo.json", [](const std::string& p) { io::read_manifest_json(p); }},
-      {"summary_json", "summary.json", [](const std::string& p) { io::read_summary_json(p); }},
+      {"manifest_json", "montecarlo.json",
+       [](const std::string& p) { results::read_manifest_json(p); }},
+      {"summary_json", "summary.json", [](const std::string& p) { results::read_summary_json(p); }},
       {"montecarlo_nees_csv", "nees.csv",
-       [](const std::string& p) { io::read_montecarlo_nees(p); }},
+       [](const std::string& p) { results::read_montecarlo_nees(p); }},
       {"error_spread_csv", "errors.csv",
-       [](const std::string& p) { io::read_error_spread_csv(p); }},
+       [](const std::string& p) { results::read_error_spread_csv(p); }},
       {"error_histogram_csv", "error_histogram.csv",
-       [](const std::string& p) { io::read_error_histogram_csv(p); }},
-      {"sweep_csv", "sweep.csv", [](const std::string& p) { io::read_sweep_csv(p); }},
+       [](const std::string& p) { results::read_error_histogram_csv(p); }},
+      {"sweep_csv", "sweep.csv", [](const std::string& p) { results::read_sweep_csv(p); }},
       {"heading_csv", "heading.csv", [](const std::string& p) { io::read_heading_csv(p); }},
       {"sensitivity_csv", "real.csv", [](const std::string& p) { io::read_sensitivity_csv(p); }},
   };

@@ -14,13 +14,15 @@
 #include <functional>
 #include <random>
 #include <vector>
+#include "geometry/angles.hpp"
+#include "pose_jacobian.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
 
-constexpr double kPi = M_PI;
-constexpr double kFdStep = 1e-6;  ///< finite-difference step, m or rad
+using testing::kFdStep;
+using testing::numeric_jacobian;
 constexpr int kMonteCarloSamples = 200000;
 constexpr double kMonteCarloTol = 0.03;  ///< of sqrt(P_ii P_jj), per covariance entry
 
@@ -47,17 +49,6 @@ GaussianPose2 random_gaussian_pose(std::mt19937& rng) {
 }
 
 double max_abs(const Eigen::Matrix3d& m) { return m.cwiseAbs().maxCoeff(); }
-
-/// Numerical Jacobian of a pose-valued function (central differences, angle wrapped).
-Eigen::Matrix3d numeric_jacobian(const std::function<Pose2(const Pose2&)>& f, const Pose2& x) {
-  Eigen::Matrix3d J;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d step = kFdStep * Eigen::Vector3d::Unit(i);
-    J.col(i) =
-        pose_difference(f(Pose2(x.vector() + step)), f(Pose2(x.vector() - step))) / (2.0 * kFdStep);
-  }
-  return J;
-}
 
 ::testing::AssertionResult symmetric_psd(const Eigen::Matrix3d& P) {
   const double scale = std::max(max_abs(P), 1e-300);

@@ -12,14 +12,16 @@
 #include <limits>
 #include <random>
 #include <vector>
+#include "geometry/angles.hpp"
+#include "pose_jacobian.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
 namespace {
 
-constexpr double kPi = M_PI;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr double kFdStep = 1e-6;       ///< finite-difference step, m or rad
+using testing::kFdStep;
+using testing::numeric_jacobian;
 constexpr double kJacobianTol = 1e-6;  ///< relative to max(1, max |J_ij|)
 constexpr double kIdentityTol = 1e-9;  ///< m or rad
 
@@ -156,19 +158,6 @@ std::vector<Pose2> test_poses() {
     poses.emplace_back(x, y, yaw);
   }
   return poses;
-}
-
-/// Numerical Jacobian of a pose-valued function of a pose; output differences are taken with
-/// pose_difference so a yaw that wraps across +-pi does not produce a 2 pi jump.
-Eigen::Matrix3d numeric_jacobian(const std::function<Pose2(const Pose2&)>& f, const Pose2& x) {
-  Eigen::Matrix3d J;
-  for (int i = 0; i < 3; ++i) {
-    const Eigen::Vector3d step = kFdStep * Eigen::Vector3d::Unit(i);
-    const Pose2 plus(x.vector() + step);
-    const Pose2 minus(x.vector() - step);
-    J.col(i) = pose_difference(f(plus), f(minus)) / (2.0 * kFdStep);
-  }
-  return J;
 }
 
 /// Numerical Jacobian of a 2-vector-valued function of a pose.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "geometry/angles.hpp"
 #include "io/input_error.hpp"
 #include "test_support.hpp"
 
@@ -16,7 +17,6 @@ namespace {
 using testing::TempDir;
 using testing::write_text;
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kYawTolerance_rad = 1e-15 * 8;
 
 // The yaw read back from a file holding one pose with quaternion (qx, qy, qz, qw).

@@ -12,7 +12,7 @@
 #include <numeric>
 #include <vector>
 
-namespace msislab {
+namespace msislab::sim {
 namespace {
 
 constexpr double kBin_m = 0.1;
@@ -156,4 +156,4 @@ TEST(DetectionModel, ConstantBeamsCountAsNoEnergyInTheDefaultWindow) {
 }
 
 }  // namespace
-}  // namespace msislab
+}  // namespace msislab::sim

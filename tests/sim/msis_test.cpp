@@ -90,6 +90,47 @@ TEST(Msis, TwoHundredBeamsPerRevolutionWithTheAngleSteppingDown) {
   EXPECT_NEAR(slots[200].t_s - slots[0].t_s, 13.8, 1e-9);
 }
 
+TEST(Msis, AReversedRotationStepsTheAngleUp) {
+  SonarConfig sonar;
+  sonar.rotation = SonarRotation::kIncreasing;
+  const auto slots = beam_schedule(sonar, 0.0, 2 * sonar.revolution_s - 1e-6);
+  ASSERT_EQ(slots.size(), 400u);
+  const double step_rad = 2.0 * M_PI / 200.0;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    EXPECT_NEAR(slots[k].transducer_angle_rad, static_cast<double>(k % 200) * step_rad, 1e-12);
+  }
+}
+
+TEST(Msis, APing360SectorScanSweepsBackAndForth) {
+  // 400 steps a turn (one gradian), a 90 deg sector from 0 deg, turning up: 0, 0.9, ..., 90 deg,
+  // then 89.1 down to 0.9, then 0 again: 200 beams a period, each end once.
+  SonarConfig sonar;
+  sonar.steps_per_revolution = 400;
+  sonar.revolution_s = 400 * 0.02;
+  sonar.rotation = SonarRotation::kIncreasing;
+  sonar.sector = SonarSector{0, 100};
+  const auto slots = beam_schedule(sonar, 0.0, 401 * 0.02 - 1e-9);
+  ASSERT_EQ(slots.size(), 401u);
+  const double step_deg = 0.9;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const std::size_t phase = k % 200;
+    const double expected_deg = step_deg * static_cast<double>(phase <= 100 ? phase : 200 - phase);
+    EXPECT_NEAR(slots[k].transducer_angle_rad * 180.0 / M_PI, expected_deg, 1e-9) << "beam " << k;
+    EXPECT_NEAR(slots[k].t_s, 0.02 * static_cast<double>(k), 1e-9);
+  }
+  // Decreasing through 0: a sector from 10 deg down to 350 deg (20 deg across north).
+  sonar.rotation = SonarRotation::kDecreasing;
+  sonar.sector = SonarSector{11, 389};  // 9.9 deg and 350.1 deg
+  const auto across = beam_schedule(sonar, 0.0, 50 * 0.02 - 1e-9);
+  const std::vector<double> expected_deg = {9.9, 9.0, 8.1};
+  for (std::size_t k = 0; k < expected_deg.size(); ++k) {
+    EXPECT_NEAR(across[k].transducer_angle_rad * 180.0 / M_PI, expected_deg[k], 1e-9);
+  }
+  EXPECT_NEAR(across[22].transducer_angle_rad * 180.0 / M_PI, 350.1, 1e-9);  // the far end
+  EXPECT_NEAR(across[23].transducer_angle_rad * 180.0 / M_PI, 351.0, 1e-9);  // and back
+  EXPECT_NEAR(across[44].transducer_angle_rad * 180.0 / M_PI, 9.9, 1e-9);    // the first end
+}
+
 TEST(Msis, WallAtAKnownRangeGivesItsEcho) {
   const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
   SonarConfig sonar = forward_sonar();

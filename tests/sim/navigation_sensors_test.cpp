@@ -7,13 +7,12 @@
 
 #include <cmath>
 
+#include "geometry/angles.hpp"
 #include "geometry/calibration.hpp"
 #include "sim/scenario.hpp"
 
 namespace msislab::sim {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// A flat bottom 10 m down over +-10 km.
 TriangleMesh flat_bottom() {

@@ -4,6 +4,7 @@
 // receiver's time constant; spreading keeps the power; the roughness field has zero mean and unit
 // variance everywhere, is continuous, and forgets itself beyond a few correlation lengths.
 #include "sim/sonar_physics.hpp"
+#include "geometry/angles.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,8 +15,6 @@
 
 namespace msislab::sim {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 TEST(SonarPhysics, PatternsAreMinusThreeDecibelsTwoWayAtHalfTheWidth) {
   const double width_rad = 3.0 * kPi / 180.0;

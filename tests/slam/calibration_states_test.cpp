@@ -18,6 +18,7 @@
 #include <random>
 #include <string>
 
+#include "geometry/angles.hpp"
 #include "slam/calibration_update.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
@@ -50,8 +51,6 @@ TrajectorySlamConfig with_compass_deviation() {
   config.calibration.compass_deviation = true;
   return config;
 }
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 TrajectorySlamConfig with_clock_offset() {
   TrajectorySlamConfig config;
@@ -182,7 +181,7 @@ TEST(CalibrationStates, DvlScalePredictionAgainstFiniteDifferences) {
 template <class Filter>
 void expect_compass_jacobian(Filter& slam, std::size_t b, double z) {
   Eigen::MatrixXd H;
-  slam.compass_residual(b, z, &H);
+  slam.compass_residual(slam.state(), b, z, &H);
   const Eigen::Index c = slam.parameters().size();
   ASSERT_EQ(H.cols(), static_cast<Eigen::Index>(c + 3 * (b + 1)));
   const double step = 1e-6;
@@ -198,9 +197,9 @@ void expect_compass_jacobian(Filter& slam, std::size_t b, double z) {
       slam.state()[element] = Pose2(v);
     };
     perturb(step);
-    const double plus = slam.compass_residual(b, z, nullptr)(0);
+    const double plus = slam.compass_residual(slam.state(), b, z, nullptr)(0);
     perturb(-2 * step);
-    const double minus = slam.compass_residual(b, z, nullptr)(0);
+    const double minus = slam.compass_residual(slam.state(), b, z, nullptr)(0);
     perturb(step);
     // The residual is z - h: its difference quotient is -dh.
     EXPECT_NEAR(H(0, col), -(plus - minus) / (2 * step), 1e-6) << "b " << b << " column " << col;

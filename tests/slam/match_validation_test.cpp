@@ -197,8 +197,8 @@ TEST(MatchValidation, AWrongCorridorMatchDoesNotMoveTheFilterAlongTheAxis) {
   second.motion = guess_at(Pose2(true_motion.x() - 3.0, true_motion.y() + 0.8, 0.0), 1.0, 0.01);
   for (const bool validate : {false, true}) {
     TrajectorySlamConfig config;
-    config.compass_updates = false;
-    if (!validate) config.validation.restart_offset_m = 0.0;
+    config.front_end.compass_updates = false;
+    if (!validate) config.front_end.validation.restart_offset_m = 0.0;
     RoboCentricSlam slam(config, GaussianPose2{first_world, first.motion.cov});
     slam.add_scan(first);
     const SlamStepStats stats = slam.add_scan(second);

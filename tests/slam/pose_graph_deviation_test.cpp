@@ -13,6 +13,7 @@
 #include <cmath>
 #include <vector>
 
+#include "geometry/angles.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/pose_graph_slam.hpp"
 #include "tests/slam/pose_graph_recovery.hpp"
@@ -21,8 +22,6 @@
 
 namespace msislab {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 /// A motion with correlated translation noise; its yaw near the edges' own (Ceres' checker steps
 /// by up to tenths of a radian: a residual near pi would wrap).

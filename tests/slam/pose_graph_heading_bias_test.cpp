@@ -10,6 +10,7 @@
 #include <iostream>
 #include <string>
 
+#include "geometry/angles.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/pose_graph_slam.hpp"
 #include "tests/slam/residual_jacobian_check.hpp"
@@ -17,8 +18,6 @@
 
 namespace msislab {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 TEST(PoseGraphHeadingBias, EdgeJacobiansMatchCentralDifferences) {
   PoseGraph graph;
@@ -51,9 +50,11 @@ void expect_walking_compass_recovered(int window) {
   for (unsigned seed = 1; seed <= 10; ++seed) {
     Loop loop = make_loop(seed, false);
     const double bias_rad = with_walking_compass(loop, 0.3, 0.1, seed);
-    PoseGraphSlam estimating(with_heading_bias(0.3), graph, GaussianPose2{});
-    PoseGraphSlam ignoring(TrajectorySlamConfig{}, graph, GaussianPose2{});
+    const TrajectorySlamConfig with_bias = with_heading_bias(0.3);
+    PoseGraphSlam estimating(with_bias.front_end, with_bias.calibration, graph, GaussianPose2{});
+    PoseGraphSlam ignoring(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph, GaussianPose2{});
     for (const Scan& scan : loop.scans) estimating.add_scan(scan), ignoring.add_scan(scan);
+    estimating.finish(), ignoring.finish();
     const std::size_t last = loop.scans.size() - 1;
     const auto yaw_nees = [&](const PoseGraphSlam& slam) {
       const GaussianPose2 pose = slam.scan_pose_world(last);
@@ -98,12 +99,13 @@ TEST(PoseGraphHeadingBias, AShortStretchInBothBackEnds) {
   for (const int window : {0, 4}) {
     PoseGraphSlamConfig graph;
     graph.online_window_scans = window;
-    PoseGraphSlam slam(front, graph, GaussianPose2{});
+    PoseGraphSlam slam(front.front_end, front.calibration, graph, GaussianPose2{});
     for (std::size_t k = 0; k < 30; ++k) slam.add_scan(loop.scans[k]);
     const CalibrationEstimate beta = slam.calibration().at(0);
     EXPECT_TRUE(std::isfinite(beta.value)) << window;
     EXPECT_GT(beta.sigma, 0.0) << window;
     EXPECT_LT(beta.sigma, std::sqrt(0.25 + 30 * 0.09)) << window;
+    slam.finish();
     EXPECT_TRUE(slam.scan_pose_world(29).cov.allFinite()) << window;
   }
 }

@@ -38,9 +38,10 @@ inline void expect_recovered(int window, unsigned seeds,
   graph.online_window_scans = window;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
     const Loop loop = loop_of(seed);
-    PoseGraphSlam estimating(with_state, graph, GaussianPose2{});
-    PoseGraphSlam ignoring(TrajectorySlamConfig{}, graph, GaussianPose2{});
+    PoseGraphSlam estimating(with_state.front_end, with_state.calibration, graph, GaussianPose2{});
+    PoseGraphSlam ignoring(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph, GaussianPose2{});
     for (const Scan& scan : loop.scans) estimating.add_scan(scan), ignoring.add_scan(scan);
+    estimating.finish(), ignoring.finish();
     const auto mean_error_m = [&](const PoseGraphSlam& slam) {
       double sum = 0.0;
       for (std::size_t i = 0; i < slam.scans(); ++i) {

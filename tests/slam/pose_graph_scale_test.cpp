@@ -122,7 +122,7 @@ TEST(PoseGraphScale, AShortStretchInBothBackEndsWithEveryParameter) {
   for (const int window : {0, 4}) {
     PoseGraphSlamConfig graph;
     graph.online_window_scans = window;
-    PoseGraphSlam slam(front, graph, GaussianPose2{});
+    PoseGraphSlam slam(front.front_end, front.calibration, graph, GaussianPose2{});
     for (std::size_t k = 0; k < 30; ++k) slam.add_scan(loop.scans[k]);
     const std::vector<CalibrationEstimate> c = slam.calibration();
     const std::vector<std::string> names = {"range_scale",
@@ -141,6 +141,7 @@ TEST(PoseGraphScale, AShortStretchInBothBackEndsWithEveryParameter) {
         EXPECT_LT(c[i].sigma, prior_sd[i]) << window << " " << names[i];
       }
     }
+    slam.finish();
     EXPECT_TRUE(slam.scan_pose_world(29).cov.allFinite()) << window;
   }
 }

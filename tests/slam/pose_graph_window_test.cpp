@@ -28,7 +28,7 @@ struct Online {
 Online run_window(const std::vector<Scan>& scans, int window, const TrajectorySlamConfig& front) {
   PoseGraphSlamConfig config;
   config.online_window_scans = window;
-  PoseGraphSlam slam(front, config, GaussianPose2{});
+  PoseGraphSlam slam(front.front_end, front.calibration, config, GaussianPose2{});
   Online out;
   std::set<std::size_t> old_before;  // old references the previous scan accepted
   for (const Scan& scan : scans) {
@@ -42,6 +42,7 @@ Online run_window(const std::vector<Scan>& scans, int window, const TrajectorySl
     old_before = old_now;
   }
   out.online = *slam.online_poses();
+  slam.finish();
   for (std::size_t i = 0; i < slam.scans(); ++i) out.smoothed.push_back(slam.scan_pose_world(i));
   out.outside = slam.matches_outside_window();
   out.uncorrelated = slam.old_nodes_uncorrelated();
@@ -78,7 +79,7 @@ TEST(PoseGraphWindow, DroppingNodesIsExactWhileTheCandidatesAreInIt) {
   const Loop loop = make_loop(5, false, 1e-4);
   const std::vector<Scan> lap(loop.scans.begin(), loop.scans.begin() + 18);
   TrajectorySlamConfig front;
-  front.association_distance_m = 9.0;
+  front.front_end.association_distance_m = 9.0;
   const Online whole = run_window(lap, 0, front);
   const Online window = run_window(lap, 5, front);
   EXPECT_GT(whole.accepted, 18);

@@ -8,6 +8,7 @@
 #include <random>
 #include <vector>
 
+#include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
 #include "slam/scan_builder.hpp"
 #include "slam/trajectory_slam.hpp"
@@ -145,7 +146,6 @@ inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
 /// scan, scans 1 s apart) under white noise of sigma_deg; returns the bias at the last scan.
 inline double with_walking_compass(Loop& loop, double walk_deg_per_sqrt_s, double sigma_deg,
                                    unsigned seed) {
-  constexpr double kDegToRad = M_PI / 180.0;
   std::mt19937 rng(seed + 3000);
   std::normal_distribution<double> n01(0.0, 1.0);
   double bias_rad = 0.0;

@@ -31,6 +31,7 @@ std::unique_ptr<TrajectorySlam> make_slam(const std::string& method,
 
 std::vector<GaussianPose2> run(ScanSlam& slam, const std::vector<Scan>& scans) {
   for (const Scan& scan : scans) slam.add_scan(scan);
+  slam.finish();
   std::vector<GaussianPose2> poses;
   for (std::size_t i = 0; i < slam.scans(); ++i) poses.push_back(slam.scan_pose_world(i));
   return poses;
@@ -103,7 +104,7 @@ TEST_P(BothMethods, BadAndEmptyScansAreSkippedAndCounted) {
 TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
   const Loop loop = make_loop(4, false);
   TrajectorySlamConfig whole;
-  whole.update_whole_state = true;
+  whole.filter.update_whole_state = true;
   const auto window_slam = make_slam(GetParam()), whole_slam = make_slam(GetParam(), whole);
   int smaller_windows = 0;
   for (const Scan& scan : loop.scans) {
@@ -119,31 +120,34 @@ TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
 }
 
 TEST_P(BothMethods, MeasuringTheLinearisationChangesNoEstimate) {
-  // linearisation_samples draws samples of the state and puts it back: the same estimate to the
-  // bit; epsilon per kind (the inversion only robocentric), small at this noise and larger at
-  // ten times it.
+  // A linearisation probe samples the state on its own copy: the same estimate to the bit with it
+  // as without; epsilon per kind (the inversion only robocentric), small at this noise and larger
+  // at ten times it.
   const Loop loop = make_loop(4, false);
-  TrajectorySlamConfig measured;
-  measured.linearisation_samples = 50;
-  const auto plain = make_slam(GetParam()), measuring = make_slam(GetParam(), measured);
+  const auto plain = make_slam(GetParam()), measuring = make_slam(GetParam());
+  LinearisationProbe probe(50);
+  measuring->set_linearisation_observer(&probe);
   const std::vector<GaussianPose2> a = run(*plain, loop.scans), b = run(*measuring, loop.scans);
   for (std::size_t i = 0; i < a.size(); ++i) {
     EXPECT_EQ(a[i].mean.vector(), b[i].mean.vector()) << "scan " << i;
     EXPECT_EQ(a[i].cov, b[i].cov) << "scan " << i;
   }
   const SlamTotals& t = measuring->totals();
-  EXPECT_FALSE(plain->totals().linearisation_pose.mean());
-  EXPECT_EQ(t.linearisation_observation.count, t.accepted);
-  EXPECT_EQ(t.linearisation_pose.count, static_cast<int>(loop.scans.size()));
-  EXPECT_EQ(t.linearisation_inversion.count,
+  const LinearisationTally& observation = probe.tally(Linearisation::kObservation);
+  const LinearisationTally& pose = probe.tally(Linearisation::kPose);
+  EXPECT_EQ(observation.count, t.accepted);
+  EXPECT_EQ(pose.count, static_cast<int>(loop.scans.size()));
+  EXPECT_EQ(probe.tally(Linearisation::kInversion).count,
             GetParam() == "robocentric" ? static_cast<int>(loop.scans.size()) : 0);
-  EXPECT_LT(*t.linearisation_observation.mean(), 0.01);
-  EXPECT_LT(*t.linearisation_pose.mean(), 0.01);
+  EXPECT_LT(*observation.mean(), 0.01);
+  EXPECT_LT(*pose.mean(), 0.01);
 
   const Loop noisy = make_loop(4, false, 10.0);
-  const auto noisy_slam = make_slam(GetParam(), measured);
+  const auto noisy_slam = make_slam(GetParam());
+  LinearisationProbe noisy_probe(50);
+  noisy_slam->set_linearisation_observer(&noisy_probe);
   run(*noisy_slam, noisy.scans);
-  EXPECT_GT(*noisy_slam->totals().linearisation_pose.mean(), 10.0 * *t.linearisation_pose.mean());
+  EXPECT_GT(*noisy_probe.tally(Linearisation::kPose).mean(), 10.0 * *pose.mean());
 }
 
 TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
@@ -151,8 +155,8 @@ TEST_P(BothMethods, JointUpdateEqualsSequentialUpdatesWithoutCrossCovariances) {
   // linear in the translations, so stacking two independent observations in one update (Eq. 8)
   // must give what updating with one and then the other gives, to rounding.
   TrajectorySlamConfig config;
-  config.compass_updates = false;
-  config.innovation_gate_chi2 = 1e9;
+  config.front_end.compass_updates = false;
+  config.front_end.innovation_gate_chi2 = 1e9;
   const auto sequential = make_slam(GetParam(), config), joint = make_slam(GetParam(), config);
   std::mt19937 rng(3);
   std::normal_distribution<double> n01(0.0, 1.0);
@@ -207,8 +211,8 @@ TEST_P(BothMethods, CorrelatedMatchesMoveTheStateLessThanIndependentOnes) {
   // independent ones and more than one alone: the posterior covariance of the joint update lies
   // between the two.
   TrajectorySlamConfig config;
-  config.compass_updates = false;
-  config.innovation_gate_chi2 = 1e9;
+  config.front_end.compass_updates = false;
+  config.front_end.innovation_gate_chi2 = 1e9;
   std::mt19937 rng(5);
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<Scan> blind(4);
@@ -245,7 +249,8 @@ TEST(PoseGraphSlam, ClosesTheLoopLikeTheFilters) {
   // front end, a wider prediction), ends the second lap near the truth, and its smoothed
   // trajectory is no worse than what it knew online.
   const Loop loop = make_loop(1, false);
-  PoseGraphSlam graph(TrajectorySlamConfig{}, PoseGraphSlamConfig{}, GaussianPose2{});
+  PoseGraphSlam graph(ScanFrontEndConfig{}, CalibrationStatesConfig{}, PoseGraphSlamConfig{},
+                      GaussianPose2{});
   RoboCentricSlam filter(TrajectorySlamConfig{}, GaussianPose2{});
   const std::vector<GaussianPose2> smoothed = run(graph, loop.scans);
   const std::vector<GaussianPose2> filtered = run(filter, loop.scans);
@@ -381,7 +386,7 @@ TEST_P(BothMethods, CompassBoundsTheHeadingOfABlindRun) {
     scan.compass_sigma_rad = sigma_rad;
   }
   TrajectorySlamConfig without;
-  without.compass_updates = false;
+  without.front_end.compass_updates = false;
   const auto with_compass = make_slam(GetParam()), blind = make_slam(GetParam(), without);
   const std::vector<GaussianPose2> a = run(*with_compass, loop.scans), b = run(*blind, loop.scans);
   // A few readings fall outside the 99% gate against the biased prediction (37 of 40 pass).

@@ -93,7 +93,38 @@ std::optional<std::string> apply_bounds(const Expectation& e, const ResultFigure
   return std::nullopt;
 }
 
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.size() > prefix.size() && text.compare(0, prefix.size(), prefix) == 0;
+}
+
+bool ends_with(const std::string& text, const std::string& suffix) {
+  return text.size() > suffix.size() &&
+         text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
 }  // namespace
+
+const std::vector<std::string>& figure_names() {
+  static const std::vector<std::string> names = {
+      "runs", "failed", "missing", "scans", "matches_accepted", "truth_samples", "mean_error_m",
+      "rmse_m", "median_error_m", "max_error_m", "final_error_m", "mean_error_p05_m",
+      "mean_error_p50_m", "mean_error_p95_m", "anees", "nees_in_bounds_fraction",
+      "paired_difference.runs", "paired_difference.mean_m", "paired_difference.sd_m",
+      "paired_difference.ci95_lower_m", "paired_difference.ci95_upper_m",
+      "paired_difference.runs_lower", "paired_difference.runs_not_lower"};
+  return names;
+}
+
+bool is_figure_name(const std::string& name) {
+  for (const std::string& known : figure_names()) {
+    if (name == known) return true;
+  }
+  if (starts_with(name, "segments.") || starts_with(name, "diagnostics.")) return true;
+  for (const char* statistic : {".real", ".sim", ".ratio", ".ks"}) {
+    if (ends_with(name, statistic)) return true;
+  }
+  return false;
+}
 
 std::string sweep_row_key(int cell, const std::string& method) {
   return "cell " + std::to_string(cell) + "/" + method;

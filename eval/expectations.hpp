@@ -21,6 +21,16 @@ struct ResultFigures {
   std::map<std::string, std::map<std::string, double>> rows;
 };
 
+/// Whether a result of some kind can hold a figure of this name: one of figure_names(), a
+/// segment's or a diagnostic's ("segments.NAME", "diagnostics.NAME"), or a fidelity statistic's
+/// ("KEY.real", "KEY.sim", "KEY.ratio", "KEY.ks"). A name no result defines is bad input in an
+/// expectations file, not a miss.
+bool is_figure_name(const std::string& name);
+
+/// The figure names that do not depend on a run's segments, diagnostics or a fidelity table: every
+/// one that a run, a folder of runs, a Monte Carlo or a sweep can give (plot/result_figures).
+const std::vector<std::string>& figure_names();
+
 /// The row key of a sweep's cell and method.
 std::string sweep_row_key(int cell, const std::string& method);
 

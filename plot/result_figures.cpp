@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <stdexcept>
 
 #include "io/input_error.hpp"
 #include "io/json.hpp"
@@ -166,6 +167,16 @@ ResultFigures read_result_figures(const std::string& name, const std::string& pa
       io::fail_file(path,
                     "not a result folder (no metrics.json, summary.json, sweep.csv or "
                     "fidelity.json, nor folders with metrics.json)");
+    }
+  }
+  // Every figure given here must be one an expectations file may name (is_figure_name): a name
+  // added to a row above without being added there is a programming error, caught by any test.
+  for (const auto& [row_key, row] : result.rows) {
+    for (const auto& [figure, value] : row) {
+      if (!is_figure_name(figure)) {
+        throw std::logic_error("plot/result_figures: figure '" + figure + "' of " + row_key +
+                               " is missing from eval/expectations' figure_names()");
+      }
     }
   }
   return result;

@@ -42,7 +42,12 @@ Expectation read_entry(io::YamlMap& entry) {
     e.cell = static_cast<int>(cell);
     if (e.method.empty()) entry.fail_required("method", "a sweep's cell needs its method");
   }
-  entry.text("metric", e.metric);
+  if (entry.text("metric", e.metric) && !is_figure_name(e.metric)) {
+    const std::string near = io::closest_key(e.metric, figure_names());
+    entry.fail("metric", "no result of any kind has a figure '" + e.metric + "'" +
+                             (near.empty() ? " (see docs/cli.md, \"msislab check\")"
+                                           : " (did you mean '" + near + "'?)"));
+  }
   double number = 0.0;
   if (entry.number("at_most", number)) e.at_most = number;
   if (entry.number("at_least", number)) e.at_least = number;

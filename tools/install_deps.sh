@@ -17,6 +17,7 @@ run=(
 test=(
   clang-format
   universal-ctags  # tools/check_sizes.sh: the length of every function
+  python3 python3-yaml  # the tests that run tools/*.py (they fail without it)
 )
 all=(
   clang libclang-rt-14-dev llvm  # tools/fuzz.sh (libFuzzer) and symbolized sanitizer reports

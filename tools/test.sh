@@ -4,10 +4,12 @@
 # a scratch prefix and builds and runs examples/ against it. The sanitizer suite and fuzzing are
 # the second command, tools/reliability.sh; CI (.ci/run) runs both.
 # The real St. Pere dataset (${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}): when its folder
-# exists, it is checked against its SHA256SUMS before the build (tools/check_stpere.sh: a file that
-# does not match fails the command, named), and every test that needs it must run: one that does
-# not find it fails (MSISLAB_REQUIRE_REAL_DATA=1, tests/test_support.hpp), and a skip that names it
-# fails the command after ctest. Without the folder, one line names the tests that skip.
+# exists, it is checked before the build against the digests msislab pins for it
+# (tools/check_stpere.sh, tools/datasets/stpere.sha256: a file that does not match fails the
+# command, named; the Ping360 tank's pings, ../shared/datasets/ping360_tank, are checked the same
+# way when that folder exists), and every test that needs it must run: one that does not find it
+# fails (MSISLAB_REQUIRE_REAL_DATA=1, tests/test_support.hpp), and a skip that names it fails the
+# command after ctest. Without the folder, one line names the tests that skip.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -38,6 +40,8 @@ else
   echo "test.sh: no real St. Pere dataset at $stpere (MSISLAB_STPERE_DIR), so its" \
     "${#real_tests[@]} tests skip: $(printf '%s, ' "${real_tests[@]}" | sed 's/, $//')"
 fi
+ping360="../shared/datasets/ping360_tank"
+[ ! -d "$ping360" ] || tools/check_dataset.sh ping360_tank "$ping360"
 tools/configure.sh ci
 cmake --build --preset ci
 stamp "build"

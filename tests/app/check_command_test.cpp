@@ -1,8 +1,8 @@
 // `msislab check`: expectations met pass with exit 0 and JUnit XML without failures; a miss exits
 // 1 with one stderr line per miss and a JUnit failure; run folders, folders of runs, Monte Carlo
 // summaries and sweeps are read; a page that does not quote a claimed figure is a miss; malformed
-// expectations and results not given exit 2 naming the file and line; a foreign JUnit file is
-// refused.
+// expectations, a figure that no result of any kind has and results not given exit 2 naming the
+// file and line; a foreign JUnit file is refused.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -190,6 +190,12 @@ TEST(CheckCommand, BadExpectationsExitTwoNamingFileAndLine) {
       {"expectation:\n  - {at_most: 2}\n", "expect.yaml"},
       {"expectations:\n  - {result: mc, at_most: 2}\n",
        "expect.yaml:2: result 'mc' was not given (given: rc"},
+      // A figure no result of any kind has is a misspelling, not a regression of the SLAM.
+      {"expectations:\n  - {metric: mean_eror_m, at_most: 3}\n",
+       "expect.yaml:2: key 'expectations[0].metric': no result of any kind has a figure "
+       "'mean_eror_m' (did you mean 'mean_error_m'?)"},
+      {"expectations:\n  - {metric: wobble, at_most: 3}\n",
+       "no result of any kind has a figure 'wobble' (see docs/cli.md"},
   };
   for (const Case& c : cases) {
     const CliResult r = check(tmp, c.yaml, shell_quote(run));

@@ -1,7 +1,8 @@
-// tools/check_stpere.sh on copies of the real St. Pere dataset, checked against the dataset's own
-// SHA256SUMS: an intact copy passes; one flipped byte, a missing log or a missing SHA256SUMS fails
-// with exit status 2 and one line naming the file. Copying the whole folder (8.5 MB) takes tens of
-// milliseconds.
+// tools/check_stpere.sh on copies of the real St. Pere dataset, checked against the digests msislab
+// pins (tools/datasets/stpere.sha256), not the copy's own SHA256SUMS: an intact copy passes; one
+// flipped byte or a missing log fails with exit status 2 and one line naming the file, and so does
+// an altered log whose copy brings a SHA256SUMS made for it. Copying the whole folder (8.5 MB)
+// takes tens of milliseconds.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -69,30 +70,39 @@ TEST(CheckStPere, AnIntactCopyPassesAndADamagedFileIsNamed) {
   const fs::path copy = copy_of_dataset(tmp);
   Checked r = check(copy, tmp);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("matches its SHA256SUMS (6 files)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("matches msislab's pinned digests (tools/datasets/stpere.sha256, 6 files)"),
+            std::string::npos)
+      << r.out;
 
   // One bit of one byte of the DVL log, in the middle of a row.
   const fs::path dvl = copy / "_040825_1735_DVL.log";
+  const std::string pinned =
+      " does not match msislab's pinned digest (tools/datasets/stpere.sha256)";
   flip_one_byte(dvl, 1000);
   r = check(copy, tmp);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "tools/check_stpere.sh: " + dvl.string() + ": does not match " +
-                       (copy / "SHA256SUMS").string() + " (damaged, changed or unreadable)\n");
+  EXPECT_EQ(r.err, "tools/check_dataset.sh: " + dvl.string() + ":" + pinned +
+                       ": damaged, changed, missing or not the real dataset\n");
+
+  // The same altered log with a SHA256SUMS made for the altered copy: still refused.
+  ASSERT_EQ(
+      std::system(("cd " + shell_quote(copy.string()) + " && sha256sum _040825_1735_* > SHA256SUMS")
+                      .c_str()),
+      0);
+  r = check(copy, tmp);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(dvl.string() + ":" + pinned), std::string::npos) << r.err;
   flip_one_byte(dvl, 1000);
   EXPECT_EQ(check(copy, tmp).exit_code, 0);
 
-  // A log gone is named too; so is a SHA256SUMS gone, which leaves nothing to check against.
+  // A log gone is named too; the copy's SHA256SUMS is not needed.
+  fs::remove(copy / "SHA256SUMS");
+  EXPECT_EQ(check(copy, tmp).exit_code, 0);
   fs::remove(copy / "_040825_1735_MTi.log");
   r = check(copy, tmp);
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find((copy / "_040825_1735_MTi.log").string() + ": does not match"),
-            std::string::npos)
+  EXPECT_NE(r.err.find((copy / "_040825_1735_MTi.log").string() + ":" + pinned), std::string::npos)
       << r.err;
-  fs::remove(copy / "SHA256SUMS");
-  r = check(copy, tmp);
-  EXPECT_EQ(r.exit_code, 2);
-  EXPECT_EQ(r.err, "tools/check_stpere.sh: " + (copy / "SHA256SUMS").string() +
-                       ": missing, so the dataset cannot be checked\n");
 }
 
 }  // namespace

@@ -38,6 +38,15 @@ inline CliResult run_shell(const std::string& command, const TempDir& tmp) {
   return result;
 }
 
+/// python3 as CMake found it when the build was configured ("" when it was not found).
+inline std::string python3() {
+#ifdef MSISLAB_PYTHON3
+  return MSISLAB_PYTHON3;
+#else
+  return "";
+#endif
+}
+
 #ifdef MSISLAB_EXE
 /// Runs `msislab ARGS` (ARGS already quoted), as run_shell. `launcher` goes before the
 /// executable, e.g. "env -u DISPLAY".
@@ -48,3 +57,13 @@ inline CliResult run_msislab(const std::string& args, const TempDir& tmp,
 #endif
 
 }  // namespace msislab::testing
+
+/// A test that runs one of tools/*.py: it fails, never skips, when the build was configured
+/// without python3, so a machine without it cannot pass the suite by leaving these tests out.
+#define MSISLAB_REQUIRE_PYTHON3()                                                            \
+  do {                                                                                       \
+    if (::msislab::testing::python3().empty())                                               \
+      GTEST_FAIL() << "python3 was not found when this build was configured, and this test " \
+                      "runs a tools/*.py script: install python3 and python3-yaml "          \
+                      "(tools/install_deps.sh test) and configure again";                    \
+  } while (0)

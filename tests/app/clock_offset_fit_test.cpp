@@ -32,7 +32,7 @@ using testing::shell_quote;
 /// Runs the script on a run folder and its dataset.
 CliResult fit(const std::string& run_dir, const std::string& dataset, const testing::TempDir& tmp) {
   return testing::run_shell(
-      shell_quote(MSISLAB_PYTHON3) + " " +
+      shell_quote(testing::python3()) + " " +
           shell_quote(std::string(MSISLAB_SOURCE_DIR) + "/tools/clock_offset_fit.py") + " " +
           shell_quote(run_dir) + " --dataset " + shell_quote(dataset),
       tmp);
@@ -49,6 +49,7 @@ std::pair<double, double> offset_of(const CliResult& result) {
 }
 
 TEST(ClockOffsetFit, FindsTheOffsetCalibrationLeavesOnASimulatedLoop) {
+  MSISLAB_REQUIRE_PYTHON3();
   testing::TempDir tmp;
   std::string scenario =
       testing::read_text(std::string(MSISLAB_SOURCE_DIR) + "/scenarios/marina_loop.yaml");

@@ -35,7 +35,7 @@ constexpr double kRelativeTolerance = 1e-9;
 /// Runs the script on the datasets (stdout and stderr captured in tmp).
 CliResult run_script(const std::vector<std::string>& datasets, const TempDir& tmp) {
   std::string command =
-      shell_quote(MSISLAB_PYTHON3) + " " +
+      shell_quote(testing::python3()) + " " +
       shell_quote(std::string(MSISLAB_SOURCE_DIR) + "/tools/fidelity_crosscheck.py");
   for (const std::string& d : datasets) command += " " + shell_quote(d);
   return testing::run_shell(command, tmp);
@@ -95,6 +95,7 @@ void expect_rows_match(const io::Json& script, const io::Json& fidelity,
 }
 
 TEST(FidelityCrosscheck, SyntheticPair) {
+  MSISLAB_REQUIRE_PYTHON3();
   const TempDir tmp;
   const fs::path real = tmp.path() / "real", sim = tmp.path() / "sim";
   testing::write_detection_dataset(real);
@@ -112,6 +113,7 @@ TEST(FidelityCrosscheck, SyntheticPair) {
 // The real data against itself (both columns are the real data's) and against the replica: the
 // per-beam figures of docs/fidelity.md come from here.
 TEST(FidelityCrosscheck, StPereAgainstItselfAndTheReplica) {
+  MSISLAB_REQUIRE_PYTHON3();
   MSISLAB_REQUIRE_STPERE();
   const TempDir tmp;
   const std::string real = testing::stpere_dir(), replica = tmp.file("replica");
@@ -140,6 +142,7 @@ TEST(FidelityCrosscheck, StPereAgainstItselfAndTheReplica) {
 
 // Bad input: one line naming the file and line, exit status 2.
 TEST(FidelityCrosscheck, MalformedRowIsOneLine) {
+  MSISLAB_REQUIRE_PYTHON3();
   const TempDir tmp;
   const fs::path dir = tmp.path() / "bad";
   fs::remove(testing::write_detection_dataset(dir));

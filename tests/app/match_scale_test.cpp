@@ -6,11 +6,11 @@
 // wall's range d / cos(incidence) is convex in the angle, so at grazing incidence the centre of
 // the detected run lies behind the axis's hit, more the more oblique the wall, and the walls of
 // the channel bow outward around the sonar.
-// With python3 (CMake defines MSISLAB_PYTHON3): tools/match_direction_check.py, which splits that
-// statistic by segment and adds the matches' direction, on the shipped channel: its whole-run
-// scale is metrics.json's, and a sonar read 3 deg turned (calibration.yaml's bearing offset)
-// turns the matches by about that much against the truth. On the real run and the replica it
-// guards the split docs/trajectory_slam.md shows ("Where the real canal is lost"): the real
+// With python3 (a test that needs it fails without it): tools/match_direction_check.py, which
+// splits that statistic by segment and adds the matches' direction, on the shipped channel: its
+// whole-run scale is metrics.json's, and a sonar read 3 deg turned (calibration.yaml's bearing
+// offset) turns the matches by about that much against the truth. On the real run and the replica
+// it guards the split docs/trajectory_slam.md shows ("Where the real canal is lost"): the real
 // canal's consecutive matches longer than the GPS motion, than the loop's and than the matches
 // that skip a scan, the replica's canal matches as short as its loop's; and under the
 // calibration every sensor agrees on, the real canal lost by SLAM (worse than dead reckoning)
@@ -83,11 +83,10 @@ TEST(MatchScale, NarrowBeamMeasuresTheMotionAndTheWideBeamShortensIt) {
   EXPECT_GT(wide, 0.94);
 }
 
-#ifdef MSISLAB_PYTHON3
 /// tools/match_direction_check.py on a run folder.
 testing::CliResult direction_check(const std::string& run_dir, const testing::TempDir& tmp,
                                    const std::string& options = "") {
-  return testing::run_shell(testing::shell_quote(MSISLAB_PYTHON3) + " " +
+  return testing::run_shell(testing::shell_quote(testing::python3()) + " " +
                                 testing::shell_quote(std::string(MSISLAB_SOURCE_DIR) +
                                                      "/tools/match_direction_check.py") +
                                 " " + testing::shell_quote(run_dir) + options,
@@ -101,7 +100,7 @@ std::string scenario_variant(const std::string& name, const std::string& keys,
   const std::string source(MSISLAB_SOURCE_DIR);
   const std::string out = tmp.file(name + ".variant.yaml");
   const testing::CliResult r =
-      testing::run_shell(testing::shell_quote(MSISLAB_PYTHON3) + " " +
+      testing::run_shell(testing::shell_quote(testing::python3()) + " " +
                              testing::shell_quote(source + "/tools/scenario_variant.py") + " " +
                              testing::shell_quote(source + "/scenarios/" + name + ".yaml") + " " +
                              testing::shell_quote(out) + " match_scale_test " + keys,
@@ -122,6 +121,7 @@ std::array<double, 3> whole_run(const testing::CliResult& result) {
 }
 
 TEST(MatchScale, DirectionCheckGivesTheScaleAndSeesATurnedSonar) {
+  MSISLAB_REQUIRE_PYTHON3();
   namespace fs = std::filesystem;
   const testing::TempDir tmp;
   const std::string dataset = tmp.file("channel");
@@ -181,6 +181,7 @@ double segment_error(const RunOutcome& outcome, const std::string& name) {
 }
 
 TEST(MatchScale, TheRealCanalIsLostOnLongMatchesAndTheReplicaKeepsIt) {
+  MSISLAB_REQUIRE_PYTHON3();
   MSISLAB_REQUIRE_STPERE();
   const testing::TempDir tmp;
   const std::string source(MSISLAB_SOURCE_DIR);
@@ -236,7 +237,6 @@ TEST(MatchScale, TheRealCanalIsLostOnLongMatchesAndTheReplicaKeepsIt) {
   EXPECT_GT(agreed_rc_canal, agreed_dr_canal + 2.0);
   EXPECT_LT(analogue_rc_canal, analogue_dr_canal - 1.0);
 }
-#endif
 
 }  // namespace
 }  // namespace msislab::app

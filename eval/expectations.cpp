@@ -105,13 +105,29 @@ bool ends_with(const std::string& text, const std::string& suffix) {
 }  // namespace
 
 const std::vector<std::string>& figure_names() {
-  static const std::vector<std::string> names = {
-      "runs", "failed", "missing", "scans", "matches_accepted", "truth_samples", "mean_error_m",
-      "rmse_m", "median_error_m", "max_error_m", "final_error_m", "mean_error_p05_m",
-      "mean_error_p50_m", "mean_error_p95_m", "anees", "nees_in_bounds_fraction",
-      "paired_difference.runs", "paired_difference.mean_m", "paired_difference.sd_m",
-      "paired_difference.ci95_lower_m", "paired_difference.ci95_upper_m",
-      "paired_difference.runs_lower", "paired_difference.runs_not_lower"};
+  static const std::vector<std::string> names = {"runs",
+                                                 "failed",
+                                                 "missing",
+                                                 "scans",
+                                                 "matches_accepted",
+                                                 "truth_samples",
+                                                 "mean_error_m",
+                                                 "rmse_m",
+                                                 "median_error_m",
+                                                 "max_error_m",
+                                                 "final_error_m",
+                                                 "mean_error_p05_m",
+                                                 "mean_error_p50_m",
+                                                 "mean_error_p95_m",
+                                                 "anees",
+                                                 "nees_in_bounds_fraction",
+                                                 "paired_difference.runs",
+                                                 "paired_difference.mean_m",
+                                                 "paired_difference.sd_m",
+                                                 "paired_difference.ci95_lower_m",
+                                                 "paired_difference.ci95_upper_m",
+                                                 "paired_difference.runs_lower",
+                                                 "paired_difference.runs_not_lower"};
   return names;
 }
 

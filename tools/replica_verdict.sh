@@ -3,10 +3,13 @@
 # seeds 42..42+N-1, config/stpere_replica.yaml, detections path) with robocentric and dead
 # reckoning, then scores each run twice: against the simulation's exact truth (the Monte Carlo's
 # own figures) and, like the real run, against the run's simulated GPS buoy (the dataset without
-# truth/). Prints one line per run and the summary that docs/results.md quotes: the share of runs
+# truth/). Prints one line per run and a summary (no page in docs/ quotes it): the share of runs
 # where robocentric beats dead reckoning, the 5-95 % band of the GPS-scored robocentric errors
 # against the real run's mean error, how often the exit is the worst segment, and the spIC scale
 # beside the real run's; writes the same figures to OUT/verdict.json (keys in the Python below).
+# A run that lacks one of its four metrics.json (either method, truth or GPS) is left out of every
+# figure: one line says how many of the runs were left out and which, and verdict.json counts them
+# (runs_left_out).
 # The real run's figures are read from DIR/metrics.json (--real DIR, default
 # out/stpere/robocentric, made by tools/main.sh); without one the real St. Pere dataset
 # (MSISLAB_STPERE_DIR, default ../shared/datasets/stpere) is run into OUT/real/robocentric, and
@@ -23,7 +26,7 @@ while [ $# -gt 0 ]; do
     --runs) runs="$2"; shift 2 ;;
     --out) out="$2"; shift 2 ;;
     --real) real="$2"; shift 2 ;;
-    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/replica_verdict.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -82,13 +85,19 @@ def metrics(path):
         return json.load(f)
 def diag(m, key):
     return m.get("diagnostics", {}).get(key, float("nan"))
-rows = []
-for run_dir in sorted(glob.glob(os.path.join(mc, "runs", "robocentric", "run_*"))):
-    r = os.path.basename(run_dir)
+# Every run that left a folder anywhere (a dataset, either method's result or failed.json, a
+# GPS-scored run) is counted; one without all four metrics.json is left out, and said so below.
+run_names = sorted({os.path.basename(d) for d in
+                    glob.glob(os.path.join(mc, "runs", "*", "run_*")) +
+                    glob.glob(os.path.join(mc, "datasets", "run_*")) +
+                    glob.glob(os.path.join(gps, "run_*"))})
+rows, left_out = [], []
+for r in run_names:
     try:
         rc, dr = (metrics(os.path.join(mc, "runs", m, r, "metrics.json")) for m in ("robocentric", "deadreckoning"))
         rg, dg = (metrics(os.path.join(gps, r, m, "metrics.json")) for m in ("robocentric", "deadreckoning"))
     except FileNotFoundError:
+        left_out.append(r)
         continue
     seg = rc["segments"]
     rows.append(dict(run=r, rc=rc["mean_error_m"], dr=dr["mean_error_m"], rc_gps=rg["mean_error_m"],
@@ -101,6 +110,8 @@ for x in rows:
     print(f"{x['run']}  {x['rc']:11.2f}  {x['dr']:14.2f}  {x['rc_gps']:16.2f}  {x['dr_gps']:19.2f}  "
           f"{x['worst']:>12s}/{x['worst_gps']:<12s}  {x['scale']:.3f}/{x['scale_gps']:.3f}")
 n = len(rows)
+print(f"replica_verdict: {len(left_out)} of {len(run_names)} runs left out (no metrics.json)"
+      + (": " + ", ".join(left_out) if left_out else ""))
 if n == 0:
     sys.exit("tools/replica_verdict.sh: no finished run")
 def quantile(values, q):  # linear interpolation between order statistics (numpy's default)
@@ -139,6 +150,7 @@ def number(x):  # JSON has no NaN: a diagnostic a run lacks is null
     return x if x is not None and math.isfinite(x) else None
 verdict = {
     "runs": n,
+    "runs_left_out": len(left_out),
     "robocentric_below_dr_truth": better,
     "robocentric_below_dr_gps": better_gps,
     "rc_gps_mean_m": number(mean("rc_gps")),

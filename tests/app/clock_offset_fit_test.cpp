@@ -5,8 +5,8 @@
 // within two of its standard errors (measured beside the bounds; seeds 1-3 give -0.07, -0.21,
 // -0.02 s and 0.50, 0.46, 0.68 s with standard errors of 0.08 s, their differences 0.57, 0.67,
 // 0.70 s; on the replica, seeds 42 and 43, 0.01 and -0.01 s and 0.65 and 0.63 s, se 0.02-0.03 s).
-// Then a run folder without matches.csv: one line naming it, exit status 2. CMake adds this test
-// only when it finds python3.
+// Then a run folder without matches.csv: one line naming it, exit status 2. Without python3 the
+// test fails (MSISLAB_REQUIRE_PYTHON3).
 #include <gtest/gtest.h>
 
 #include <algorithm>

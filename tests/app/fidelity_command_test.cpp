@@ -262,7 +262,7 @@ TEST(FidelityRealData, StPereAgainstItself) {
     }
   }
   // The per-beam figures of docs/fidelity.md as tools/fidelity_crosscheck.py prints them;
-  // fidelity_crosscheck_test holds every sonar row to that script (when python3 is found).
+  // fidelity_crosscheck_test holds every sonar row to that script (it fails without python3).
   EXPECT_NEAR(row(json, "empty_beams_percent").number("real"), 40.309, 1e-3);
   EXPECT_NEAR(row(json, "bins_per_beam_mean").number("real"), 23.7405, 1e-4);
   EXPECT_NEAR(row(json, "runs_per_beam_mean").number("real"), 0.63783, 1e-5);

@@ -1,7 +1,8 @@
 // Helpers shared by the tests: a temporary folder, writing small text fixtures, and the location
 // of the real St. Pere dataset (tests that need it call MSISLAB_REQUIRE_STPERE(): they skip without
 // it, and fail without it when MSISLAB_REQUIRE_REAL_DATA=1, which tools/test.sh sets when it has
-// found and checked the dataset).
+// found and checked the dataset), and the seeds of the statistical tests (seed(N): N plus the
+// environment's MSISLAB_TEST_SEED_OFFSET, for tools/seed_offsets.sh).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 namespace msislab::testing {
@@ -64,6 +66,37 @@ inline bool have_stpere() {
 inline bool real_data_required() {
   const char* required = std::getenv("MSISLAB_REQUIRE_REAL_DATA");
   return required != nullptr && std::string(required) == "1";
+}
+
+/// The seed a statistical test draws from: base plus the environment's MSISLAB_TEST_SEED_OFFSET (a
+/// whole number, 0 when unset or empty). A test that checks a statistic against a bound (NEES,
+/// chi-square, a mean within k sigma, a coverage) passes on its sample, not on its statistic: at a
+/// 95 % bound it fails about once in 20 random streams. Statistical tests therefore draw from
+/// seed(N), so that tools/seed_offsets.sh can run them on other random streams and count how
+/// often each fails; with no offset every test draws exactly the samples it draws today. A value
+/// that is not a whole number (from 0 to 2^32 - 1) throws std::invalid_argument, naming the
+/// variable and the value, so a mistyped offset fails the test loudly instead of running the
+/// default stream.
+inline unsigned seed(unsigned base) {
+  const char* text = std::getenv("MSISLAB_TEST_SEED_OFFSET");
+  if (text == nullptr || *text == '\0') return base;
+  const std::string value(text);
+  std::size_t end = 0;
+  unsigned long offset = 0;
+  bool ok = value.find_first_not_of("0123456789") == std::string::npos;
+  if (ok) {
+    try {
+      offset = std::stoul(value, &end);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+  }
+  if (!ok || end != value.size() || offset > 0xFFFFFFFFul)
+    throw std::invalid_argument("MSISLAB_TEST_SEED_OFFSET='" + value +
+                                "' is not a whole number from 0 to 4294967295 (the seed "
+                                "offset of the statistical tests; unset it for the default "
+                                "streams)");
+  return base + static_cast<unsigned>(offset);
 }
 
 }  // namespace msislab::testing

@@ -244,8 +244,8 @@ TEST(NavigationStatisticsStPere, ReplicaMatchesTheRealStatistics) {
   const Replica replica;
   std::vector<NavigationStatistics> runs;
   for (std::uint64_t seed = 42; seed < 54; ++seed) {
-    runs.push_back(
-        navigation_statistics(simulate_navigation(replica.scenario, replica.scene, seed)));
+    runs.push_back(navigation_statistics(simulate_navigation(
+        replica.scenario, replica.scene, testing::seed(static_cast<unsigned>(seed)))));
   }
   const double n = static_cast<double>(runs.size());
   std::cout << "| statistic | real | simulated, seed 42 | simulated, 12 seeds: mean (sd) | "

@@ -11,6 +11,7 @@
 
 #include "stats/chi_square.hpp"
 #include "stats/sample_statistics.hpp"
+#include "test_support.hpp"
 
 namespace msislab {
 namespace {
@@ -42,7 +43,7 @@ TEST(MonteCarlo, AveragesEachScanOverTheRunsThatReachedIt) {
 
 TEST(MonteCarlo, ConsistentSamplesAreInsideAboutNinetyFivePercentOfTheTime) {
   // 50 runs x 400 scans of exact 3-DOF NEES: e ~ N(0, I), NEES = |e|^2.
-  std::mt19937_64 rng(7);
+  std::mt19937_64 rng(testing::seed(7));
   std::normal_distribution<double> normal;
   std::vector<std::vector<double>> runs(50, std::vector<double>(400));
   for (auto& run : runs) {

@@ -10,6 +10,7 @@
 
 #include "geometry/angles.hpp"
 #include "geometry/se2.hpp"
+#include "test_support.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
@@ -47,7 +48,7 @@ SyntheticRun synthetic_run(double duration_s, double heading_offset_rad = 0.0,
 }
 
 TEST(DifferenceNoise, RecoversWhiteNoiseOnASmoothSignal) {
-  std::mt19937 rng(7);
+  std::mt19937 rng(testing::seed(7));
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<double> x;
   for (int i = 0; i < 20000; ++i) x.push_back(std::sin(i * 0.01) + 0.2 * n01(rng));
@@ -60,7 +61,7 @@ TEST(DifferenceNoise, RecoversWhiteNoiseOnASmoothSignal) {
 }
 
 TEST(DvlNoise, RecoversSigmaRateAndSkipsGaps) {
-  std::mt19937 rng(8);
+  std::mt19937 rng(testing::seed(8));
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<DvlVelocity> dvl;
   for (int i = 0; i < 20000; ++i) {
@@ -80,7 +81,7 @@ TEST(DvlNoise, RecoversSigmaRateAndSkipsGaps) {
 }
 
 TEST(Dropouts, IndependentLossesAreNotClustered) {
-  std::mt19937 rng(9);
+  std::mt19937 rng(testing::seed(9));
   std::bernoulli_distribution loss(0.02);
   std::vector<DvlRow> rows;
   for (int i = 0; i < 30000; ++i) rows.push_back({i / 1.5, !loss(rng), std::nullopt});
@@ -109,7 +110,7 @@ TEST(Dropouts, BurstsRaiseTheDispersionAndTheDegradedState) {
 }
 
 TEST(HeadingNoise, RecoversSigmaAcrossTheWrap) {
-  std::mt19937 rng(10);
+  std::mt19937 rng(testing::seed(10));
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<HeadingReading> heading;
   for (int i = 0; i < 36000; ++i) {  // 1 hour at 10 Hz turning at 3 deg/s: 30 wraps
@@ -139,7 +140,7 @@ TEST(HeadingNoise, TurnPerRevolutionIsTheMedianHeadingChange) {
 
 TEST(Compasses, RecoversOffsetAndDeviationCurve) {
   const SyntheticRun run = synthetic_run(3000.0);
-  std::mt19937 rng(11);
+  std::mt19937 rng(testing::seed(11));
   std::normal_distribution<double> n01(0.0, 1.0);
   std::vector<DvlRow> rows;
   for (const DvlVelocity& d : run.log.dvl) {
@@ -168,7 +169,7 @@ TEST(TowedBuoy, TrailsByTheTetherAndWaitsWhenTheVehicleStops) {
 
 TEST(GpsStatistics, RecoversAKnownLagTetherAndWhiteNoise) {
   const SyntheticRun run = synthetic_run(2400.0);
-  std::mt19937 rng(12);
+  std::mt19937 rng(testing::seed(12));
   std::normal_distribution<double> n01(0.0, 1.0);
   // GPS at 1 Hz: (a) the vehicle 10 s late, (b) a buoy on a 3 m tether; 0.05 m white noise.
   std::vector<PositionFix> late, towed;
@@ -193,7 +194,7 @@ TEST(GpsStatistics, RecoversAKnownLagTetherAndWhiteNoise) {
 TEST(GpsStatistics, StructureFunctionOfAGaussMarkovError) {
   // With exact navigation, S(k) of the GPS error is the Gauss-Markov one, sigma^2 (1 - e^(-k/tau)).
   const SyntheticRun run = synthetic_run(20000.0);
-  std::mt19937 rng(13);
+  std::mt19937 rng(testing::seed(13));
   std::normal_distribution<double> n01(0.0, 1.0);
   const double sigma = 1.0, tau_s = 60.0, phi = std::exp(-1.0 / tau_s);
   Eigen::Vector2d e = sigma * draws_last_first<2>([&] { return n01(rng); });

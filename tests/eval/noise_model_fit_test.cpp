@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include "test_support.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
@@ -28,7 +29,7 @@ std::vector<Eigen::Vector2d> contaminated_differences(double core, double fracti
 TEST(ContaminatedNormal, RecoversAHeavyTailedMixture) {
   // 40,000 samples; the St. Pere DVL fit is core 0.10, 25% at 0.37.
   const ContaminatedNormal fit =
-      fit_contaminated_normal(contaminated_differences(0.1, 0.25, 0.37, 40000, 1));
+      fit_contaminated_normal(contaminated_differences(0.1, 0.25, 0.37, 40000, testing::seed(1)));
   EXPECT_NEAR(fit.core_sigma, 0.1, 0.003);
   EXPECT_NEAR(fit.outlier_fraction, 0.25, 0.02);
   EXPECT_NEAR(fit.outlier_sigma, 0.37, 0.01);
@@ -36,7 +37,7 @@ TEST(ContaminatedNormal, RecoversAHeavyTailedMixture) {
 
 TEST(ContaminatedNormal, RecoversRareOutliers) {
   const ContaminatedNormal fit =
-      fit_contaminated_normal(contaminated_differences(0.2, 0.02, 1.0, 40000, 2));
+      fit_contaminated_normal(contaminated_differences(0.2, 0.02, 1.0, 40000, testing::seed(2)));
   EXPECT_NEAR(fit.core_sigma, 0.2, 0.004);
   EXPECT_NEAR(fit.outlier_fraction, 0.02, 0.004);
   EXPECT_NEAR(fit.outlier_sigma, 1.0, 0.08);
@@ -45,7 +46,7 @@ TEST(ContaminatedNormal, RecoversRareOutliers) {
 TEST(ContaminatedNormal, GaussianNoiseKeepsItsVariance) {
   // Without outliers the split is arbitrary, but the total variance must be right.
   const ContaminatedNormal fit =
-      fit_contaminated_normal(contaminated_differences(0.2, 0.0, 0.2, 40000, 3));
+      fit_contaminated_normal(contaminated_differences(0.2, 0.0, 0.2, 40000, testing::seed(3)));
   const double total = std::sqrt((1.0 - fit.outlier_fraction) * std::pow(fit.core_sigma, 2) +
                                  fit.outlier_fraction * std::pow(fit.outlier_sigma, 2));
   EXPECT_NEAR(total, 0.2, 0.003);
@@ -73,7 +74,8 @@ TEST(GilbertElliott, RecoversBurstyLosses) {
   truth.degraded_loss_probability = 0.07;
   truth.degraded_fraction = 0.2;
   truth.degraded_mean_samples = 40.0;
-  const GilbertElliott fit = fit_gilbert_elliott(gilbert_elliott_sequence(truth, 200000, 4));
+  const GilbertElliott fit =
+      fit_gilbert_elliott(gilbert_elliott_sequence(truth, 200000, testing::seed(4)));
   EXPECT_NEAR(fit.clear_loss_probability, 0.004, 0.0015);
   EXPECT_NEAR(fit.degraded_loss_probability, 0.07, 0.01);
   EXPECT_NEAR(fit.degraded_fraction, 0.2, 0.04);
@@ -86,7 +88,8 @@ TEST(GilbertElliott, RecoversStrongBursts) {
   truth.degraded_loss_probability = 0.5;
   truth.degraded_fraction = 0.1;
   truth.degraded_mean_samples = 10.0;
-  const GilbertElliott fit = fit_gilbert_elliott(gilbert_elliott_sequence(truth, 100000, 5));
+  const GilbertElliott fit =
+      fit_gilbert_elliott(gilbert_elliott_sequence(truth, 100000, testing::seed(5)));
   EXPECT_LT(fit.clear_loss_probability, 0.002);
   EXPECT_NEAR(fit.degraded_loss_probability, 0.5, 0.03);
   EXPECT_NEAR(fit.degraded_fraction, 0.1, 0.01);

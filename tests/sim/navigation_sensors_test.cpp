@@ -10,6 +10,7 @@
 #include "geometry/angles.hpp"
 #include "geometry/calibration.hpp"
 #include "sim/scenario.hpp"
+#include "test_support.hpp"
 
 namespace msislab::sim {
 namespace {
@@ -68,7 +69,8 @@ TEST(DvlModel, HeavyTailedNoiseHasTheMixturesMoments) {
   const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
   DvlConfig dvl;  // the St. Pere defaults: 0.104 m/s, 25% at 0.37 m/s
   dvl.dropout_probability = dvl.degraded_dropout_probability = 0.0;
-  const std::vector<DvlSample> samples = simulate_dvl(circling(40000.0), dvl, scene, 1.5, 7);
+  const std::vector<DvlSample> samples =
+      simulate_dvl(circling(40000.0), dvl, scene, 1.5, testing::seed(7));
   const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(dvl.mount).transpose();
   double m2 = 0.0, m4 = 0.0;
   for (const DvlSample& s : samples) {
@@ -91,7 +93,8 @@ TEST(DvlModel, DropoutsFollowTheTwoStateChain) {
   dvl.degraded_dropout_probability = 0.5;
   dvl.degraded_fraction = 0.1;
   dvl.degraded_duration_s = 20.0;
-  const std::vector<DvlSample> samples = simulate_dvl(circling(100000.0), dvl, scene, 1.5, 8);
+  const std::vector<DvlSample> samples =
+      simulate_dvl(circling(100000.0), dvl, scene, 1.5, testing::seed(8));
   std::vector<int> lost;
   for (const DvlSample& s : samples) lost.push_back(s.bottom_lock ? 0 : 1);
   const double n = static_cast<double>(lost.size());  // 150,000 samples, ~5000 degraded periods
@@ -107,7 +110,7 @@ TEST(DvlModel, DropoutsFollowTheTwoStateChain) {
   }
   dvl.degraded_fraction = 0.0;
   lost.clear();
-  for (const DvlSample& s : simulate_dvl(circling(100000.0), dvl, scene, 1.5, 8)) {
+  for (const DvlSample& s : simulate_dvl(circling(100000.0), dvl, scene, 1.5, testing::seed(8))) {
     lost.push_back(s.bottom_lock ? 0 : 1);
   }
   EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, 0.01, 0.001);
@@ -148,7 +151,7 @@ TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
   MruConfig mru;
   mru.bias_random_walk_deg_per_sqrt_s = 0.0;
   double sum_sq = 0.0;
-  std::vector<MruSample> samples = simulate_mru(truth, mru, 10);
+  std::vector<MruSample> samples = simulate_mru(truth, mru, testing::seed(10));
   for (const MruSample& s : samples) {
     const double yaw = vehicle_yaw_from_mru(s.yaw_mru_deg, mru.mount);
     sum_sq += std::pow(normalize_angle(yaw - truth.at(s.t_s).pose.yaw()) / kDegToRad, 2);
@@ -158,7 +161,7 @@ TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
   // The bias alone: increments over 100 s have sd q sqrt(100) (200 increments: 5% error).
   mru.heading_noise_deg = 0.0;
   mru.bias_random_walk_deg_per_sqrt_s = 0.01;
-  samples = simulate_mru(truth, mru, 11);
+  samples = simulate_mru(truth, mru, testing::seed(11));
   sum_sq = 0.0;
   int count = 0;
   for (std::size_t i = 1000; i < samples.size(); i += 1000, ++count) {
@@ -226,7 +229,7 @@ TEST(GpsModel, GaussMarkovErrorAndWhiteNoise) {
   gps.correlated_sigma_m = 0.7;
   gps.correlation_time_s = 90.0;
   gps.tether_length_m = 0.0;
-  const std::vector<GpsFix> fixes = simulate_gps(truth, gps, 12);
+  const std::vector<GpsFix> fixes = simulate_gps(truth, gps, testing::seed(12));
   std::vector<double> ex, d2;
   for (std::size_t i = 0; i < fixes.size(); ++i) {
     ex.push_back(fixes[i].p_world_m.x() - truth.at(fixes[i].t_s).pose.x());
@@ -320,7 +323,7 @@ TEST(NavigationNoise, StatesWhatTheSimulatedSensorsDo) {
   const Scene scene(flat_bottom(), Material{"surface", 0.001f, 0.9f});
   scenario.dvl.dropout_probability = scenario.dvl.degraded_dropout_probability = 0.0;
   const std::vector<DvlSample> samples =
-      simulate_dvl(circling(40000.0), scenario.dvl, scene, 1.5, 7);
+      simulate_dvl(circling(40000.0), scenario.dvl, scene, 1.5, testing::seed(7));
   const Eigen::Matrix2d R_dvl_vehicle = R_vehicle_dvl(scenario.dvl.mount).transpose();
   double m2 = 0.0;
   for (const DvlSample& s : samples) {

@@ -5,6 +5,7 @@
 // variance everywhere, is continuous, and forgets itself beyond a few correlation lengths.
 #include "sim/sonar_physics.hpp"
 #include "geometry/angles.hpp"
+#include "test_support.hpp"
 
 #include <gtest/gtest.h>
 
@@ -74,7 +75,7 @@ TEST(SonarPhysics, SpreadingKeepsThePowerAndOnlyDelays) {
 }
 
 TEST(SonarPhysics, RoughnessFieldHasUnitVarianceEverywhereAndAFiniteMemory) {
-  std::mt19937_64 rng(3);
+  std::mt19937_64 rng(testing::seed(3));
   std::uniform_real_distribution<double> coordinate(-500.0, 500.0);
   constexpr double kLength_m = 10.0;
   double sum = 0.0, sum_squares = 0.0, near_product = 0.0, far_product = 0.0;

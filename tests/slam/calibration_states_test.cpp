@@ -22,6 +22,7 @@
 #include "slam/calibration_update.hpp"
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
+#include "test_support.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
 namespace msislab {
@@ -282,7 +283,7 @@ TEST(CalibrationStates, EstimatesAddToTheStatedCalibration) {
   EXPECT_FALSE(calibration_with_estimates(stated, {}));
 }
 
-class BothFilters : public testing::TestWithParam<std::string> {};
+class BothFilters : public ::testing::TestWithParam<std::string> {};
 
 std::unique_ptr<TrajectorySlam> make_filter(const std::string& method,
                                             const TrajectorySlamConfig& config) {
@@ -318,7 +319,7 @@ Recovery recover(unsigned seeds, const std::function<Loop(unsigned)>& loop_of,
                  const TrajectorySlamConfig& config, const std::vector<Expected>& expected) {
   Recovery r;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
-    const Loop loop = loop_of(seed);
+    const Loop loop = loop_of(testing::seed(seed));
     const auto estimating = make_filter("robocentric", config);
     const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
@@ -420,8 +421,8 @@ TEST(CalibrationStates, RecoverTheHeadingBiasOfAWalkingCompass) {
   double nees_with = 0.0, nees_without = 0.0;
   int within = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    Loop loop = make_loop(seed, false);
-    const double bias_rad = with_walking_compass(loop, 0.3, 0.1, seed);
+    Loop loop = make_loop(testing::seed(seed), false);
+    const double bias_rad = with_walking_compass(loop, 0.3, 0.1, testing::seed(seed));
     const auto estimating = make_filter("robocentric", with_heading_bias(0.3));
     const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
@@ -457,7 +458,7 @@ TEST_P(BothFilters, SwitchedOffTheStateLeavesNoParameterAndNoEstimate) {
 }
 
 INSTANTIATE_TEST_SUITE_P(CalibrationStates, BothFilters,
-                         testing::Values("robocentric", "worldcentric"));
+                         ::testing::Values("robocentric", "worldcentric"));
 
 }  // namespace
 }  // namespace msislab

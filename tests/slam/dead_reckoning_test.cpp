@@ -12,6 +12,7 @@
 #include <string>
 
 #include "eval/evaluation.hpp"
+#include "test_support.hpp"
 #include "tests/draws.hpp"
 
 namespace msislab {
@@ -188,7 +189,7 @@ double exact_dvl() { return 1.0; }
 // in the two-sided 95% chi-square bounds [2.36, 3.72] at most checkpoints (field-notes.md).
 TEST(DeadReckoning, ConsistentWhenTheModelHolds) {
   const DeadReckoningConfig c;
-  expect_consistent_at_checkpoints(checkpoint_anees(c, 100, {c}, exact_dvl)[0]);
+  expect_consistent_at_checkpoints(checkpoint_anees(c, testing::seed(100), {c}, exact_dvl)[0]);
 }
 
 // A compass whose bias walks 0.05 deg / sqrt(s) under 0.1 deg of white noise (1.2 deg of walk in
@@ -201,7 +202,7 @@ TEST(DeadReckoning, ConsistentWithAWalkingHeadingBias) {
   c.heading_bias_walk_deg_per_sqrt_s = 0.05;
   DeadReckoningConfig white = c;
   white.heading_bias_walk_deg_per_sqrt_s = 0.0;
-  const auto anees = checkpoint_anees(c, 300, {c, white}, exact_dvl);
+  const auto anees = checkpoint_anees(c, testing::seed(300), {c, white}, exact_dvl);
   expect_consistent_at_checkpoints(anees[0], anees[1], "the walk read as white noise");
   EXPECT_GT(anees[1].back(), 20.0);
 }
@@ -247,9 +248,9 @@ TEST(DeadReckoning, ConsistentWithAnUncertainDvlScale) {
   c.dvl_scale_sigma = 0.02;
   DeadReckoningConfig exact = c;
   exact.dvl_scale_sigma = 0.0;
-  std::mt19937 scale_rng(4242);
+  std::mt19937 scale_rng(testing::seed(4242));
   std::normal_distribution<double> n01(0.0, 1.0);
-  const auto anees = checkpoint_anees(c, 500, {c, exact},
+  const auto anees = checkpoint_anees(c, testing::seed(500), {c, exact},
                                       [&] { return 1.0 + c.dvl_scale_sigma * n01(scale_rng); });
   expect_consistent_at_checkpoints(anees[0], anees[1], "the scale taken as exact");
   EXPECT_GT(anees[1].back(), 5.0);
@@ -265,7 +266,8 @@ TEST(DeadReckoning, MotionSinceKeyIsConsistent) {
   const std::vector<double> spans_s = {7.0, 14.0, 30.0};
   std::vector<double> nees_sum(spans_s.size(), 0.0);
   for (int run = 0; run < runs; ++run) {
-    const Simulation sim = simulate(c, 140.0, 500 + static_cast<unsigned>(run), {0, 0}, 1.0);
+    const Simulation sim =
+        simulate(c, 140.0, testing::seed(500 + static_cast<unsigned>(run)), {0, 0}, 1.0);
     // Marked at t_mark (a key sample), read at the spans after it: odometry_at's motion since the
     // key, the production path (filtered-difference mean, clone covariance).
     std::vector<TruthState> states = {truth_at(sim, t_mark_s)};

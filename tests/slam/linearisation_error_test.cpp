@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "geometry/se2.hpp"
+#include "test_support.hpp"
 
 namespace msislab {
 namespace {
@@ -31,7 +32,7 @@ TEST(LinearisationError, QuadraticMatchesItsClosedForm) {
   const Deviation square = [](const Eigen::VectorXd& x) -> Eigen::VectorXd {
     return x.cwiseProduct(x);
   };
-  std::mt19937_64 rng(2);
+  std::mt19937_64 rng(testing::seed(2));
   const double epsilon = linearisation_error(
       square, Eigen::VectorXd::Zero(1), Eigen::MatrixXd::Constant(1, 1, 0.25),
       Eigen::MatrixXd::Zero(1, 1), Eigen::MatrixXd::Identity(1, 1), 200000, rng);
@@ -58,7 +59,7 @@ double inversion_epsilon(double heading_sigma_rad) {
   const Deviation deviation = [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
     return pose_difference(Pose2(Eigen::Vector3d(x)).inverse(), inverse_hat);
   };
-  std::mt19937_64 rng(4);
+  std::mt19937_64 rng(testing::seed(4));
   return linearisation_error(deviation, e_hat.vector(), P, J, J * P * J.transpose(), 20000, rng);
 }
 

@@ -13,6 +13,7 @@
 #include "geometry/angles.hpp"
 #include "slam/pose_graph.hpp"
 #include "slam/pose_graph_slam.hpp"
+#include "test_support.hpp"
 #include "tests/slam/residual_jacobian_check.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
@@ -48,8 +49,8 @@ void expect_walking_compass_recovered(int window) {
   PoseGraphSlamConfig graph;
   graph.online_window_scans = window;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    Loop loop = make_loop(seed, false);
-    const double bias_rad = with_walking_compass(loop, 0.3, 0.1, seed);
+    Loop loop = make_loop(testing::seed(seed), false);
+    const double bias_rad = with_walking_compass(loop, 0.3, 0.1, testing::seed(seed));
     const TrajectorySlamConfig with_bias = with_heading_bias(0.3);
     PoseGraphSlam estimating(with_bias.front_end, with_bias.calibration, graph, GaussianPose2{});
     PoseGraphSlam ignoring(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph, GaussianPose2{});

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "slam/pose_graph_slam.hpp"
+#include "test_support.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
 namespace msislab {
@@ -37,7 +38,7 @@ inline void expect_recovered(int window, unsigned seeds,
   PoseGraphSlamConfig graph;
   graph.online_window_scans = window;
   for (unsigned seed = 1; seed <= seeds; ++seed) {
-    const Loop loop = loop_of(seed);
+    const Loop loop = loop_of(testing::seed(seed));
     PoseGraphSlam estimating(with_state.front_end, with_state.calibration, graph, GaussianPose2{});
     PoseGraphSlam ignoring(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph, GaussianPose2{});
     for (const Scan& scan : loop.scans) estimating.add_scan(scan), ignoring.add_scan(scan);

@@ -18,6 +18,7 @@
 #include "geometry/gaussian_pose.hpp"
 #include "slam/scan_matching.hpp"
 #include "stats/chi_square.hpp"
+#include "test_support.hpp"
 #include "tests/draws.hpp"
 #include "tests/slam/residual_jacobian_check.hpp"
 
@@ -304,7 +305,7 @@ TEST(PoseGraph, CovariancesAreConsistentWithTheTruth) {
       Eigen::Vector3d(0.03 * 0.03, 0.03 * 0.03, 0.01 * 0.01).asDiagonal();
   const Eigen::Matrix3d L_match = match_cov.llt().matrixL();
   const int graphs = 1000;
-  std::mt19937 rng(4);
+  std::mt19937 rng(testing::seed(4));
   std::normal_distribution<double> n01;
   std::vector<double> nees_sum(3, 0.0), relative_nees_sum(2, 0.0);
   const std::vector<std::size_t> nodes = {4, 10, 16}, from = {2, 14};

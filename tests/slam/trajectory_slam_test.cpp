@@ -13,6 +13,7 @@
 #include "slam/robocentric_slam.hpp"
 #include "slam/worldcentric_slam.hpp"
 #include "stats/chi_square.hpp"
+#include "test_support.hpp"
 #include "tests/draws.hpp"
 #include "tests/slam/synthetic_loop.hpp"
 
@@ -37,13 +38,13 @@ std::vector<GaussianPose2> run(ScanSlam& slam, const std::vector<Scan>& scans) {
   return poses;
 }
 
-class BothMethods : public testing::TestWithParam<std::string> {};
+class BothMethods : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BothMethods, ClosesTheLoopBetterThanOdometry) {
   int better = 0;
   double nees_sum = 0.0;
   for (unsigned seed = 1; seed <= 5; ++seed) {
-    const Loop loop = make_loop(seed, false);
+    const Loop loop = make_loop(testing::seed(seed), false);
     const auto slam = make_slam(GetParam());
     std::vector<Pose2> odometry;
     Pose2 chained;
@@ -373,9 +374,9 @@ TEST(TrajectorySlam, CompassObservationJacobians) {
 TEST_P(BothMethods, CompassBoundsTheHeadingOfABlindRun) {
   // No scan sees anything and the odometry turns 0.5 deg too far at every step: the chain's
   // heading drifts, the compass (1 deg) holds it.
-  Loop loop = make_loop(6, false);
+  Loop loop = make_loop(testing::seed(6), false);
   const double sigma_rad = M_PI / 180.0;
-  std::mt19937 rng(6);
+  std::mt19937 rng(testing::seed(6));
   std::normal_distribution<double> n01(0.0, 1.0);
   for (std::size_t k = 0; k < loop.scans.size(); ++k) {
     Scan& scan = loop.scans[k];
@@ -473,7 +474,7 @@ TEST(TrajectorySlam, RoboCentricInversionMovesTheCovarianceByItsJacobian) {
 }
 
 INSTANTIATE_TEST_SUITE_P(TrajectorySlam, BothMethods,
-                         testing::Values("robocentric", "worldcentric"));
+                         ::testing::Values("robocentric", "worldcentric"));
 
 }  // namespace
 }  // namespace msislab

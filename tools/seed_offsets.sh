@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The statistical tests on other random streams (project issue "Guards that can fail", item 12).
+# The statistical tests on other random streams.
 # A fixed-seed test of a statistic passes on its sample, not on its statistic: a bound at 95 %
 # fails about once in 20 streams. Every statistical unit and library test draws from
 # testing::seed(N) (tests/test_support.hpp), N plus the environment's MSISLAB_TEST_SEED_OFFSET;

@@ -81,9 +81,16 @@ TEST(DvlModel, HeavyTailedNoiseHasTheMixturesMoments) {
   const double n = 2.0 * static_cast<double>(samples.size());  // 120,000 values
   const double a = dvl.noise_sigma_mps * dvl.noise_sigma_mps;
   const double b = dvl.outlier_sigma_mps * dvl.outlier_sigma_mps, p = dvl.outlier_probability;
-  EXPECT_NEAR(m2 / n, (1 - p) * a + p * b, 0.01 * ((1 - p) * a + p * b));
+  // Sampling errors, with both axes of a sample sharing its mixture component (60,000 samples
+  // of e_x^2 + e_y^2 and of e_x^4 + e_y^4, whose variances follow from the mixture's 4th and
+  // 8th moments): 0.85 % of the 2nd moment, 2.0 % of the 4th; their spread over 61 seed
+  // offsets, 0.91 % and 2.2 %. Bounds at 3.3 spreads (two-sided 0.001 each): 3 % and 7 %.
+  // Caught: both sigmas 2.5 % off (second moment 5 %, 5.5 spreads) or an outlier
+  // probability of 0.27 for 0.25 (6 %). (Were 1 % and 6 %: the 2nd moment's bound was 1.1
+  // spreads, and failed 7 of 20 seed offsets.)
+  EXPECT_NEAR(m2 / n, (1 - p) * a + p * b, 0.03 * ((1 - p) * a + p * b));
   const double m4_expected = 3.0 * ((1 - p) * a * a + p * b * b);
-  EXPECT_NEAR(m4 / n, m4_expected, 0.06 * m4_expected);  // the 4th moment's sampling error: 2.5%
+  EXPECT_NEAR(m4 / n, m4_expected, 0.07 * m4_expected);
 }
 
 TEST(DvlModel, DropoutsFollowTheTwoStateChain) {

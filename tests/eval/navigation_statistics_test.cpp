@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <random>
 
 #include "geometry/angles.hpp"
@@ -214,11 +215,19 @@ TEST(GpsStatistics, StructureFunctionOfAGaussMarkovError) {
   const GpsOptions options;
   const GpsStatistics s = gps_statistics(run.log, gps, Eigen::Vector2d::Zero(), options);
   ASSERT_EQ(s.structure_m2.size(), options.structure_lags_s.size());
-  EXPECT_EQ(s.tether_m, 0.0);
+  // No tether: the fit's minimum is at 0, or at its first grid point (0.1 m) whence the parabola
+  // puts it between (0.054-0.069 m in 3 of 60 seed offsets). Was an exact 0, failing 3 of 20.
+  EXPECT_LT(s.tether_m, 0.1);
+  // S(k)'s relative spread over 60 seed offsets, per lag (1 ... 120 s): 20,000 s hold 330
+  // correlation times, fewer independent pairs at the longer lags. Bounds at 4 spreads: the 10
+  // lags together fail a correct stream less than 0.001 of the time (Bonferroni). Caught: a
+  // correlation time of 50 s for 60 (S(10 s) 18 % high, 10 spreads). Was 15 % at every lag:
+  // 2.8 spreads at 120 s, and failed in 1 of 20 offsets.
+  const double spread[] = {0.008, 0.008, 0.012, 0.018, 0.028, 0.034, 0.039, 0.041, 0.050, 0.054};
+  ASSERT_EQ(std::size(spread), s.structure_m2.size());
   for (std::size_t i = 0; i < s.structure_m2.size(); ++i) {
     const double expected = sigma * sigma * (1.0 - std::exp(-options.structure_lags_s[i] / tau_s));
-    // 20,000 s hold 330 correlation times: S is known to about 8% (2 axes).
-    EXPECT_NEAR(s.structure_m2[i], expected, 0.15 * expected)
+    EXPECT_NEAR(s.structure_m2[i], expected, 4.0 * spread[i] * expected)
         << "lag " << options.structure_lags_s[i];
   }
 }

@@ -174,7 +174,8 @@ std::optional<CompassComparison> compare_compasses(const std::vector<HeadingRead
     for (; j < n && t_s[j] < t_s[i] + kCompassBlock_s; ++j) sum += residual(j);
     if (j == n && !block_means.empty() && t_s[n - 1] - t_s[i] < kCompassBlock_s / 2.0) {
       const auto before = static_cast<double>(block_counts.back());
-      block_means.back() = (block_means.back() * before + sum) / (before + static_cast<double>(j - i));
+      block_means.back() =
+          (block_means.back() * before + sum) / (before + static_cast<double>(j - i));
       block_counts.back() += j - i;
     } else {
       block_means.push_back(sum / static_cast<double>(j - i));

@@ -439,23 +439,38 @@ TEST(CalibrationStates, CompassResidualJacobianWithTheHeadingBias) {
   expect_compass_jacobian(robot, 5, -2.0);
 }
 
-// A compass whose bias walks 0.3 deg / sqrt(s) under 0.1 deg of white noise, read as 0.1 deg of
-// white noise alone: the compass updates pin each scan's yaw to the bias. With the heading-bias
-// state the last scan's yaw is consistent: the average over ten loops of its 1-DOF NEES inside
-// the two-sided 99 % bounds of chi-square(10) / 10, [0.22, 2.52] (measured 2.19; the loop's
-// filter sits near the 95 % bound 2.05 without any walk: 1.56 without the state, 2.16 with it,
-// two of the ten loops' last yaw at a NEES of 5-8 either way: the filter's own), and the bias
-// estimated within two standard deviations in at least 8 of 10 loops (9); without it, the yaw NEES
-// is far above (261).
+// A compass whose bias starts unknown (1 deg from the prior's 0, drawn from the prior) and walks
+// 0.3 deg / sqrt(s) under 0.1 deg of white noise, ten loops. Statistics, each at a false alarm of
+// 0.001 or less:
+// - the bias estimates: mean squared normalised error in the two-sided 99.9 % bounds of
+//   chi-square(10) / 10, [0.126, 3.14] (measured 1.24 on average over 30 seed offsets, 0.43-2.39);
+// - the last scan's yaw NEES, averaged over the ten loops, against the same filter's on the same
+//   loops with a compass that does not walk (calibrated, 0.1 deg): the state should leave the
+//   yaw as consistent as the filter is without any walk. Over 30 seed offsets the difference was
+//   0.13 on average with a spread of 0.53: bound 0.13 + 3.3 x 0.53 = 1.9 (one-sided). Without
+//   the state it is hundreds.
+// The filter's own yaw NEES on these loops averages 1.40 over 30 offsets, not 1: its scan matches'
+// covariance understates their spread (tests/slam/scan_matching_test.cpp, the cross-covariance
+// test: 0.0042 against 0.0050 m^2 in x), which is why this test compares with it rather than with
+// chi-square(10) / 10. Was: the bias starting exactly known, the yaw NEES within [0.22, 2.52] (4 of
+// 20 offsets failed, on the filter's own inconsistency) and the bias within 2 sd in 8 of 10.
 TEST(CalibrationStates, RecoverTheHeadingBiasOfAWalkingCompass) {
-  double nees_with = 0.0, nees_without = 0.0;
-  int within = 0;
+  double nees_with = 0.0, nees_without = 0.0, nees_still = 0.0, z2 = 0.0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
     Loop loop = make_loop(testing::seed(seed), false);
-    const double bias_rad = with_walking_compass(loop, 0.3, 0.1, testing::seed(seed));
-    const auto estimating = make_filter("robocentric", with_heading_bias(0.3));
+    Loop still = loop;
+    with_walking_compass(still, 0.0, 0.1, testing::seed(seed));
+    std::mt19937 start_rng(testing::seed(seed) + 5000);
+    const double start_bias_deg = std::normal_distribution<double>(0.0, 1.0)(start_rng);
+    const double bias_rad =
+        with_walking_compass(loop, 0.3, 0.1, testing::seed(seed), start_bias_deg);
+    TrajectorySlamConfig config = with_heading_bias(0.3);
+    config.calibration.heading_bias_sigma_deg = 1.0;
+    const auto estimating = make_filter("robocentric", config);
     const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});
+    const auto calibrated = make_filter("robocentric", TrajectorySlamConfig{});
     for (const Scan& scan : loop.scans) estimating->add_scan(scan), ignoring->add_scan(scan);
+    for (const Scan& scan : still.scans) calibrated->add_scan(scan);
     const std::size_t last = loop.scans.size() - 1;
     const auto yaw_nees = [&](const TrajectorySlam& slam) {
       const GaussianPose2 pose = slam.scan_pose_world(last);
@@ -464,18 +479,20 @@ TEST(CalibrationStates, RecoverTheHeadingBiasOfAWalkingCompass) {
     };
     nees_with += yaw_nees(*estimating) / 10.0;
     nees_without += yaw_nees(*ignoring) / 10.0;
+    nees_still += yaw_nees(*calibrated) / 10.0;
     const CalibrationEstimate beta = estimating->calibration().at(0);
+    z2 += std::pow((beta.value - bias_rad / kDegToRad) / beta.sigma, 2) / 10.0;
     EXPECT_EQ(beta.name, "heading_bias_deg");
-    within += std::abs(beta.value - bias_rad / kDegToRad) < 2.0 * beta.sigma;
     std::cout << "seed " << seed << ": bias " << bias_rad / kDegToRad << " deg, estimated "
               << beta.value << " +- " << beta.sigma << "\n";
   }
   std::cout << "last scan's yaw NEES, 10 loops: " << nees_with << " with the state, "
-            << nees_without << " without\n";
-  EXPECT_GT(nees_with, 0.22);
-  EXPECT_LT(nees_with, 2.52);
+            << nees_without << " without, " << nees_still << " with a calibrated compass; the "
+            << "bias's mean squared normalised error " << z2 << "\n";
+  EXPECT_GT(z2, 0.126);
+  EXPECT_LT(z2, 3.14);
+  EXPECT_LT(nees_with, nees_still + 1.9);
   EXPECT_GT(nees_without, 10.0);
-  EXPECT_GE(within, 8);
 }
 
 TEST_P(BothFilters, SwitchedOffTheStateLeavesNoParameterAndNoEstimate) {

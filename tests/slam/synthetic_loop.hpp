@@ -145,10 +145,10 @@ inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
 /// The loop with a compass whose bias walks (density walk_deg_per_sqrt_s from 0 at the first
 /// scan, scans 1 s apart) under white noise of sigma_deg; returns the bias at the last scan.
 inline double with_walking_compass(Loop& loop, double walk_deg_per_sqrt_s, double sigma_deg,
-                                   unsigned seed) {
+                                   unsigned seed, double start_bias_deg = 0.0) {
   std::mt19937 rng(seed + 3000);
   std::normal_distribution<double> n01(0.0, 1.0);
-  double bias_rad = 0.0;
+  double bias_rad = start_bias_deg * kDegToRad;
   for (std::size_t k = 0; k < loop.scans.size(); ++k) {
     if (k > 0) bias_rad += walk_deg_per_sqrt_s * kDegToRad * n01(rng);
     loop.scans[k].compass_yaw_world_rad =

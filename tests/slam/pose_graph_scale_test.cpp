@@ -67,32 +67,34 @@ TrajectorySlamConfig with(bool range_scale, bool dvl_scale) {
   return config;
 }
 
-// Ten loops seeing the world 0.96 times its size: within two sd of 0.96 in at least 9 (each with
-// probability 0.954 when consistent: 9 or more of 10 with 0.93), better in at least 9.
+// Ten loops seeing the world 0.96 times its size: the estimates consistent (expect_recovered's
+// mean squared normalised error), better in at least 9. (Was: within two sd in at least 9 of 10,
+// a false alarm of 0.07: 2 of 20 seed offsets failed in each back end.)
 Loop small_world(unsigned seed) { return scaled(make_loop(seed, false), 0.96); }
 
 TEST(PoseGraphScale, WholeGraphRecoversScansThatSeeTheWorld4PercentSmall) {
-  expect_recovered(0, 10, small_world, with(true, false), {{"range_scale", 0.96, 0.02}}, 9, 9);
+  expect_recovered(0, 10, small_world, with(true, false), {{"range_scale", 0.96, 0.02}}, 9);
 }
 
 TEST(PoseGraphScale, WindowedGraphRecoversScansThatSeeTheWorld4PercentSmall) {
-  expect_recovered(8, 10, small_world, with(true, false), {{"range_scale", 0.96, 0.02}}, 9, 9);
+  expect_recovered(8, 10, small_world, with(true, false), {{"range_scale", 0.96, 0.02}}, 9);
 }
 
-// Five loops whose DVL reads 1.03 times the true velocity: within two sd in at least 4 (5 or 4
-// of 5 in 98 % of sets), better in at least 4.
+// Ten loops whose DVL reads 1.03 times the true velocity: the estimates consistent, better in at
+// least 8 (the filters' rule). (Was: five loops, within two sd in at least 4.)
 Loop long_dvl(unsigned seed) { return dvl_scaled(make_loop(seed, false), 1.03); }
 
 TEST(PoseGraphScale, WholeGraphRecoversTheDvlScaleOfMotions3PercentLong) {
-  expect_recovered(0, 5, long_dvl, with(false, true), {{"dvl_scale", 1.03, 0.015}}, 4, 4);
+  expect_recovered(0, 10, long_dvl, with(false, true), {{"dvl_scale", 1.03, 0.015}}, 8);
 }
 
 TEST(PoseGraphScale, WindowedGraphRecoversTheDvlScaleOfMotions3PercentLong) {
-  expect_recovered(8, 5, long_dvl, with(false, true), {{"dvl_scale", 1.03, 0.015}}, 4, 4);
+  expect_recovered(8, 10, long_dvl, with(false, true), {{"dvl_scale", 1.03, 0.015}}, 8);
 }
 
-// Five loops whose scans are seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the
-// filters' bounds, within two sd of 0.1 s in at least 4, sd below 0.05 s, better in at least 4.
+// Ten loops whose scans are seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the
+// filters' statistic and rules, the estimates consistent, sd below 0.05 s, better in at least 8.
+// (Was: five loops, within two sd of 0.1 s in at least 4.)
 Loop late_clock(unsigned seed) { return clock_offset_loop(seed, 0.1); }
 
 TrajectorySlamConfig with_clock() {
@@ -102,11 +104,11 @@ TrajectorySlamConfig with_clock() {
 }
 
 TEST(PoseGraphScale, WholeGraphRecoversTheSonarClockOffset) {
-  expect_recovered(0, 5, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 4, 4);
+  expect_recovered(0, 10, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 8);
 }
 
 TEST(PoseGraphScale, WindowedGraphRecoversTheSonarClockOffset) {
-  expect_recovered(8, 5, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 4, 4);
+  expect_recovered(8, 10, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 8);
 }
 
 // The same code on a short stretch of one loop, whole graph and windowed, with the heading bias,

@@ -14,15 +14,26 @@
 # helpers). Literals of 1e-4 or less in magnitude (numerical tolerances), 0 (sign checks) and
 # unsigned ones (sizes) are not bounds on a statistic here.
 # A heuristic (grep and awk, no parsing): it reads one file at a time and not what a helper in
-# another file does with its arguments. Prints FILE:LINE: the check, then the count; exits 0 (a
-# report for now). Each finding says whether its code draws from testing::seed (a statistical test
-# tools/seed_offsets.sh runs on other streams) or from a fixed seed only.
-# Usage: tools/check_stat_bounds.sh [ROOT]   (ROOT defaults to the checkout; takes seconds)
+# another file does with its arguments. Prints FILE:LINE: the check, then the count. Each finding
+# says whether its code draws from testing::seed (a statistical test tools/seed_offsets.sh runs on
+# other streams) or from a fixed seed only.
+# --at-most N makes it a ratchet (the ctest Tests.StatisticalBoundsNameTheirStatistic): exit 1
+# when more than N bounds name nothing, so a new bare bound fails the suite while the old ones
+# are worked off; lower N as they are.
+# Usage: tools/check_stat_bounds.sh [--at-most N] [ROOT]   (ROOT defaults to the checkout; takes
+# seconds). Exit status: 0, or 1 past N; 2 on bad arguments.
 set -euo pipefail
+at_most=""
+if [ "${1:-}" = "--at-most" ]; then
+  [[ "${2:-}" =~ ^[0-9]+$ ]] || { echo "check_stat_bounds: --at-most needs a whole number" >&2; exit 2; }
+  at_most="$2"
+  shift 2
+fi
 root="${1:-$(dirname "$0")/..}"
 cd "$root"
 [ -d tests ] || { echo "check_stat_bounds: no tests/ under $root" >&2; exit 2; }
-mapfile -t files < <(find tests \( -name '*.cpp' -o -name '*.hpp' \) | sort)
+# The checks' own fixtures (tests/*_fixture) hold bare bounds on purpose.
+mapfile -t files < <(find tests -type d -name '*_fixture' -prune -o \( -name '*.cpp' -o -name '*.hpp' \) -print | sort)
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 for f in "${files[@]}"; do
@@ -143,3 +154,8 @@ seeded=$(grep -c 'draws from testing::seed' "$out" || true)
 echo "check_stat_bounds: $count bounds in code that draws random numbers name no statistic or" \
   "false-alarm rate ($seeded of them in code that draws from testing::seed, $((count - seeded))" \
   "with a fixed seed; $(cut -d: -f1 "$out" | sort -u | wc -l) files of ${#files[@]} scanned)"
+if [ -n "$at_most" ] && [ "$count" -gt "$at_most" ]; then
+  echo "check_stat_bounds: $count is more than the $at_most allowed: a bound added without its" \
+    "statistic? Name the statistic and its false-alarm rate beside it (docs/reliability.md)" >&2
+  exit 1
+fi

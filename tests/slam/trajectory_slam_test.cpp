@@ -69,7 +69,11 @@ TEST_P(BothMethods, ClosesTheLoopBetterThanOdometry) {
   }
   EXPECT_GE(better, 4);
   // The final pose's covariance covers its error: the NEES averaged over the 5 runs stays under
-  // the two-sided 99% upper bound for 5 runs.
+  // the two-sided 99% upper bound for 5 runs. It does not always: over 20 seed offsets
+  // (tools/seed_offsets.sh) the robocentric filter's averaged 4.66, not 3, and 2 of the 20 went
+  // past the bound (6.61 against 6.56): the filter is overconfident on this loop, its matches'
+  // covariance understating their spread (docs/reliability.md). That is the filter's to fix, not
+  // this bound's.
   const double anees = nees_sum / 5.0;
   std::cout << "final-pose NEES averaged over 5 runs: " << anees << " (99% upper bound "
             << average_chi2_bounds(5, 3, 0.01).second << ")\n";

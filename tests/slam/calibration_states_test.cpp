@@ -458,15 +458,11 @@ TEST(CalibrationStates, CompassResidualJacobianWithTheHeadingBias) {
 TEST(CalibrationStates, RecoverTheHeadingBiasOfAWalkingCompass) {
   double nees_with = 0.0, nees_without = 0.0, nees_still = 0.0, z2 = 0.0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    Loop loop = make_loop(testing::seed(seed), false);
-    Loop still = loop;
-    with_walking_compass(still, 0.0, 0.1, testing::seed(seed));
-    std::mt19937 start_rng(testing::seed(seed) + 5000);
-    const double start_bias_deg = std::normal_distribution<double>(0.0, 1.0)(start_rng);
-    const double bias_rad =
-        with_walking_compass(loop, 0.3, 0.1, testing::seed(seed), start_bias_deg);
-    TrajectorySlamConfig config = with_heading_bias(0.3);
-    config.calibration.heading_bias_sigma_deg = 1.0;
+    const WalkingCompassLoops loops = walking_compass_loops(testing::seed(seed));
+    const Loop& loop = loops.walking;
+    const Loop& still = loops.still;
+    const double bias_rad = loops.end_bias_rad;
+    const TrajectorySlamConfig config = heading_bias_config();
     const auto estimating = make_filter("robocentric", config);
     const auto world = make_filter("worldcentric", config);
     const auto ignoring = make_filter("robocentric", TrajectorySlamConfig{});

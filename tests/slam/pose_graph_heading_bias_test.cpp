@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <random>
 #include <string>
 
 #include "geometry/angles.hpp"
@@ -55,15 +54,11 @@ void expect_walking_compass_recovered(int window, double nees_margin) {
   PoseGraphSlamConfig graph;
   graph.online_window_scans = window;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    Loop loop = make_loop(testing::seed(seed), false);
-    Loop still = loop;
-    with_walking_compass(still, 0.0, 0.1, testing::seed(seed));
-    std::mt19937 start_rng(testing::seed(seed) + 5000);
-    const double start_bias_deg = std::normal_distribution<double>(0.0, 1.0)(start_rng);
-    const double bias_rad =
-        with_walking_compass(loop, 0.3, 0.1, testing::seed(seed), start_bias_deg);
-    TrajectorySlamConfig with_bias = with_heading_bias(0.3);
-    with_bias.calibration.heading_bias_sigma_deg = 1.0;
+    const WalkingCompassLoops loops = walking_compass_loops(testing::seed(seed));
+    const Loop& loop = loops.walking;
+    const Loop& still = loops.still;
+    const double bias_rad = loops.end_bias_rad;
+    const TrajectorySlamConfig with_bias = heading_bias_config();
     PoseGraphSlam estimating(with_bias.front_end, with_bias.calibration, graph, GaussianPose2{});
     PoseGraphSlam ignoring(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph, GaussianPose2{});
     PoseGraphSlam calibrated(ScanFrontEndConfig{}, CalibrationStatesConfig{}, graph,

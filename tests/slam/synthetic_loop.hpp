@@ -158,6 +158,36 @@ inline double with_walking_compass(Loop& loop, double walk_deg_per_sqrt_s, doubl
   return bias_rad;
 }
 
+/// The heading-bias recovery tests' loops (tests/slam/calibration_states_test.cpp,
+/// tests/slam/pose_graph_heading_bias_test.cpp): make_loop(seed) with a compass whose bias starts
+/// at a draw from N(0, 1 deg), the prior those tests give the state (heading_bias_config), and
+/// walks 0.3 deg / sqrt(s) under 0.1 deg of white noise; and the same loop with a calibrated
+/// compass (no bias, the same noise), the back end's own consistency to compare with.
+struct WalkingCompassLoops {
+  Loop walking;
+  Loop still;
+  double end_bias_rad = 0.0;  ///< the walking compass's bias at the last scan
+};
+
+inline WalkingCompassLoops walking_compass_loops(unsigned seed) {
+  WalkingCompassLoops out;
+  out.walking = make_loop(seed, false);
+  out.still = out.walking;
+  with_walking_compass(out.still, 0.0, 0.1, seed);
+  std::mt19937 start_rng(seed + 5000);
+  const double start_bias_deg = std::normal_distribution<double>(0.0, 1.0)(start_rng);
+  out.end_bias_rad = with_walking_compass(out.walking, 0.3, 0.1, seed, start_bias_deg);
+  return out;
+}
+
+/// The config that estimates walking_compass_loops' bias: the state walking as the compass does,
+/// from a 1 deg prior.
+inline TrajectorySlamConfig heading_bias_config() {
+  TrajectorySlamConfig config = with_heading_bias(0.3);
+  config.calibration.heading_bias_sigma_deg = 1.0;
+  return config;
+}
+
 /// The one-cycle deviation d(psi) = a cos(psi) + b sin(psi), a and b in deg, in rad.
 inline double deviation_rad(double yaw_rad, double a_deg, double b_deg) {
   return (a_deg * std::cos(yaw_rad) + b_deg * std::sin(yaw_rad)) * (M_PI / 180.0);

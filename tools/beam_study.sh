@@ -4,7 +4,8 @@
 # loop, the straight channel, the open area and the St. Pere replica; 1, 2, 3, 6 and 9 deg; the
 # robocentric and world-centric filters and the pose graph on the same simulated data, the
 # default SLAM config) into out/beam_study/<scene>, and writes their table: per scene, back end
-# and beamwidth the share of scan steps inside the 95 % NEES bounds, the ANEES and the mean error. With the sweep files' 20 runs a cell the page is docs/beam_study.md; with --runs N (a
+# and beamwidth the share of scan steps inside the 95 % NEES bounds, the ANEES and the mean
+# error. With the sweep files' 20 runs a cell the page is docs/beam_study.md; with --runs N (a
 # quicker look, fewer runs a cell) it is out/beam_study/beam_study.md and docs/ is left alone.
 # Resumable: an interrupted sweep keeps its finished runs when this is run again; one made by
 # another build or sweep file is run again from scratch.
@@ -24,7 +25,7 @@ while [ $# -gt 0 ]; do
     --runs) runs="${2:?--runs needs a number}"; shift 2 ;;
     --scenes) scenes="${2:?--scenes needs a list}"; shift 2 ;;
     --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
-    -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/beam_study.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done

@@ -101,6 +101,13 @@ fi
         }
       }' "$out/$scene/sweep.csv"
   done
+  # What the page was made from (tools/check_beam_study.sh compares these with the files).
+  echo
+  echo "## Made from"
+  echo
+  for scene in $scenes; do
+    echo "- \`studies/beam/$scene.yaml\` (sha256 $(sha256sum "studies/beam/$scene.yaml" | cut -d' ' -f1))"
+  done
 } >"$page.tmp"
 mv "$page.tmp" "$page"
 echo "beam study: $(wc -w <<<"$scenes") sweeps in $(( $(date +%s) - start )) s of sweeping; wrote $page"

@@ -142,8 +142,9 @@ inline TrajectorySlamConfig with_heading_bias(double walk_deg_per_sqrt_s) {
   return config;
 }
 
-/// The loop with a compass whose bias walks (density walk_deg_per_sqrt_s from 0 at the first
-/// scan, scans 1 s apart) under white noise of sigma_deg; returns the bias at the last scan.
+/// The loop with a compass whose bias walks (density walk_deg_per_sqrt_s from start_bias_deg at
+/// the first scan, scans 1 s apart) under white noise of sigma_deg; returns the bias at the last
+/// scan.
 inline double with_walking_compass(Loop& loop, double walk_deg_per_sqrt_s, double sigma_deg,
                                    unsigned seed, double start_bias_deg = 0.0) {
   std::mt19937 rng(seed + 3000);

@@ -4,8 +4,8 @@
 // d / cos(max(0, psi - delta)), d the perpendicular distance and delta = b / 2. What a SLAM's
 // range model has to describe for each detector (docs/simulator.md, "The beam's footprint on an
 // oblique wall"). The marina's vertical geometry: a wall from the seabed at 3.4 m to 1 m above
-// the surface, the head 1.5 m down, the seabed of weak backscatter; the default sonar (3 deg
-// sonar's pulse, receiver, gain, speckle) with the beam widened; 50 pings per cell, seeded.
+// the surface, the head 1.5 m down, the seabed of weak backscatter; the default sonar (its pulse,
+// receiver, gain and speckle) with its beam set to each width; 50 pings per cell, seeded.
 #include <gtest/gtest.h>
 
 #include <cmath>

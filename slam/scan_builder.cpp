@@ -21,6 +21,8 @@ ScanPoint reading_in_vehicle(const SonarReading& reading,
   point.cov_reading = point.cov;
   point.t_s = reading.t_s;
   point.p_vehicle_m = point.p_m;
+  point.p_sonar_m = p_vehicle_sonar_m;
+  point.p_vehicle_sonar_m = p_vehicle_sonar_m;
   return point;
 }
 
@@ -35,6 +37,8 @@ void add_scan_points(const std::vector<SonarReading>& readings, const GaussianPo
     point.t_s = in_vehicle.t_s;
     point.p_vehicle_m = in_vehicle.p_m;
     point.p_m = x_centre_beam.mean.transform(in_vehicle.p_m, &J_pose, &J_point);
+    point.p_vehicle_sonar_m = p_vehicle_sonar_m;
+    point.p_sonar_m = x_centre_beam.mean.transform(p_vehicle_sonar_m);
     point.cov_reading = J_point * in_vehicle.cov * J_point.transpose();
     point.cov = J_pose * x_centre_beam.cov * J_pose.transpose() + point.cov_reading;
     point.distortion = J_pose * distortion.loading;

@@ -28,6 +28,10 @@ struct ScanPoint {
   /// distortion * xi_side with xi_side ~ N(0, I) common to the half (docs/scan_matching.md).
   Matrix23d distortion = Matrix23d::Zero();
   int side = 0;  ///< 0: taken before the centre beam, 1: from it on
+  /// The sonar head at the beam's time, in the scan frame and in the vehicle frame (the beam's
+  /// axis runs from it to the point: slam/beam_footprint.hpp).
+  Eigen::Vector2d p_sonar_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d p_vehicle_sonar_m = Eigen::Vector2d::Zero();
 };
 
 /// How a beam's pose error loads on its half-scan's shared error xi ~ N(0, I):

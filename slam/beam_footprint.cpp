@@ -85,7 +85,11 @@ FootprintCorrection correct_footprint(std::vector<ScanPoint>& points, const Foot
     }
     p.p_m -= offset_m * axis;
     p.p_vehicle_m -= offset_m * (p.p_vehicle_m - p.p_vehicle_sonar_m).normalized();
-    const Eigen::Matrix2d along = sd_m * sd_m * axis * axis.transpose();
+    // The table's spread is the reading's whole spread along the axis (measured against truth,
+    // it holds the range noise the reading already carries): the variance along the axis
+    // becomes the larger of the two.
+    const double extra = std::max(0.0, sd_m * sd_m - axis.dot(p.cov_reading * axis));
+    const Eigen::Matrix2d along = extra * axis * axis.transpose();
     p.cov_reading += along;
     p.cov += along;
     ++out.corrected;

@@ -32,6 +32,15 @@ struct FootprintTable {
 bool footprint_offset(const FootprintTable& table, double range_m, double incidence_rad,
                       double& offset_m, double& sd_m);
 
+/// The footprint model of a SLAM run (the config's `footprint` section, docs/formats.md).
+struct FootprintConfig {
+  FootprintTable table;  ///< empty: points are kept as read
+  /// The lines the incidence is taken from. Wider than the matcher's (1.5 m, 5 points): at the
+  /// ranges of a harbour wall a 200-step revolution's readings lie 0.5-1 m apart along it, and
+  /// at oblique incidence farther, so most wall points have fewer than 5 neighbours within 1.5 m.
+  LineNormalConfig line{3.0, 3, 0.05};
+};
+
 struct FootprintCorrection {
   std::size_t corrected = 0;  ///< points moved
   std::size_t no_line = 0;    ///< points without a line normal, kept

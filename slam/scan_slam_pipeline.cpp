@@ -47,8 +47,12 @@ std::vector<PlacedScan> build_placed_scans(const NavigationLog& navigation,
   ScanConfig builder;
   builder.beams_per_scan = setup.beams_per_revolution;
   builder.p_vehicle_sonar_m = setup.p_vehicle_sonar_m;
-  return build_scans(beams, navigation, config.dead_reckoning, setup.p_vehicle_dvl_m, setup.start,
-                     builder);
+  std::vector<PlacedScan> scans = build_scans(beams, navigation, config.dead_reckoning,
+                                              setup.p_vehicle_dvl_m, setup.start, builder);
+  for (PlacedScan& placed : scans) {
+    correct_footprint(placed.scan.points, config.footprint.table, config.footprint.line);
+  }
+  return scans;
 }
 
 ScanSlamEstimate run_scan_slam(ScanSlam& backend, const NavigationLog& navigation,

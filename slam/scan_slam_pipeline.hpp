@@ -59,13 +59,14 @@ struct ScanSlamEstimate {
   std::vector<CalibrationSnapshot> calibration_history;
 };
 
-/// The sonar's revolutions as motion-compensated scans placed by dead reckoning (Sec. II; the
-/// scans run_scan_slam feeds its back end).
 /// Whether run_scan_slam's scans are build_placed_scans' with `config` as given, i.e. the dead
 /// reckoning's own: not when the filters' DVL-scale state carries the scale's uncertainty, for
 /// then their motions leave out the dead reckoning's (dead_reckoning.dvl_scale_sigma).
 bool slam_scans_are_dead_reckonings(const SlamConfig& config);
 
+/// The sonar's revolutions as motion-compensated scans placed by dead reckoning (Sec. II; the
+/// scans run_scan_slam feeds its back end); with config.footprint's table, each scan's wall
+/// points corrected for the beam's footprint (slam/beam_footprint.hpp).
 std::vector<PlacedScan> build_placed_scans(const NavigationLog& navigation,
                                            const std::vector<BeamReadings>& beams,
                                            const SlamConfig& config, const ScanSlamSetup& setup);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "geometry/time_segment.hpp"
+#include "slam/beam_footprint.hpp"
 #include "slam/beam_segmentation.hpp"
 #include "slam/dead_reckoning.hpp"
 #include "slam/pose_graph_slam.hpp"
@@ -14,6 +15,9 @@ namespace msislab {
 struct SlamConfig {
   DeadReckoningConfig dead_reckoning;
   SegmentationConfig segmentation;
+  /// The beam's footprint: each scan's wall points moved back along their beams (off by default;
+  /// slam/beam_footprint.hpp).
+  FootprintConfig footprint;
   TrajectorySlamConfig trajectory_slam;  ///< the filters, and the front end of every SLAM method
   PoseGraphSlamConfig pose_graph;        ///< the pose-graph back end (method posegraph)
   std::vector<TimeSegment> segments;     ///< named windows scored separately in metrics.json

@@ -125,11 +125,30 @@ TEST(BeamFootprint, AWallReadBeyondItIsPutBackOnIt) {
     EXPECT_NEAR(ray.normalized().dot(ray_before.normalized()), 1.0, 1e-12);
     const Eigen::Vector2d v = points[k].p_vehicle_m - points[k].p_vehicle_sonar_m;
     EXPECT_NEAR(v.norm(), ray.norm(), 1e-9);
-    // The spread along the axis only: 0.01 + 0.25^2 along, 0.01 across.
+    // The spread along the axis only: the larger of 0.01 and 0.25^2 along, 0.01 across.
     const Eigen::Vector2d axis = ray.normalized(), across(-axis.y(), axis.x());
-    EXPECT_NEAR(axis.dot(points[k].cov_reading * axis), 0.01 + 0.0625, 1e-12);
+    EXPECT_NEAR(axis.dot(points[k].cov_reading * axis), 0.0625, 1e-12);
     EXPECT_NEAR(across.dot(points[k].cov_reading * across), 0.01, 1e-12);
-    EXPECT_NEAR(axis.dot(points[k].cov * axis), 0.01 + 0.0625, 1e-12);
+    EXPECT_NEAR(axis.dot(points[k].cov * axis), 0.0625, 1e-12);
+  }
+}
+
+TEST(BeamFootprint, ASpreadBelowTheReadingsOwnLeavesItsNoise) {
+  // The readings carry 0.1 m along and across; a table spread of 0.05 m adds nothing.
+  const auto offset = [](double, double) { return 0.4; };
+  const FootprintTable t = table_of(offset, [](double, double) { return 0.05; });
+  Eigen::Vector2d normal, head_m;
+  double d_m = 0.0;
+  std::vector<ScanPoint> points = wall_read_beyond(offset, normal, d_m, head_m);
+  const std::vector<ScanPoint> before = points;
+  LineNormalConfig lines;
+  lines.radius_m = 3.0;
+  lines.min_points = 3;
+  ASSERT_EQ(correct_footprint(points, t, lines).corrected, points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    EXPECT_TRUE(points[k].cov_reading.isApprox(before[k].cov_reading, 1e-12)) << k;
+    EXPECT_TRUE(points[k].cov.isApprox(before[k].cov, 1e-12)) << k;
+    EXPECT_NEAR((points[k].p_m - before[k].p_m).norm(), 0.4, 1e-9) << k;
   }
 }
 

@@ -11,6 +11,7 @@
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 #include "settings/config_fields.hpp"
+#include "settings/footprint_yaml.hpp"
 
 namespace msislab::settings {
 
@@ -309,6 +310,7 @@ SlamConfig slam_config_of(const YAML::Node& node, const std::string& path, const
   }
   read_dead_reckoning(root.map("dead_reckoning"), config.dead_reckoning);
   read_segmentation(root.map("segmentation"), config.segmentation);
+  read_footprint_section(root.map("footprint"), config.footprint);
   read_trajectory_slam(root.map("trajectory_slam"), config);
   read_pose_graph(root.map("pose_graph"), config.pose_graph);
   config.segments = read_segments(root.map("segments"));

@@ -21,6 +21,7 @@ void add_commands(CLI::App& app, CommandLine& line) {
   add_sweep_command(app, line);
   add_image_command(app, line);
   add_scans_command(app, line);
+  add_footprint_command(app, line);
   add_segment_command(app, line);
   add_plot_command(app, line);
   add_report_command(app, line);

@@ -39,6 +39,7 @@ void add_montecarlo_command(CLI::App& app, CommandLine& line);
 void add_sweep_command(CLI::App& app, CommandLine& line);
 void add_image_command(CLI::App& app, CommandLine& line);
 void add_scans_command(CLI::App& app, CommandLine& line);
+void add_footprint_command(CLI::App& app, CommandLine& line);
 void add_segment_command(CLI::App& app, CommandLine& line);
 void add_plot_command(CLI::App& app, CommandLine& line);
 void add_report_command(CLI::App& app, CommandLine& line);

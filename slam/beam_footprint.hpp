@@ -3,8 +3,8 @@
 // an offset that depends on the range and on the incidence psi at which the axis meets the wall
 // (measured against the simulator's truth, per sonar, detector and kind of scene). Each point of a
 // scan whose neighbours draw a line (slam/line_normals.hpp) is moved back along its beam's axis by
-// the offset the table gives for its range and incidence, and the table's spread is added to its
-// reading noise along the axis. Points without a line keep their reading as it is.
+// the offset the table gives for its range and incidence, and its reading's variance along the
+// axis is raised to the table's spread. Points without a line keep their reading as it is.
 #pragma once
 
 #include <Eigen/Core>

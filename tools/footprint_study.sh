@@ -1,0 +1,143 @@
+#!/usr/bin/env bash
+# The footprint study (docs/footprint_study.md) in one command: what the beam's footprint model
+# (docs/scan_matching.md, "The beam's footprint") does to the SLAM's consistency and error at each
+# beamwidth. Per beamwidth it simulates the calibration datasets (scenarios/open_area.yaml and
+# scenarios/straight_channel.yaml at that beam, seeds 201-203: other seeds than the sweeps'),
+# measures their table with `msislab footprint` into a SLAM config, then runs each scene's beam
+# sweep (studies/beam/<scene>.yaml, at that beam only) twice on the same simulated data: with the
+# default config, and with the table. The page gives, per scene, back end and beamwidth, the share
+# of scan steps inside the 95 % NEES bounds, the ANEES and the mean error, without and with it.
+# The marina loop is a scene the table was not measured on; the channel and the open area are
+# measured on other seeds. With 20 runs a cell (the sweep files') the page is
+# docs/footprint_study.md; with --runs N it is out/footprint_study/footprint_study.md.
+# Usage: tools/footprint_study.sh [--jobs J] [--runs N] [--scenes "marina_loop ..."]
+#                                 [--beams "1 2 3 6 9"] [--msislab EXE]
+#   (20 runs a cell, three scenes, five beams: about 15 minutes on 2 cores; the replica's scene,
+#   stpere_replica, can be named in --scenes and takes far longer)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+jobs=$(nproc)
+runs=20
+msislab=
+scenes="marina_loop straight_channel open_area"
+beams="1 2 3 6 9"
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --jobs) jobs="${2:?--jobs needs a number}"; shift 2 ;;
+    --runs) runs="${2:?--runs needs a number}"; shift 2 ;;
+    --scenes) scenes="${2:?--scenes needs a list}"; shift 2 ;;
+    --beams) beams="${2:?--beams needs a list}"; shift 2 ;;
+    --msislab) msislab="${2:?--msislab needs a path}"; shift 2 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    *) echo "tools/footprint_study.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+done
+fail() { echo "tools/footprint_study.sh: $*" >&2; exit 2; }
+[[ "$jobs" =~ ^[1-9][0-9]*$ ]] || fail "--jobs '$jobs' is not a whole number of 1 or more"
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || fail "--runs '$runs' is not a whole number of 1 or more"
+for beam in $beams; do
+  [[ "$beam" =~ ^[0-9]+(\.[0-9]+)?$ ]] || fail "--beams: '$beam' is not a beamwidth in deg"
+done
+for scene in $scenes; do
+  [ -f "studies/beam/$scene.yaml" ] || fail "no sweep file studies/beam/$scene.yaml"
+done
+calibration_scenes="open_area straight_channel"
+calibration_seeds="201 202 203"
+
+if [ -n "$msislab" ]; then
+  [ -x "$msislab" ] || fail "--msislab '$msislab' is not an executable"
+else
+  tools/install_deps.sh run
+  tools/configure.sh release
+  cmake --build --preset release --target msislab
+  msislab=build/release/tools/msislab
+fi
+source tools/run_fresh.sh
+out=out/footprint_study
+claim_out_folder tools/footprint_study.sh "$out/inputs"
+start=$(date +%s)
+for beam in $beams; do
+  # The table at this beam, from the calibration scenes' datasets.
+  datasets=()
+  for scene in $calibration_scenes; do
+    for seed in $calibration_seeds; do
+      name="${scene}_${beam}deg_seed$seed"
+      scenario="$out/inputs/$name.yaml"
+      python3 tools/scenario_variant.py "scenarios/$scene.yaml" "$scenario" footprint_study \
+        "sonar.horizontal_beamwidth_deg=$beam"
+      sed -i "s/^seed: .*/seed: $seed/" "$scenario"
+      "$msislab" simulate "$scenario" --out "$out/calibration/$name" >/dev/null
+      datasets+=("$out/calibration/$name")
+    done
+  done
+  config="$out/inputs/footprint_${beam}deg.yaml"
+  "$msislab" footprint "${datasets[@]}" --out "$config"
+  for scene in $scenes; do
+    for arm in default footprint; do
+      # The scene's sweep at this beam, its scenario path made absolute (a sweep's paths are
+      # relative to its file); with the table's config in the footprint arm.
+      sweep="$out/inputs/${scene}_${beam}deg_$arm.yaml"
+      sed -e "s|^runs: .*|runs: $runs|" -e "s|^scenario: \.\./\.\./|scenario: $PWD/|" \
+        -e "s|^  scenario.sonar.horizontal_beamwidth_deg: .*|  scenario.sonar.horizontal_beamwidth_deg: [$beam]|" \
+        "studies/beam/$scene.yaml" >"$sweep"
+      [ "$arm" = footprint ] && echo "config: $PWD/$config" >>"$sweep"
+      echo "== $scene at $beam deg, $arm config ($runs runs)"
+      run_fresh "$out/$scene/${beam}deg_$arm" "$msislab" sweep "$sweep" \
+        --out "$out/$scene/${beam}deg_$arm" --jobs "$jobs"
+    done
+  done
+done
+page="$out/footprint_study.md"
+[ "$runs" = 20 ] && page=docs/footprint_study.md
+marker="<!-- written by tools/footprint_study.sh; it replaces this file only when it starts with this line -->"
+if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
+  fail "$page was not written by this script; refusing to replace it"
+fi
+# A sweep's row for a method: "in bounds % (ANEES), mean error".
+cell() {
+  awk -F, -v m="$2" '
+    NR == 1 { for (i = 1; i <= NF; i++) col[$i] = i; next }
+    $col["method"] == m { printf "%.0f %% (%.1f), %.2f m", 100 * $col["nees_in_bounds_fraction"],
+                            $col["anees"], $col["mean_error_m"] }' "$1/sweep.csv"
+}
+{
+  echo "$marker"
+  echo "# The footprint study"
+  echo
+  echo "Written by \`tools/footprint_study.sh\` ($runs runs a cell): the beam study's sweeps"
+  echo "(\`studies/beam/\`) at each beamwidth, on the same simulated data without and with the beam's"
+  echo "footprint table (docs/scan_matching.md, \"The beam's footprint\"). The table at each beamwidth"
+  echo "is measured by \`msislab footprint\` on the open area and the straight channel simulated at"
+  echo "that beam with seeds $(echo $calibration_seeds | sed 's/ /, /g') (the sweeps run seeds 1 on);"
+  echo "the marina loop is a scene it was not measured on. Each cell: the share of scan steps inside"
+  echo "the 95 % NEES bounds, the ANEES in brackets (3 when consistent) and the mean error, without"
+  echo "the table -> with it."
+  for scene in $scenes; do
+    echo
+    echo "## $scene"
+    echo
+    line="| back end |"
+    rule="| --- |"
+    for beam in $beams; do line="$line $beam deg |"; rule="$rule --- |"; done
+    echo "$line"
+    echo "$rule"
+    for method in robocentric worldcentric posegraph; do
+      line="| $method |"
+      for beam in $beams; do
+        line="$line $(cell "$out/$scene/${beam}deg_default" "$method") -> $(cell "$out/$scene/${beam}deg_footprint" "$method") |"
+      done
+      echo "$line"
+    done
+  done
+  echo
+  echo "## Made from"
+  echo
+  for file in $(for scene in $scenes; do echo "studies/beam/$scene.yaml"; done) \
+    $(for scene in $calibration_scenes; do echo "scenarios/$scene.yaml"; done); do
+    echo "- \`$file\` (sha256 $(sha256sum "$file" | cut -d' ' -f1))"
+  done
+} >"$page.tmp"
+mv "$page.tmp" "$page"
+echo "footprint study: $(wc -w <<<"$scenes") scenes at $(wc -w <<<"$beams") beams in" \
+  "$(( $(date +%s) - start )) s; wrote $page"

@@ -109,7 +109,7 @@ cell() {
   echo "(\`studies/beam/\`) at each beamwidth, on the same simulated data without and with the beam's"
   echo "footprint table (docs/scan_matching.md, \"The beam's footprint\"). The table at each beamwidth"
   echo "is measured by \`msislab footprint\` on the open area and the straight channel simulated at"
-  echo "that beam with seeds $(echo $calibration_seeds | sed 's/ /, /g') (the sweeps run seeds 1 on);"
+  echo "that beam with seeds ${calibration_seeds// /, } (the sweeps run seeds 1 on);"
   echo "the marina loop is a scene it was not measured on. Each cell: the share of scan steps inside"
   echo "the 95 % NEES bounds, the ANEES in brackets (3 when consistent) and the mean error, without"
   echo "the table -> with it."

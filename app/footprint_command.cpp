@@ -93,6 +93,11 @@ FootprintSummary measure_footprint_command(const FootprintOptions& options) {
       io::fail_file(options.config_path,
                     "has a footprint table already: measure with a config without one");
     }
+    if (settings::has_footprint_section(options.config_path)) {
+      io::fail_file(options.config_path,
+                    "has a footprint section: remove it (the section is written whole, its line "
+                    "keys at their defaults)");
+    }
   }
   FootprintSummary summary;
   std::vector<FootprintSample> samples;

@@ -91,6 +91,11 @@ void read_footprint_section(io::YamlMap map, FootprintConfig& c) {
   map.finish();
 }
 
+bool has_footprint_section(const std::string& config_path) {
+  const YAML::Node root = io::load_yaml_file(config_path);
+  return root.IsMap() && root["footprint"];
+}
+
 std::string footprint_section_yaml(const FootprintEstimate& estimate, int min_samples,
                                    const LineNormalConfig& line, const std::string& comment) {
   std::ostringstream out;

@@ -28,6 +28,10 @@ namespace msislab::settings {
 /// the file and line. Calls map.finish().
 void read_footprint_section(io::YamlMap map, FootprintConfig& c);
 
+/// Whether the SLAM config file has a top-level `footprint` key (a config `msislab footprint`
+/// writes its section after must have none: YAML allows a key once).
+bool has_footprint_section(const std::string& config_path);
+
 /// The section's text for an estimate (top-level key `footprint:`), `comment` (lines, each
 /// written after "# ") first.
 std::string footprint_section_yaml(const FootprintEstimate& estimate, int min_samples,

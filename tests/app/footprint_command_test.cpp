@@ -109,6 +109,13 @@ TEST(FootprintCommand, BadInputExitsTwoAndWritesNothing) {
                 " --out " + testing::shell_quote(tmp.file("again.yaml")));
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("footprint table already"), std::string::npos) << r.err;
+  // Nor may it have a footprint section of any kind: the one written would be a second.
+  const std::string lines =
+      testing::write_text(tmp.file("lines.yaml"), "footprint: {line_radius_m: 2}\n");
+  r = footprint(testing::shell_quote(dataset) + " --config " + testing::shell_quote(lines) +
+                " --out " + testing::shell_quote(tmp.file("again.yaml")));
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("has a footprint section"), std::string::npos) << r.err;
   // A grid out of range, and a missing dataset.
   r = footprint(testing::shell_quote(dataset) + " --incidence-step 95 --out " +
                 testing::shell_quote(tmp.file("g.yaml")));

@@ -84,7 +84,14 @@ void rerun_under_xvfb(int argc, char** argv) {
   const std::string self = std::filesystem::read_symlink("/proc/self/exe", ec).string();
   if (ec)
     throw io::InputError("cannot find this executable to run it under xvfb-run: " + ec.message());
-  std::vector<std::string> args = {*xvfb_run, "-a", "-s", "-screen 0 1920x1200x24", self};
+  // `xvfb-run -a` takes the first free display from :99 on, and two started at once can both
+  // take the same one (one of them then cannot open it). The first one this process tries is
+  // its own, from its process id, so msislab children drawing beside one another (a Monte Carlo's
+  // or a sweep's `msislab plot`, or a test suite's programs under `xvfb-run -a`) start apart
+  // (-n before -a: xvfb-run searches from the number it has when it reads -a).
+  const std::string first_display = std::to_string(100 + ::getpid() % 30000);
+  std::vector<std::string> args = {
+      *xvfb_run, "-n", first_display, "-a", "-s", "-screen 0 1920x1200x24", self};
   for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
   std::vector<char*> c_args;
   for (std::string& a : args) c_args.push_back(a.data());

@@ -19,6 +19,9 @@ void require_positive(io::YamlMap& map, const std::string& key, double value);
 /// Reads an integer into value if present; fails naming the key unless min <= value <= max.
 void read_count(io::YamlMap& map, const std::string& key, int& value, int min, int max);
 
+/// line_radius_m, line_min_points, line_max_eigen_ratio (the matcher's lines and the footprint's).
+void read_line_normals(io::YamlMap& map, LineNormalConfig& line);
+
 void read_mru_mount(io::YamlMap& map, MruMount& mount);  ///< yaw_offset_deg
 void read_dvl_mount(io::YamlMap& map, DvlMount& mount);  ///< yaw_deg, x_m, y_m
 void read_sonar_mount(io::YamlMap& map,

@@ -27,6 +27,14 @@ void read_count(io::YamlMap& map, const std::string& key, int& value, int min, i
   value = static_cast<int>(v);
 }
 
+void read_line_normals(io::YamlMap& map, LineNormalConfig& line) {
+  map.number("line_radius_m", line.radius_m);
+  require_positive(map, "line_radius_m", line.radius_m);
+  read_count(map, "line_min_points", line.min_points, 3, 100000);
+  map.number("line_max_eigen_ratio", line.max_eigen_ratio);
+  require_positive(map, "line_max_eigen_ratio", line.max_eigen_ratio);
+}
+
 void read_mru_mount(io::YamlMap& map, MruMount& mount) {
   map.number("yaw_offset_deg", mount.yaw_offset_deg);
 }
@@ -158,11 +166,7 @@ void read_matching(io::YamlMap map, ScanMatchConfig& c) {
   map.boolean("point_to_line_covariance", c.point_to_line_covariance);
   map.boolean("point_to_line_estimate", c.point_to_line_estimate);
   map.boolean("reciprocal_association", c.reciprocal_association);
-  map.number("line_radius_m", c.line.radius_m);
-  require_positive(map, "line_radius_m", c.line.radius_m);
-  read_count(map, "line_min_points", c.line.min_points, 3, 100000);
-  map.number("line_max_eigen_ratio", c.line.max_eigen_ratio);
-  require_positive(map, "line_max_eigen_ratio", c.line.max_eigen_ratio);
+  read_line_normals(map, c.line);
   map.finish();
 }
 

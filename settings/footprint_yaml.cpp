@@ -83,11 +83,7 @@ void read_footprint_section(io::YamlMap map, FootprintConfig& c) {
     c.table = FootprintTable{};
     read_table(map, c.table);
   }
-  map.number("line_radius_m", c.line.radius_m);
-  require_positive(map, "line_radius_m", c.line.radius_m);
-  read_count(map, "line_min_points", c.line.min_points, 3, 100000);
-  map.number("line_max_eigen_ratio", c.line.max_eigen_ratio);
-  require_positive(map, "line_max_eigen_ratio", c.line.max_eigen_ratio);
+  read_line_normals(map, c.line);
   map.finish();
 }
 

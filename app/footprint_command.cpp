@@ -55,19 +55,18 @@ FootprintGrid grid_of(const FootprintOptions& o) {
   return grid;
 }
 
-/// The samples of one dataset: its scans built with the base config (no footprint table).
+/// The samples of one dataset: its scans built with the base config.
 std::vector<FootprintSample> dataset_samples(const std::string& dir, const std::string& config,
                                              const LineNormalConfig& line, std::size_t& readings) {
   const dataset::RunInputs in = dataset::load_run_inputs(dir, config);
   if (!in.files.truth_beams) {
     io::fail_file(dir, "no truth/beams.csv (footprint needs simulated datasets)");
   }
-  SlamConfig slam = in.config;
-  slam.footprint.table = FootprintTable{};
+  // The base has no footprint section (refused before), so these scans are as read.
   const dataset::SonarInput sonar =
-      dataset::load_sonar_readings(in.files, in.calibration, slam.segmentation);
+      dataset::load_sonar_readings(in.files, in.calibration, in.config.segmentation);
   const std::vector<PlacedScan> scans =
-      build_placed_scans(in.navigation, sonar.beams, slam, scan_slam_setup(in, sonar));
+      build_placed_scans(in.navigation, sonar.beams, in.config, scan_slam_setup(in, sonar));
   for (const PlacedScan& s : scans) readings += s.scan.points.size();
   std::vector<AxisTruth> beams;
   for (const io::BeamTruthRow& row : io::read_beam_truth(*in.files.truth_beams)) {
@@ -89,10 +88,6 @@ FootprintSummary measure_footprint_command(const FootprintOptions& options) {
   std::string base_text;
   if (!options.config_path.empty()) {
     base_text = io::read_whole_file(options.config_path);
-    if (!base.footprint.table.empty()) {
-      io::fail_file(options.config_path,
-                    "has a footprint table already: measure with a config without one");
-    }
     if (settings::has_footprint_section(options.config_path)) {
       io::fail_file(options.config_path,
                     "has a footprint section: remove it (the section is written whole, its line "

@@ -107,9 +107,7 @@ TEST(BeamFootprint, AWallReadBeyondItIsPutBackOnIt) {
   double d_m = 0.0;
   std::vector<ScanPoint> points = wall_read_beyond(offset, normal, d_m, head_m);
   const std::vector<ScanPoint> before = points;
-  LineNormalConfig lines;
-  lines.radius_m = 3.0;
-  lines.min_points = 3;
+  const LineNormalConfig lines = FootprintConfig{}.line;  // 3 m, 3 points
   const FootprintCorrection c = correct_footprint(points, t, lines);
   EXPECT_EQ(c.corrected, points.size());
   EXPECT_EQ(c.no_line + c.no_cell, 0u);
@@ -141,9 +139,7 @@ TEST(BeamFootprint, ASpreadBelowTheReadingsOwnLeavesItsNoise) {
   double d_m = 0.0;
   std::vector<ScanPoint> points = wall_read_beyond(offset, normal, d_m, head_m);
   const std::vector<ScanPoint> before = points;
-  LineNormalConfig lines;
-  lines.radius_m = 3.0;
-  lines.min_points = 3;
+  const LineNormalConfig lines = FootprintConfig{}.line;  // 3 m, 3 points
   ASSERT_EQ(correct_footprint(points, t, lines).corrected, points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
     EXPECT_TRUE(points[k].cov_reading.isApprox(before[k].cov_reading, 1e-12)) << k;

@@ -13,6 +13,7 @@
 #                                       truth) and its config instead of the real run's
 #   tools/real_sensitivity.sh --gates G...   the innovation gate alone at the given values, all
 #                                            three back ends (the earlier form of this script)
+#       [--msislab EXE]                 the msislab to run (default build/release/tools/msislab)
 # After a release build; needs the real dataset (MSISLAB_STPERE_DIR, default ../shared/...).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,18 +24,19 @@ config=config/stpere.yaml
 csv=""
 step=0.1  # 10 %: the table and `msislab report` say so
 gates=()
+msislab=build/release/tools/msislab
 while [ $# -gt 0 ]; do
   case "$1" in
     --method) method="$2"; shift 2 ;;
     --csv) csv="$2"; shift 2 ;;
     --dataset) dataset="$2"; shift 2 ;;
     --config) config="$2"; shift 2 ;;
+    --msislab) msislab="$2"; shift 2 ;;
     --gates) shift; while [ $# -gt 0 ] && [[ "$1" != --* ]]; do gates+=("$1"); shift; done ;;
-    -h|--help) sed -n '2,16p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "tools/real_sensitivity.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-msislab=build/release/tools/msislab
 [ -x "$msislab" ] || {
   echo "tools/real_sensitivity.sh: build first (cmake --preset release && cmake --build --preset release)" >&2
   exit 2

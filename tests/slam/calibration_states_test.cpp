@@ -415,6 +415,16 @@ TEST(CalibrationStates, RecoverTheSonarClockOffset) {
   // Scans seen 0.1 s late (0.4 m along the motion, 9 deg in the turns), ten loops: the estimates
   // of 0.1 s consistent, the mean error below the filter's without the state in at least 8 (4 of 5
   // loops before).
+  // The scans carry the truth's velocity, where a run's carry the dead reckoning's. Given the
+  // dead reckoning's (each scan's own noisy motion over its second), 5 of these 10 loops lock at
+  // -0.37 to -0.54 s (sd 0.04-0.07 s, z down to -16.5), the rest at 0.1 s (sd 0.0016 s); given
+  // the truth's velocity plus noise of the same size drawn apart (0.08 m/s, 0.6 deg/s), all 10
+  // find 0.1 s. So it is not the velocity's noise but its correlation with the motion the state
+  // holds: the model takes the velocity as known (slam/calibration_model.hpp), while its error is
+  // the motion's own, and on the straight legs, where equal velocities leave tau unobserved, the
+  // filter explains the motions' noise by an offset. A model that takes the velocity from the
+  // state's motion (with its Jacobian) is the fix; until it exists this test cannot feed the
+  // dead reckoning's velocity and pass, and the finding is the model's, not this bound's.
   const Recovery r = recover(10, [](unsigned seed) { return clock_offset_loop(seed, 0.1); },
                              with_clock_offset(), {{"clock_offset_s", 0.1, 0.05}});
   expect_consistent(r);

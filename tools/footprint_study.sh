@@ -101,6 +101,14 @@ cell() {
     $col["method"] == m { printf "%.0f %% (%.1f), %.2f m", 100 * $col["nees_in_bounds_fraction"],
                             $col["anees"], $col["mean_error_m"] }' "$1/sweep.csv"
 }
+# A cell's consecutive match scale for a method: the mean over its runs of metrics.json's
+# consecutive_match_scale (the accepted consecutive matches' length against the truth's; 1 is
+# unbiased, docs/formats.md).
+scale() {
+  cat "$1"/cells/cell_000/runs/"$2"/run_*/metrics.json |
+    sed -n 's/.*"consecutive_match_scale": \([0-9.e+-]*\).*/\1/p' |
+    awk '{ s += $1; n++ } END { if (n) printf "%.3f", s / n; else printf "-" }'
+}
 {
   echo "$marker"
   echo "# The footprint study"
@@ -126,6 +134,20 @@ cell() {
       line="| $method |"
       for beam in $beams; do
         line="$line $(cell "$out/$scene/${beam}deg_default" "$method") -> $(cell "$out/$scene/${beam}deg_footprint" "$method") |"
+      done
+      echo "$line"
+    done
+    echo
+    echo "The consecutive match scale (the mean over the runs; 1 is unbiased), without -> with:"
+    echo
+    line="| back end |"
+    for beam in $beams; do line="$line $beam deg |"; done
+    echo "$line"
+    echo "$rule"
+    for method in robocentric worldcentric posegraph; do
+      line="| $method |"
+      for beam in $beams; do
+        line="$line $(scale "$out/$scene/${beam}deg_default" "$method") -> $(scale "$out/$scene/${beam}deg_footprint" "$method") |"
       done
       echo "$line"
     done

@@ -7,7 +7,7 @@
 # consecutive match scale against the GPS, the same with the innovation gate moved by up to 3 %
 # either way (tools/real_sensitivity.sh --gates: how stable the one real figure is), and how many
 # of the 22 parameters of tools/real_sensitivity.sh move robocentric's figure by more than 25 %.
-# Usage: tools/footprint_real.sh [--msislab EXE]   (about 10 minutes on 2 cores; needs the real
+# Usage: tools/footprint_real.sh [--msislab EXE]   (about 6 minutes on 2 cores; needs the real
 #   dataset, MSISLAB_STPERE_DIR, default ../shared/datasets/stpere)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -35,15 +35,8 @@ for scene in $scenes; do
   [ -f "studies/beam/$scene.yaml" ] || { echo "tools/beam_study.sh: no sweep file studies/beam/$scene.yaml" >&2; exit 2; }
 done
 
-if [ -n "$msislab" ]; then
-  [ -x "$msislab" ] || { echo "tools/beam_study.sh: --msislab '$msislab' is not an executable" >&2; exit 2; }
-else
-  tools/install_deps.sh run
-  tools/configure.sh release
-  cmake --build --preset release --target msislab
-  msislab=build/release/tools/msislab
-fi
 source tools/run_fresh.sh
+msislab_or_build tools/beam_study.sh
 out=out/beam_study
 [ "$runs" = 20 ] || claim_out_folder tools/beam_study.sh "$out/sweeps"
 start=$(date +%s)

@@ -24,14 +24,7 @@ done
 fail() { echo "tools/footprint_real.sh: $*" >&2; exit 2; }
 stpere="${MSISLAB_STPERE_DIR:-../shared/datasets/stpere}"
 [ -f "$stpere/_040825_1735_DVL.log" ] || fail "no real St. Pere dataset at $stpere (MSISLAB_STPERE_DIR)"
-if [ -n "$msislab" ]; then
-  [ -x "$msislab" ] || fail "--msislab '$msislab' is not an executable"
-else
-  tools/install_deps.sh run
-  tools/configure.sh release
-  cmake --build --preset release --target msislab
-  msislab=build/release/tools/msislab
-fi
+msislab_or_build tools/footprint_real.sh
 msislab=$(cd "$(dirname "$msislab")" && pwd)/$(basename "$msislab")
 out=out/footprint_real
 claim_out_folder tools/footprint_real.sh "$out"

@@ -45,15 +45,8 @@ done
 calibration_scenes="open_area straight_channel"
 calibration_seeds="201 202 203"
 
-if [ -n "$msislab" ]; then
-  [ -x "$msislab" ] || fail "--msislab '$msislab' is not an executable"
-else
-  tools/install_deps.sh run
-  tools/configure.sh release
-  cmake --build --preset release --target msislab
-  msislab=build/release/tools/msislab
-fi
 source tools/run_fresh.sh
+msislab_or_build tools/footprint_study.sh
 out=out/footprint_study
 claim_out_folder tools/footprint_study.sh "$out/inputs"
 start=$(date +%s)
@@ -109,6 +102,21 @@ scale() {
     sed -n 's/.*"consecutive_match_scale": \([0-9.e+-]*\).*/\1/p' |
     awk '{ s += $1; n++ } END { if (n) printf "%.3f", s / n; else printf "-" }'
 }
+# table SCENE FUNCTION: the scene's table, a row per back end and a column per beam, each cell
+# FUNCTION's figure without the table -> with it (FUNCTION DIR METHOD: cell or scale).
+table() {
+  local line="| back end |" rule="| --- |" method beam
+  for beam in $beams; do line="$line $beam deg |"; rule="$rule --- |"; done
+  echo "$line"
+  echo "$rule"
+  for method in robocentric worldcentric posegraph; do
+    line="| $method |"
+    for beam in $beams; do
+      line="$line $("$2" "$out/$1/${beam}deg_default" "$method") -> $("$2" "$out/$1/${beam}deg_footprint" "$method") |"
+    done
+    echo "$line"
+  done
+}
 {
   echo "$marker"
   echo "# The footprint study"
@@ -125,32 +133,11 @@ scale() {
     echo
     echo "## $scene"
     echo
-    line="| back end |"
-    rule="| --- |"
-    for beam in $beams; do line="$line $beam deg |"; rule="$rule --- |"; done
-    echo "$line"
-    echo "$rule"
-    for method in robocentric worldcentric posegraph; do
-      line="| $method |"
-      for beam in $beams; do
-        line="$line $(cell "$out/$scene/${beam}deg_default" "$method") -> $(cell "$out/$scene/${beam}deg_footprint" "$method") |"
-      done
-      echo "$line"
-    done
+    table "$scene" cell
     echo
     echo "The consecutive match scale (the mean over the runs; 1 is unbiased), without -> with:"
     echo
-    line="| back end |"
-    for beam in $beams; do line="$line $beam deg |"; done
-    echo "$line"
-    echo "$rule"
-    for method in robocentric worldcentric posegraph; do
-      line="| $method |"
-      for beam in $beams; do
-        line="$line $(scale "$out/$scene/${beam}deg_default" "$method") -> $(scale "$out/$scene/${beam}deg_footprint" "$method") |"
-      done
-      echo "$line"
-    done
+    table "$scene" scale
   done
   echo
   echo "## Made from"

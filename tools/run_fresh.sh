@@ -68,3 +68,18 @@ parse_table_options() {
   fi
   [ -x "$msislab" ] || { echo "$script: no $msislab (build first)" >&2; exit 2; }
 }
+
+# msislab_or_build SCRIPT: the msislab the caller runs, into its variable `msislab`: the one its
+# --msislab named (one line naming SCRIPT, exit 2, when that is not an executable), else the
+# release build's, built first (the packages it needs installed when missing).
+msislab_or_build() {
+  local script="$1"
+  if [ -n "$msislab" ]; then
+    [ -x "$msislab" ] || { echo "$script: --msislab '$msislab' is not an executable" >&2; exit 2; }
+  else
+    tools/install_deps.sh run
+    tools/configure.sh release
+    cmake --build --preset release --target msislab
+    msislab=build/release/tools/msislab
+  fi
+}

@@ -76,6 +76,11 @@ TEST(DvlNoise, RecoversSigmaRateAndSkipsGaps) {
   }
   const DvlNoiseStatistics s = dvl_noise_statistics(dvl);
   EXPECT_NEAR(s.rate_hz, 1.5, 1e-9);
+  // About 19,200 first differences: sigma from their sd has a relative standard error of
+  // sqrt(0.75 / n) = 0.62 % (the differences' lag-1 correlation -1/2), from their MAD 0.87 %
+  // (both measured over 120 simulated series, the sd's as the formula says). The bounds sit at
+  // 3.2, 4.6 and 3.2 standard errors: together they fail a correct stream about 0.3 % of the
+  // time, and a sigma 3 % off fails the sd bound nine times in ten.
   EXPECT_NEAR(s.surge_mps.sigma_sd, 0.1, 0.002);
   EXPECT_NEAR(s.surge_mps.sigma_mad, 0.1, 0.004);
   EXPECT_NEAR(s.sway_mps.sigma_sd, 0.15, 0.003);
@@ -87,7 +92,11 @@ TEST(Dropouts, IndependentLossesAreNotClustered) {
   std::vector<DvlRow> rows;
   for (int i = 0; i < 30000; ++i) rows.push_back({i / 1.5, !loss(rng), std::nullopt});
   const DropoutStatistics s = dropout_statistics(rows, 1.5);
-  EXPECT_NEAR(s.fraction, 0.02, 0.002);
+  // The fraction is binomial, standard error sqrt(0.02 0.98 / 30000) = 0.00081: the bound at
+  // 3.3 of them (two-sided 0.1 %; it was 0.002, 2.5 of them, failing 1.2 % of correct streams).
+  // About 590 bursts of geometric length, mean 1 / 0.98 and sd 0.144: the mean's standard error
+  // 0.0059, the bound at 3.4 of them (0.07 %). A loss probability of 0.024 fails nine times in ten.
+  EXPECT_NEAR(s.fraction, 0.02, 0.0027);
   EXPECT_NEAR(s.mean_burst_rows, 1.0 / 0.98, 0.02);
   ASSERT_EQ(s.dispersion.size(), kDispersionBlocks.size());
   // The index's sampling sd is about sqrt(2 / blocks): 0.02, 0.06, 0.2.
@@ -120,9 +129,15 @@ TEST(HeadingNoise, RecoversSigmaAcrossTheWrap) {
   }
   const HeadingNoiseStatistics s = heading_noise_statistics(heading);
   EXPECT_NEAR(s.rate_hz, 10.0, 1e-6);
+  // About 36,000 second differences: sigma from their sd has a relative standard error of 0.50 %,
+  // from their MAD 0.73 % (measured over 120 simulated series; the sd's formula gives 0.52 %).
+  // The bounds at 4.0 and 4.1 standard errors fail a correct stream less than 0.01 % of the
+  // time; a sigma 3 % off fails the sd bound nine times in ten.
   EXPECT_NEAR(s.noise_deg.sigma_sd, 0.05, 0.001);
   EXPECT_NEAR(s.noise_deg.sigma_mad, 0.05, 0.0015);
-  // 3 deg/s over a 13.8 s revolution: 41.4 deg, across the wraps.
+  // 3 deg/s over a 13.8 s revolution: 41.4 deg, across the wraps. Not a bound on noise: the
+  // median of about 260 revolutions' turns moves by some 0.006 deg standard error; 0.3 deg is a
+  // revolution taken 0.1 s off, or a wrap lost.
   EXPECT_NEAR(s.turn_per_revolution_deg, 41.4, 0.3);
 }
 
@@ -151,17 +166,20 @@ TEST(Compasses, RecoversOffsetAndDeviationCurve) {
   }
   const std::optional<CompassComparison> c = compare_compasses(run.log.heading, rows);
   ASSERT_TRUE(c);
+  // About 4,500 readings with 1 deg white noise. Measured over 40 seed offsets (stride 1000):
+  // the offset's standard deviation 0.022 deg, the deviation amplitude's 0.018 deg, the residual
+  // sd's 0.0073 deg, so the bounds sit at 4.6, 5.5 and 6.8 of them (under 0.001 % together,
+  // were the estimates normal); an offset 0.13 deg off fails nine times in ten.
   EXPECT_NEAR(c->offset_deg, -61.5, 0.1);
   EXPECT_NEAR(c->deviation_amplitude_deg, 5.0, 0.1);
-  EXPECT_NEAR(c->residual_sd_deg, 1.0, 0.05);
-  // About 4,500 readings with 1 deg white noise: the offset's standard error is 0.015 deg, the
-  // residual sd's 0.011 deg (bounds at 6.7 and 4.7 of them). The residual's means over the 15
-  // blocks of 200 s (300 readings each) spread as 1 / sqrt(300) = 0.058 deg, their sample sd
-  // as 0.058 sqrt(chi2(14) / 14): its 0.999 quantile is 0.093 deg, so 0.1. A compass random
-  // walk of 0.005 deg/sqrt(s) spreads them by about 0.005 sqrt(3000 / 6) = 0.11 deg more and is
-  // caught. (Was 0.2, failing 9 of 20 seed offsets: the log's last reading made a block of its
-  // own, which compare_compasses now joins to the block before.)
-  EXPECT_LT(c->block_mean_sd_deg, 0.1);
+  EXPECT_NEAR(c->residual_sd_deg, 1.0, 0.05);  // 6.8 sd
+  // The residual's means over the 15 blocks of 200 s (300 readings each) spread as
+  // 1 / sqrt(300) = 0.058 deg, their sample sd as 0.058 sqrt(chi2(14) / 14): its 0.999 quantile
+  // is 0.093 deg, so the bound 0.1. A compass random walk of 0.005 deg/sqrt(s) spreads them by
+  // about 0.005 sqrt(3000 / 6) = 0.11 deg more and is caught. (Was 0.2, failing 9 of 20 seed
+  // offsets: the log's last reading made a block of its own, which compare_compasses now joins
+  // to the block before.)
+  EXPECT_LT(c->block_mean_sd_deg, 0.1);  // the chi-square 0.999 quantile above
   for (DvlRow& row : rows) row.compass_yaw_rad.reset();
   EXPECT_FALSE(compare_compasses(run.log.heading, rows));
 }

@@ -66,6 +66,9 @@ TEST(MatchValidation, ACorridorMatchKeepsOnlyTheDirectionsTheWallsFix) {
   const ValidatedMatch plain = match_and_validate(reference, current, guess, {}, off);
   ASSERT_EQ(plain.rejection, MatchRejection::kNone);
   const double error_x_m = plain.match.estimate.mean.x() - q_true.x();
+  // Not a statistic: a wrong start 3 m short leaves metres along the axis, a right match
+  // centimetres. Its squared normalised error beyond the chi-square 1 DOF 99 % quantile: the
+  // covariance excludes the truth.
   EXPECT_GT(std::abs(error_x_m), 1.0);
   EXPECT_GT(error_x_m * error_x_m / plain.match.estimate.cov(0, 0), 6.63);
   EXPECT_FALSE(plain.direction_dropped);
@@ -75,13 +78,14 @@ TEST(MatchValidation, ACorridorMatchKeepsOnlyTheDirectionsTheWallsFix) {
   ASSERT_TRUE(checked.direction_dropped);
   ASSERT_EQ(checked.observed.rows(), 2);
   EXPECT_EQ(checked.restarts, 2);  // the walls tell the axis: one direction tested
-  // The rows kept are across the corridor and the heading: nothing along x.
+  // The rows kept are across the corridor and the heading: nothing along x (not a statistic: the
+  // kept rows' component along the axis, 0 for the walls' exact direction).
   EXPECT_LT(checked.observed.col(0).norm(), 0.1);
   // And in those directions the match is right.
   const Eigen::Vector2d e = checked.observed * pose_difference(checked.match.estimate.mean, q_true);
   const Eigen::Matrix2d S =
       checked.observed * checked.match.estimate.cov * checked.observed.transpose();
-  EXPECT_LT(e.dot(S.inverse() * e), 9.21);
+  EXPECT_LT(e.dot(S.inverse() * e), 9.21);  // chi-square 2 DOF, 99 %: fails 1 % of right matches
 }
 
 TEST(MatchValidation, ARichSceneKeepsEveryDirection) {
@@ -99,7 +103,7 @@ TEST(MatchValidation, ARichSceneKeepsEveryDirection) {
     ASSERT_EQ(m.rejection, MatchRejection::kNone) << "trial " << trial;
     EXPECT_FALSE(m.direction_dropped) << "trial " << trial;
     EXPECT_TRUE(m.observed.isApprox(Eigen::Matrix3d::Identity())) << "trial " << trial;
-    EXPECT_GE(m.restarts, 2);
+    EXPECT_GE(m.restarts, 2);  // not a statistic: one rerun either way at least
   }
 }
 
@@ -173,13 +177,16 @@ TEST(MatchValidation, TheInitialGuessTermIsTheSpreadOfSpicFromTheGuess) {
   ASSERT_EQ(plain.rejection, MatchRejection::kNone);
   ASSERT_EQ(m.rejection, MatchRejection::kNone);
   const double error_x_m = m.match.estimate.mean.x() - q_true.x();
-  EXPECT_GT(std::abs(error_x_m), 0.3);  // spIC stays near its start along the axis
+  // Not a statistic: spIC stays near its start, 0.5 m short, along the axis.
+  EXPECT_GT(std::abs(error_x_m), 0.3);
   // Without the term the match claims to know the axis and excludes the truth there; with it,
-  // the axis has about the guess's uncertainty and the truth is inside.
+  // the axis has about the guess's uncertainty and the truth is inside: the squared normalised
+  // error against the chi-square 1 DOF 99 % quantile either way.
   EXPECT_GT(error_x_m * error_x_m / plain.match.estimate.cov(0, 0), 6.63);
   EXPECT_GT(m.match.estimate.cov(0, 0), 0.5 * guess.cov(0, 0));
   EXPECT_LT(error_x_m * error_x_m / m.match.estimate.cov(0, 0), 6.63);
-  // Across the axis the walls bring every rerun back: the match stays sharp there.
+  // Across the axis the walls bring every rerun back: the match stays sharp there (not a
+  // statistic: the walls fix y, where the guess's sd is 0.3 m).
   EXPECT_LT(std::sqrt(m.match.estimate.cov(1, 1)), 0.1);
 }
 
@@ -209,12 +216,17 @@ TEST(MatchValidation, AWrongCorridorMatchDoesNotMoveTheFilterAlongTheAxis) {
     const double across_m = estimate.mean.y() - second_world.y();
     if (validate) {
       EXPECT_EQ(stats.rejections.direction_dropped, 1);
-      EXPECT_NEAR(along_m, -3.0, 0.2);                 // dead reckoning's value, untouched
-      EXPECT_GT(std::sqrt(estimate.cov(0, 0)), 0.95);  // and its uncertainty
-      EXPECT_LT(std::abs(across_m), 0.3);              // the walls fix y
-      EXPECT_LT(along_m * along_m / estimate.cov(0, 0), 11.34);  // consistent
+      // Not a statistic: dead reckoning's value and its 1 m sd, kept along the axis; the walls
+      // fix y, dead reckoning 0.8 m off there.
+      EXPECT_NEAR(along_m, -3.0, 0.2);
+      EXPECT_GT(std::sqrt(estimate.cov(0, 0)), 0.95);
+      EXPECT_LT(std::abs(across_m), 0.3);  // not a statistic: the walls fix y
+      // 11.34, the innovation gate's chi-square 3 DOF 99 %: for this 1-DOF squared normalised
+      // error a 0.08 % false-alarm rate.
+      EXPECT_LT(along_m * along_m / estimate.cov(0, 0), 11.34);
     } else {
-      // Without validation the match shrinks the along-axis variance around the wrong value.
+      // Without validation the match shrinks the along-axis variance around the wrong value:
+      // past that bound.
       EXPECT_GT(along_m * along_m / estimate.cov(0, 0), 11.34);
     }
   }
@@ -267,7 +279,7 @@ TEST(MatchValidation, AClosedBasinIsNotAmbiguousAtAnyScale) {
               << "the bound counted: " << rejected_before << ")\n";
     EXPECT_EQ(rejected, 0) << "scale " << scale;
     if (scale == 1.0) {
-      EXPECT_GE(rejected_before, 5);  // 10: the rule before fails this test
+      EXPECT_GE(rejected_before, 5);  // not a statistic: 10 of 10 with the rule before
     }
   }
 }

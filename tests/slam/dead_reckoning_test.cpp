@@ -105,9 +105,11 @@ TEST(DeadReckoning, TracksExactlyWithoutNoise) {
   for (const TruthState& t : sim.truth) {
     if (t.t_s < dr.trajectory.front().t_s || t.t_s > dr.trajectory.back().t_s) continue;
     const Pose2 est = interpolate_pose(dr.trajectory, t.t_s);
+    // Not a statistic: the simulation's noise is scaled by 0.
     EXPECT_LT((est.translation() - t.pose.translation()).norm(), 0.3) << "t = " << t.t_s;
     // Heading is measured exactly at 10 Hz; the yaw rate is learned within the first seconds.
     if (t.t_s > 10.0) {
+      // Not a statistic: no noise, as above.
       EXPECT_LT(std::abs(normalize_angle(est.yaw() - t.pose.yaw())), 1e-3) << "t = " << t.t_s;
     }
   }
@@ -127,7 +129,7 @@ TEST(DeadReckoning, LeverArmIsCompensated) {
       (interpolate_pose(without.trajectory, sim.truth.back().t_s).translation() -
        truth_end.translation())
           .norm();
-  EXPECT_LT(err_with, 0.3);
+  EXPECT_LT(err_with, 0.3);  // not a statistic: the simulation's noise is scaled by 0
   EXPECT_GT(err_without, 2.0 * err_with);
 }
 
@@ -178,9 +180,14 @@ void expect_consistent_at_checkpoints(const std::vector<double>& anees,
               << " runs " << anees[i];
     if (!other.empty()) std::cout << " (" << other_name << ": " << other[i] << ")";
     std::cout << "\n";
+    // Outside the 50-run chi-square's two-sided 99.98 % bounds, [1.88, 4.46] (150 DOF over 50):
+    // under 0.02 % a checkpoint.
     EXPECT_GT(anees[i], 1.5) << "too pessimistic at t = " << kCheckpoints_s[i];
     EXPECT_LT(anees[i], 5.0) << "overconfident at t = " << kCheckpoints_s[i];
   }
+  // Each checkpoint inside the 95 % bounds with probability 0.95: were the 10 independent, 3 or
+  // more outside would happen 1.2 % of the time (binomial). Along one run they are correlated,
+  // which the seed-offset runs measure (docs/reliability.md).
   EXPECT_GE(inside, 8) << "average NEES inside the 95% bounds at fewer than 8 of 10 checkpoints";
 }
 
@@ -205,6 +212,8 @@ TEST(DeadReckoning, ConsistentWithAWalkingHeadingBias) {
   white.heading_bias_walk_deg_per_sqrt_s = 0.0;
   const auto anees = checkpoint_anees(c, testing::seed(300), {c, white}, exact_dvl);
   expect_consistent_at_checkpoints(anees[0], anees[1], "the walk read as white noise");
+  // The change caught: the walk left out takes the last checkpoint's 50-run ANEES past 20, over
+  // four times the chi-square's 99.99 % bound (4.46).
   EXPECT_GT(anees[1].back(), 20.0);
 }
 
@@ -254,6 +263,8 @@ TEST(DeadReckoning, ConsistentWithAnUncertainDvlScale) {
   const auto anees = checkpoint_anees(c, testing::seed(500), {c, exact},
                                       [&] { return 1.0 + c.dvl_scale_sigma * n01(scale_rng); });
   expect_consistent_at_checkpoints(anees[0], anees[1], "the scale taken as exact");
+  // The change caught: the scale taken as exact puts the last checkpoint's 50-run ANEES past 5,
+  // beyond the chi-square's 99.99 % bound (4.46).
   EXPECT_GT(anees[1].back(), 5.0);
 }
 
@@ -342,7 +353,7 @@ TEST(DeadReckoning, PlainIntegrationFollowsTheVelocities) {
   std::vector<StampedPose> truth;
   for (const TruthState& t : sim.truth) truth.push_back({t.t_s, {t.pose}});
   // Velocities held for 0.67 s along an arc turning 0.02 rad/s: a chord error of millimetres per
-  // step, so well under 0.5 m after 60 m.
+  // step, so well under 0.5 m after 60 m (not a statistic: the noise is scaled by 0).
   const Pose2 truth_end = interpolate_pose(truth, trajectory.back().t_s);
   EXPECT_LT((trajectory.back().pose.mean.translation() - truth_end.translation()).norm(), 0.5);
 }

@@ -93,7 +93,7 @@ TEST(Dropouts, IndependentLossesAreNotClustered) {
   for (int i = 0; i < 30000; ++i) rows.push_back({i / 1.5, !loss(rng), std::nullopt});
   const DropoutStatistics s = dropout_statistics(rows, 1.5);
   // The fraction is binomial, standard error sqrt(0.02 0.98 / 30000) = 0.00081: the bound at
-  // 3.3 of them (two-sided 0.1 %; it was 0.002, 2.5 of them, failing 1.2 % of correct streams).
+  // 3.3 of them (two-sided 0.08 %; it was 0.002, 2.5 of them, failing 1.3 % of correct streams).
   // About 590 bursts of geometric length, mean 1 / 0.98 and sd 0.144: the mean's standard error
   // 0.0059, the bound at 3.4 of them (0.07 %). A loss probability of 0.024 fails nine times in ten.
   EXPECT_NEAR(s.fraction, 0.02, 0.0027);

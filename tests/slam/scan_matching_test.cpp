@@ -42,6 +42,10 @@ TEST(ScanMatching, RecoversAKnownPoseFromPerturbedGuesses) {
     ASSERT_TRUE(r.valid) << "trial " << t;
     EXPECT_TRUE(r.converged) << "trial " << t;
     const Eigen::Vector3d e = pose_difference(r.estimate.mean, q_true);
+    // Over 400 trials (10 seed offsets, stride 1000): the translation error's rms 0.013 m (about
+    // 0.009 m an axis, as the match's own sd), at most 0.031 m; the yaw's rms 0.0008 rad, at most
+    // 0.0025. The bounds sit at 5.4 and 6 standard deviations: a Rayleigh tail of 5e-7 a trial,
+    // 2e-5 for the 40; a match 5 cm or 0.3 deg off is caught.
     EXPECT_LT(e.head<2>().norm(), 0.05) << "trial " << t;
     EXPECT_LT(std::abs(e(2)), 0.005) << "trial " << t;
     within_3_sigma += e.dot(r.estimate.cov.inverse() * e) < 14.16;  // chi2(3) 99.7%
@@ -123,6 +127,7 @@ TEST(ScanMatching, PointToLineCovarianceStaysSmallInARoom) {
   for (int i = 0; i < 3; ++i) {
     EXPECT_LT(c.point_to_line(i, i), 3.0 * c.point_to_point(i, i)) << i;
   }
+  // Not a statistic: the standard deviations the matcher reports, not errors drawn.
   EXPECT_LT(std::sqrt(c.point_to_line(0, 0)), 0.05);
   EXPECT_LT(std::sqrt(c.point_to_line(1, 1)), 0.05);
 }
@@ -172,7 +177,9 @@ TEST(ScanMatching, ReciprocalAssociationRemovesTheShortMotionBiasInACanal) {
   const double reciprocal_m = mean_along_canal_error_m(true);
   std::cout << "mean error along the canal: one-way " << one_way_m << " m, reciprocal "
             << reciprocal_m << " m\n";
-  // Measured -0.65 m and -0.0015 m.
+  // Over 20 seed offsets (stride 1000): one-way -0.58 m (sd 0.059 m), reciprocal -0.0009 m (sd
+  // 0.0019 m). The bounds sit 4.7 and 4.8 standard deviations away (under 0.001 % each); a
+  // reciprocal bias of 0.013 m fails nine times in ten.
   EXPECT_LT(one_way_m, -0.3);
   EXPECT_LT(std::abs(reciprocal_m), 0.01);
 }
@@ -256,7 +263,10 @@ TEST(ScanMatching, CrossCovarianceOfTwoMatchesSharingTheCurrentScanMatchesMonteC
             << rho_empirical << "\nmatch a's own covariance, spIC\n"
             << own_a << "\nempirical\n"
             << cov.topLeftCorner<3, 3>() << "\n";
-  EXPECT_GT(rho_empirical.diagonal().minCoeff(), 0.8);  // the shared error dominates here
+  // The shared error dominates here: the sample's same-axis correlations 0.95-0.98, their sd over
+  // seed offsets up to 0.010 (above), so 0.8 lies over 14 of them below.
+  EXPECT_GT(rho_empirical.diagonal().minCoeff(), 0.8);
+  // The bounds above: the model's error plus 3.3 spreads, two-sided 0.001 per entry.
   EXPECT_LT((rho_predicted - rho_empirical).diagonal().cwiseAbs().maxCoeff(), 0.065);
   EXPECT_LT((rho_predicted - rho_empirical).cwiseAbs().maxCoeff(), 0.25);
 }

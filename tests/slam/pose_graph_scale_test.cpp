@@ -92,10 +92,17 @@ TEST(PoseGraphScale, WindowedGraphRecoversTheDvlScaleOfMotions3PercentLong) {
   expect_recovered(8, 10, long_dvl, with(false, true), {{"dvl_scale", 1.03, 0.015}}, 8);
 }
 
-// Ten loops whose scans are seen 0.1 s late (0.4 m along the motion, 9 deg in the turns): the
-// filters' statistic and rules, the estimates consistent, sd below 0.05 s, better in at least 8.
-// (Was: five loops, within two sd of 0.1 s in at least 4.)
-Loop late_clock(unsigned seed) { return clock_offset_loop(seed, 0.1); }
+// The filters' clock-offset loops (tests/slam/calibration_states_test.cpp,
+// RecoverTheSonarClockOffset): St. Pere's timing, 13.8 s between scans, the sonar's clock 0.66 s
+// behind, the scans carrying the dead reckoning's velocity as a run's do. Ten loops: the filters'
+// statistic and rules, the estimates consistent, sd below 0.1 s, better in at least 8. (Was: 1 s
+// between scans, 0.1 s late, the truth's velocity.) Over 20 seed offsets as the filters: normalised
+// errors of mean -0.25 and sd 1.12 (whole graph) and -0.24 and 1.09 (window), the whole graph's
+// mean square past the 99.9 % bound once (offset 3000: 3.20, as the filters), the state improving
+// 399 of the 400 loops.
+Loop late_clock(unsigned seed) {
+  return clock_offset_loop(seed, 0.66, ScanVelocity::kDeadReckoning, 13.8);
+}
 
 TrajectorySlamConfig with_clock() {
   TrajectorySlamConfig config;
@@ -104,11 +111,11 @@ TrajectorySlamConfig with_clock() {
 }
 
 TEST(PoseGraphScale, WholeGraphRecoversTheSonarClockOffset) {
-  expect_recovered(0, 10, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 8);
+  expect_recovered(0, 10, late_clock, with_clock(), {{"clock_offset_s", 0.66, 0.1}}, 8);
 }
 
 TEST(PoseGraphScale, WindowedGraphRecoversTheSonarClockOffset) {
-  expect_recovered(8, 10, late_clock, with_clock(), {{"clock_offset_s", 0.1, 0.05}}, 8);
+  expect_recovered(8, 10, late_clock, with_clock(), {{"clock_offset_s", 0.66, 0.1}}, 8);
 }
 
 // The same code on a short stretch of one loop, whole graph and windowed, with the heading bias,

@@ -105,20 +105,34 @@ inline Loop dvl_scaled(Loop loop, double k) {
   return loop;
 }
 
-/// The loop's scans as a sonar whose clock is tau_s behind shows them: scan k sees the basin from
-/// truth_k (+) tau u_k, u_k its velocity (the last motion over its second; points and noise as
-/// make_loop's), and carries u_k.
-inline Loop clock_offset_loop(unsigned seed, double tau_s) {
+/// Which velocity a clock-offset loop's scans carry.
+enum class ScanVelocity {
+  kTruth,          ///< the true one, known exactly
+  kDeadReckoning,  ///< the dead reckoning's: the scan's own noisy motion over its time
+};
+
+/// The loop's scans, seconds_per_scan apart, as a sonar whose clock is tau_s behind shows them:
+/// scan k sees the basin from truth_k (+) tau u_k, u_k its velocity (the last motion over its
+/// time, the first scan the next one's; points and noise as make_loop's), and carries u_k or the
+/// dead reckoning's estimate of it.
+inline Loop clock_offset_loop(unsigned seed, double tau_s,
+                              ScanVelocity carried = ScanVelocity::kTruth,
+                              double seconds_per_scan = 1.0) {
   Loop loop = make_loop(seed, false);
   std::mt19937 rng(seed + 2000);
   std::normal_distribution<double> n01(0.0, 1.0);
   const std::vector<Eigen::Vector2d> world = basin();
   for (std::size_t k = 0; k < loop.scans.size(); ++k) {
     Scan& scan = loop.scans[k];
+    scan.t_s = seconds_per_scan * static_cast<double>(k);
     const std::size_t from = k == 0 ? 0 : k - 1;
-    scan.velocity_vehicle = loop.truth[from].between(loop.truth[from + 1]).vector();  // per 1 s
-    const Pose2 seen_from =
-        loop.truth[k].compose(Pose2(Eigen::Vector3d(tau_s * scan.velocity_vehicle)));
+    const Eigen::Vector3d u_true =
+        loop.truth[from].between(loop.truth[from + 1]).vector() / seconds_per_scan;
+    scan.velocity_vehicle =
+        carried == ScanVelocity::kTruth
+            ? u_true
+            : Eigen::Vector3d(loop.scans[from + 1].motion.mean.vector() / seconds_per_scan);
+    const Pose2 seen_from = loop.truth[k].compose(Pose2(Eigen::Vector3d(tau_s * u_true)));
     scan.points.clear();
     for (const Eigen::Vector2d& p_world : world) {
       const Eigen::Vector2d p = seen_from.inverse().transform(p_world);

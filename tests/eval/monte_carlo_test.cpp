@@ -52,12 +52,17 @@ TEST(MonteCarlo, ConsistentSamplesAreInsideAboutNinetyFivePercentOfTheTime) {
       for (int d = 0; d < 3; ++d) v += std::pow(normal(rng), 2);
     }
   }
+  // Statistic: the fraction of 400 independent steps whose ANEES (chi-square(150) / 50) lies in
+  // its two-sided 95 % bounds, binomial(400, 0.95) / 400, sd 0.011. Within 0.03: false alarm
+  // 0.44 % (exact binomial); a step's probability of 0.90 is caught 90 % of the time, 0.92 45 %.
   const double fraction = *fraction_inside(average_nees_over_runs(runs));
   EXPECT_NEAR(fraction, 0.95, 0.03);
-  // Overconfident by a factor 2: almost never inside.
   for (auto& run : runs) {
     for (double& v : run) v *= 2.0;
   }
+  // Overconfident by a factor 2: almost never inside. A step inside needs 2 chi-square(150) / 50
+  // below 3.72, chi-square(150) below 93, 3.8 sd under its mean by Wilson-Hilferty (probability
+  // about 1e-4); 20 of 400 steps inside (a fraction of 0.05) then has probability far below 1e-9.
   EXPECT_LT(*fraction_inside(average_nees_over_runs(runs)), 0.05);
 }
 

@@ -106,12 +106,19 @@ TEST(DvlModel, DropoutsFollowTheTwoStateChain) {
   for (const DvlSample& s : samples) lost.push_back(s.bottom_lock ? 0 : 1);
   const double n = static_cast<double>(lost.size());  // 150,000 samples, ~5000 degraded periods
   const double rate = 0.9 * 0.01 + 0.1 * 0.5;
-  EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, rate, 0.1 * rate);
+  // Statistic: the fraction lost, whose sd is the chain's, sqrt((p (1 - p) + 2 sum_m Cov_m) / n)
+  // = 0.0028 with the covariances below (0.0029 measured over 40 seed offsets); 0.0093 is 3.3 sd,
+  // two-sided 0.1 %, and catches a rate 20 % off (0.012) about 80 % of the time. Was 0.1 x rate
+  // (0.0059, 2.1 sd: 3.7 % of correct streams failed).
+  EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, rate, 0.0093);
   // Cov(lost_k, lost_k+m) = (p_d - p_c)^2 f (1 - f) lambda^m with lambda = 1 - P(enter) -
   // P(leave) per sample: a correlation of 0.39 lambda^m here, 0 for independent dropouts.
   const double dt = 1.0 / dvl.rate_hz;
   const double lambda = std::exp(-dt / 20.0) + std::exp(-dt / 180.0) - 1.0;
   const double scale = 0.49 * 0.49 * 0.09 / (rate * (1.0 - rate));
+  // Each lag's sample autocorrelation: sd 0.0063, 0.0072 and 0.0082 at lags 1, 10 and 30 over 40
+  // seed offsets (mean -0.002, the estimator's bias), so 0.03 is 3.7 sd or more (0.02 % each);
+  // independent dropouts (0 where the chain gives 0.37, 0.27 and 0.12) fail it at every lag.
   for (const std::size_t m : {1u, 10u, 30u}) {
     EXPECT_NEAR(autocorrelation(lost, m), scale * std::pow(lambda, m), 0.03) << "lag " << m;
   }
@@ -120,6 +127,9 @@ TEST(DvlModel, DropoutsFollowTheTwoStateChain) {
   for (const DvlSample& s : simulate_dvl(circling(100000.0), dvl, scene, 1.5, testing::seed(8))) {
     lost.push_back(s.bottom_lock ? 0 : 1);
   }
+  // Independent losses: the fraction is binomial, sd sqrt(0.01 x 0.99 / n) = 0.00026 (0.00025
+  // measured), and the lag-1 autocorrelation about 1 / sqrt(n) = 0.0026 (0.0024): both bounds
+  // 3.9 sd (0.01 %); the chain above (0.37 at lag 1) fails the second.
   EXPECT_NEAR(static_cast<double>(std::count(lost.begin(), lost.end(), 1)) / n, 0.01, 0.001);
   EXPECT_NEAR(autocorrelation(lost, 1), 0.0, 0.01);
 }
@@ -178,7 +188,10 @@ TEST(MruModel, WhiteNoiseAndBiasRandomWalk) {
     };
     sum_sq += std::pow(error_deg(i) - error_deg(i - 1000), 2);
   }
-  EXPECT_NEAR(std::sqrt(sum_sq / count), 0.01 * std::sqrt(100.0), 0.015);
+  // Statistic: the rms of 200 increments of sd 0.1 deg, whose sd is 0.1 / sqrt(2 x 200) = 0.005
+  // (0.0052 over 40 seed offsets); 0.017 is 3.4 sd, two-sided 0.07 %, and catches a walk 25 %
+  // off (0.125 deg) about 90 % of the time. Was 0.015 (3 sd, 0.27 %).
+  EXPECT_NEAR(std::sqrt(sum_sq / count), 0.01 * std::sqrt(100.0), 0.017);
 }
 
 // A one-cycle compass deviation: with no noise or bias, the reading's error is exactly
@@ -280,6 +293,8 @@ TEST(GpsModel, TheBuoyStaysWithinTheTetherInTurns) {
     EXPECT_LE(d, 5.0 + 1e-9);
     if (fix.t_s > 100.0) min_m = std::min(min_m, d);
   }
+  // Not a statistic: the noise is off, so the buoy's distance is the tether's geometry; a buoy
+  // that slackened in the turns would come closer than its 5 m.
   EXPECT_GT(min_m, 4.99);  // taut all the way round
   EXPECT_EQ(drag_buoy({1, 0}, {0, 0}, 2.0), Eigen::Vector2d(1, 0));
   EXPECT_EQ(drag_buoy({4, 0}, {0, 0}, 2.0), Eigen::Vector2d(2, 0));

@@ -62,17 +62,24 @@ TEST_P(BothMethods, ClosesTheLoopBetterThanOdometry) {
               << " matches accepted\n";
     EXPECT_GT(slam->totals().accepted, static_cast<int>(loop.scans.size()));
     EXPECT_EQ(slam->totals().skipped, 0);
+    // The loop's final error: under 0.29 m in 498 of 500 loops over 100 seed offsets (each
+    // filter), the odometry's 0.013-4.0 m; two loops ended 0.39 and 0.49 m off in both filters
+    // (offsets 17000 and 47000, 94 and 98 matches accepted), so this bound fails about 2 % of
+    // streams, above the suite's 1 % per test: not explained yet.
     EXPECT_LT(slam_m, 0.3);
     better += slam_m < odometry_m;
     const Eigen::Vector3d e = pose_difference(poses.back().mean, loop.truth.back());
     nees_sum += e.dot(poses.back().cov.inverse() * e);
   }
+  // SLAM ended nearer than the odometry in all 1000 loops over 100 seed offsets (a loop where it
+  // does not: under 0.3 %, one-sided 95 %), so two of five not improved has probability under
+  // 0.01 %.
   EXPECT_GE(better, 4);
   // The final pose's covariance covers its error: the NEES averaged over the 5 runs stays under
-  // the two-sided 99% upper bound for 5 runs. It does not always: over 20 seed offsets
-  // (tools/seed_offsets.sh) the robocentric filter's averaged 4.66, not 3, and 2 of the 20 went
-  // past the bound (6.61 against 6.56): the filter is overconfident on this loop, its matches'
-  // covariance understating their spread (docs/reliability.md). That is the filter's to fix, not
+  // the two-sided 99% upper bound for 5 runs. It does not always: over 100 seed offsets the two
+  // filters' averaged 4.4 (median), not 3, and 26 of the 200 went past the bound (13 %, up to
+  // 10.6): the filter is overconfident on this loop, its matches' covariance understating their
+  // spread and scans reused across steps (docs/reliability.md). That is the filter's to fix, not
   // this bound's.
   const double anees = nees_sum / 5.0;
   std::cout << "final-pose NEES averaged over 5 runs: " << anees << " (99% upper bound "
@@ -96,13 +103,17 @@ TEST_P(BothMethods, BadAndEmptyScansAreSkippedAndCounted) {
       EXPECT_EQ(stats.matched, 0);
     }
   }
+  // Not a statistic: the loop is built with every seventh scan blind (6 of 40) and two spoilt
+  // here, 8 skips by construction; fewer would mean the test no longer skips what it says.
   EXPECT_GT(expected_skips, 4);
   EXPECT_EQ(slam->totals().skipped, expected_skips);
   EXPECT_EQ(slam->scans(), loop.scans.size());
   const GaussianPose2 last = slam->scan_pose_world(slam->scans() - 1);
   EXPECT_TRUE(last.mean.vector().allFinite());
   EXPECT_TRUE(last.cov.allFinite());
-  // The lost motion is bridged by the loop closures that follow it.
+  // The lost motion is bridged by the loop closures that follow it. Not a statistic: the final
+  // error is 0.003 m in both filters (this fixed loop); a lost motion left unbridged (its zero
+  // mean kept) leaves the rest of the loop about the 4 m step off, which 0.5 m catches.
   EXPECT_LT(final_error_m({last.mean}, loop.truth), 0.5);
 }
 
@@ -117,6 +128,8 @@ TEST_P(BothMethods, LoopWindowUpdateEqualsTheWholeStateUpdate) {
     EXPECT_EQ(w.accepted, f.accepted);
     smaller_windows += w.accepted > 0 && w.window_elements < f.window_elements;
   }
+  // Not a statistic: the loop's shape decides which steps' windows are smaller than the state
+  // (39 of 40 on this loop, both filters); a window that always took the whole state would give 0.
   EXPECT_GT(smaller_windows, 5);
   EXPECT_LT((window_slam->covariance() - whole_slam->covariance()).cwiseAbs().maxCoeff(), 1e-12);
   for (std::size_t i = 0; i < loop.scans.size(); ++i) {
@@ -144,6 +157,10 @@ TEST_P(BothMethods, MeasuringTheLinearisationChangesNoEstimate) {
   EXPECT_EQ(pose.count, static_cast<int>(loop.scans.size()));
   EXPECT_EQ(probe.tally(Linearisation::kInversion).count,
             GetParam() == "robocentric" ? static_cast<int>(loop.scans.size()) : 0);
+  // Not statistics on a sample: the probe's mean epsilon here is 2e-7 (observations) and 1e-6
+  // (poses) in both filters, four orders under 0.01, and 0.34-0.40 for the poses at ten times the
+  // noise (below): the bounds catch a probe that measures something else than the filter's own
+  // linearisation error, not a change of this loop's draws.
   EXPECT_LT(*observation.mean(), 0.01);
   EXPECT_LT(*pose.mean(), 0.01);
 
@@ -455,6 +472,8 @@ TEST(TrajectorySlam, RoboCentricObservationJacobianDuringAndAfterTheStep) {
   EXPECT_LT(pose_difference(slam.relative_pose(1, 8, nullptr), c.inverse().compose(slam.state()[8]))
                 .norm(),
             1e-12);
+  // Not a statistic: the filter's error here is centimetres; a chain composed in the wrong order
+  // or left uninverted lands metres away (the seven motions cover 28 m and turn 90 deg).
   EXPECT_LT((slam.relative_pose(1, 8, nullptr).translation() -
              loop.truth[1].between(loop.truth[8]).translation())
                 .norm(),

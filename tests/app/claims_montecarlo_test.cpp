@@ -157,7 +157,7 @@ TEST(ClaimsMonteCarlo, CountRuleHasItsStatedPower) {
     if (wins == 42) {
       EXPECT_GE(rate, 0.99);
     } else {
-      EXPECT_LE(rate, 0.10);
+      EXPECT_LE(rate, 0.10);  // 14 standard errors above 0.074
     }
   }
 }

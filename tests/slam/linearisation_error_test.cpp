@@ -65,14 +65,18 @@ double inversion_epsilon(double heading_sigma_rad) {
 
 TEST(LinearisationError, InversionGrowsWithTheHeadingUncertainty) {
   // The inversion's second-order term is about |t| sigma_yaw^2 / 2 against a first-order spread
-  // of |t| sigma_yaw: epsilon grows as sigma_yaw^2 while the heading dominates, small at a
-  // degree, of order 1 at a radian.
+  // of |t| sigma_yaw: epsilon is small at a degree and grows with the heading's uncertainty.
+  // Measured over 100 seed offsets (20,000 samples each): 0.00072 (sd 0.000014) at a degree,
+  // 1.17-1.31 at ten degrees, 906-995 at a radian, so it grows faster than the sigma_yaw^2 that
+  // argument gives. The bounds: 1e-3 is 20 sd above the first; the growth to ten degrees (1600
+  // times at least) and the size at a radian are far past 20 times and 0.1, which an inversion
+  // that came out linear (epsilon 0) fails.
   const double one_degree = inversion_epsilon(M_PI / 180.0);
   const double ten_degrees = inversion_epsilon(10.0 * M_PI / 180.0);
   const double one_radian = inversion_epsilon(1.0);
-  EXPECT_LT(one_degree, 1e-3);
+  EXPECT_LT(one_degree, 1e-3);  // 20 sd
   EXPECT_GT(ten_degrees, 20.0 * one_degree);
-  EXPECT_GT(one_radian, 0.1);
+  EXPECT_GT(one_radian, 0.1);  // not a statistic: 906 at least
 }
 
 }  // namespace

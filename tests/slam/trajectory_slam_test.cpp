@@ -64,8 +64,13 @@ TEST_P(BothMethods, ClosesTheLoopBetterThanOdometry) {
     EXPECT_EQ(slam->totals().skipped, 0);
     // The loop's final error: under 0.29 m in 498 of 500 loops over 100 seed offsets (each
     // filter), the odometry's 0.013-4.0 m; two loops ended 0.39 and 0.49 m off in both filters
-    // (offsets 17000 and 47000, 94 and 98 matches accepted), so this bound fails about 2 % of
-    // streams, above the suite's 1 % per test: not explained yet.
+    // (offsets 17000 and 47000), so this bound fails about 2 % of streams, above the suite's 1 %
+    // per test. The cause, traced at offset 17000: scan 36's motion drew an error in the 99 %
+    // innovation gate's tail (each match's NIS 16.8 against 11.34), all three of its candidates
+    // were first-lap scans (nearer than scan 35), so every match was gated out and the pose kept
+    // 0.32 m of error; the later loop closures then stayed past the gate (NIS 11.7-14.6) while
+    // only the consecutive ones passed. The gate rejects a correct match 1 % of the time by design;
+    // what fails here is that nothing brings the state back inside it.
     EXPECT_LT(slam_m, 0.3);
     better += slam_m < odometry_m;
     const Eigen::Vector3d e = pose_difference(poses.back().mean, loop.truth.back());

@@ -21,7 +21,7 @@
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
 #include "io/text_lines.hpp"
-#include "settings/config_yaml.hpp"
+#include "settings/external_config.hpp"
 #include "sim/scene.hpp"
 #include "sim/simulator.hpp"
 
@@ -109,7 +109,12 @@ ExternalFiles external_files(const RunContext& ctx, int run, const sim::Scenario
     dataset::write_simulated_dataset({files.dataset_dir, "dataset", "montecarlo", {}, false},
                                      scenario, result, ctx.scenario_text);
   }
-  if (ctx.manifest.has_config) {
+  if (ctx.manifest.has_config && ctx.config.navigation_noise_from_dataset) {
+    // The directory's config.yaml with the noise the runs took from the scenario (its sensors).
+    files.config_path = io::absolute_path(scratch_file(ctx.dir, run, ".config.yaml"));
+    settings::write_resolved_config(files.config_path, (fs::path(ctx.dir) / "config.yaml").string(),
+                                    ctx.config.dead_reckoning);
+  } else if (ctx.manifest.has_config) {
     files.config_path = io::absolute_path((fs::path(ctx.dir) / "config.yaml").string());
   } else {
     files.config_path = io::absolute_path(scratch_file(ctx.dir, run, ".config.yaml"));

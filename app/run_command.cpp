@@ -16,7 +16,7 @@
 #include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/output_guard.hpp"
-#include "settings/config_yaml.hpp"
+#include "settings/external_config.hpp"
 
 namespace msislab::app {
 
@@ -57,10 +57,16 @@ MethodResult run_external(const Method& method, const RunOptions& options,
   const ExternalWork work(options.out_dir);
   ExternalSetup setup;
   setup.dataset_dir = options.dataset_dir;
+  // {config}: the --config given, or the dead reckoning the run resolved (without one, or with
+  // the dataset's navigation noise taken in).
   setup.config_path = options.config_path;
   if (setup.config_path.empty()) {
     setup.config_path = work.path("config.yaml").string();
     settings::write_dead_reckoning_config(setup.config_path, in.config.dead_reckoning);
+  } else if (in.config.navigation_noise_from_dataset) {
+    setup.config_path = work.path("config.yaml").string();
+    settings::write_resolved_config(setup.config_path, options.config_path,
+                                    in.config.dead_reckoning);
   }
   setup.work_dir = work.path("run").string();
   return run_method(method, in, nullptr, &setup);

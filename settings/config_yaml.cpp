@@ -330,21 +330,4 @@ SlamConfig read_slam_config_text(const std::string& text, const std::string& nam
   return slam_config_of(io::load_yaml_text(text, name), name, SlamConfig{});
 }
 
-void write_dead_reckoning_config(const std::string& path, const DeadReckoningConfig& config) {
-  io::write_file_atomically(path, [&](std::ostream& out) {
-    out << "# msislab SLAM config: the dead-reckoning noise (every other key at its default)\n"
-        << "dead_reckoning:\n"
-        << "  dvl_sigma_mps: " << io::format_number(config.dvl_sigma_mps) << "\n"
-        << "  heading_sigma_deg: " << io::format_number(config.heading_sigma_rad / kDegToRad)
-        << "\n"
-        << "  accel_sigma_mps2: " << io::format_number(config.accel_sigma_mps2) << "\n"
-        << "  yaw_accel_sigma_radps2: " << io::format_number(config.yaw_accel_sigma_radps2) << "\n"
-        << "  initial_velocity_sigma_mps: " << io::format_number(config.initial_velocity_sigma_mps)
-        << "\n"
-        << "  initial_yaw_rate_sigma_radps: "
-        << io::format_number(config.initial_yaw_rate_sigma_radps) << "\n"
-        << "  dvl_gate_chi2: " << io::format_number(config.dvl_gate_chi2) << "\n";
-  });
-}
-
 }  // namespace msislab::settings

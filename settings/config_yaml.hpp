@@ -45,9 +45,4 @@ DatasetConfig slam_config_for_dataset(const std::string& config_path,
                                       const std::optional<NavigationNoise>& noise,
                                       const std::string& noise_source);
 
-/// Writes the config's dead_reckoning section (every key; the other sections are left at their
-/// defaults by their absence), atomically: what an external method is given as {config} when no
-/// --config was (docs/formats.md). read_slam_config() reads the same dead-reckoning values back.
-void write_dead_reckoning_config(const std::string& path, const DeadReckoningConfig& config);
-
 }  // namespace msislab::settings

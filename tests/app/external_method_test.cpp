@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -21,6 +22,7 @@
 #include "cli_runner.hpp"
 #include "io/json.hpp"
 #include "results/sweep_files.hpp"
+#include "settings/config_yaml.hpp"
 #include "stats/chi_square.hpp"
 #include "test_support.hpp"
 
@@ -156,6 +158,53 @@ TEST(ExternalMethod, ARelativeOutWorksInMonteCarlo) {
                 tmp);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_json(tmp.path() / "mc_ext" / "summary.json").at("mydr").at("runs").get<int>(), 1);
+}
+
+TEST(ExternalMethod, ItsConfigHoldsTheNoiseTheRunTookFromTheDataset) {
+  // A --config saying `navigation_noise: dataset`: the program's {config} holds the noise the run
+  // took from the dataset's navigation_noise.yaml (in a Monte Carlo, the scenario's), its own keys
+  // kept, and says `navigation_noise: config`; not the bare key the program cannot resolve. The
+  // program keeps a copy of what it was given and hands back the truth as its trajectory.
+  const TempDir tmp;
+  write_text(tmp.file("sees.sh"),
+             "cp \"$3\" \"$4\"\ncp \"$2/truth/trajectory.tum\" \"$1/trajectory.tum\"\n");
+  const std::string seen = tmp.file("seen.yaml");
+  const std::string methods = write_text(
+      tmp.file("sees.yaml"),
+      "methods:\n  - name: sees\n    command: [sh, '{methods_dir}/sees.sh', '{out}', '{dataset}', "
+      "'{config}', '" +
+          seen + "']\n    time_limit_s: 30\n");
+  const std::string config =
+      write_text(tmp.file("config.yaml"),
+                 "navigation_noise: dataset\ndead_reckoning:\n  accel_sigma_mps2: 0.3\n");
+  const NavigationNoise noise =
+      settings::read_navigation_noise((fs::path(dataset()) / "navigation_noise.yaml").string());
+  const auto expect_resolved = [&](const std::string& where) {
+    SCOPED_TRACE(where);
+    const std::string text = read_text(seen);
+    EXPECT_NE(text.find("navigation_noise: config"), std::string::npos) << text;
+    const SlamConfig given = settings::read_slam_config(seen);
+    EXPECT_FALSE(given.navigation_noise_from_dataset);
+    EXPECT_DOUBLE_EQ(given.dead_reckoning.dvl_sigma_mps, noise.dvl_sigma_mps);
+    EXPECT_DOUBLE_EQ(given.dead_reckoning.heading_sigma_rad, noise.heading_sigma_deg * M_PI / 180);
+    EXPECT_DOUBLE_EQ(given.dead_reckoning.heading_bias_walk_deg_per_sqrt_s,
+                     noise.heading_bias_walk_deg_per_sqrt_s);
+    EXPECT_DOUBLE_EQ(given.dead_reckoning.accel_sigma_mps2, 0.3);  // the file's own
+    fs::remove(seen);
+  };
+  const CliResult run = run_msislab("run " + shell_quote(dataset()) + " --method sees --out " +
+                                        shell_quote(tmp.file("run")) + " --methods-file " +
+                                        shell_quote(methods) + " --config " + shell_quote(config),
+                                    tmp);
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  expect_resolved("run");
+  const CliResult mc = run_msislab("montecarlo " + shell_quote(kScenario) +
+                                       " --runs 1 --methods sees --no-plot --out " +
+                                       shell_quote(tmp.file("mc")) + " --methods-file " +
+                                       shell_quote(methods) + " --config " + shell_quote(config),
+                                   tmp);
+  ASSERT_EQ(mc.exit_code, 0) << mc.err;
+  expect_resolved("montecarlo");
 }
 
 TEST(ExternalMethod, ExampleInASweepRunsOnEachCellsOwnData) {

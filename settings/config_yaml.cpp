@@ -3,11 +3,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 
 #include "geometry/angles.hpp"
-#include "io/atomic_file.hpp"
 #include "io/input_error.hpp"
 #include "io/text_lines.hpp"
 #include "settings/config_fields.hpp"

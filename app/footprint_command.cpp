@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -19,6 +20,7 @@
 #include "io/text_lines.hpp"
 #include "settings/config_yaml.hpp"
 #include "settings/footprint_yaml.hpp"
+#include "settings/scenario_yaml.hpp"
 #include "slam/scan_slam_pipeline.hpp"
 
 namespace msislab::app {
@@ -55,9 +57,11 @@ FootprintGrid grid_of(const FootprintOptions& o) {
   return grid;
 }
 
-/// The samples of one dataset: its scans built with the base config.
+/// The samples of one dataset: its scans built with the base config; its readings' bearing errors
+/// appended to `bearings`.
 std::vector<FootprintSample> dataset_samples(const std::string& dir, const std::string& config,
-                                             const LineNormalConfig& line, std::size_t& readings) {
+                                             const LineNormalConfig& line, std::size_t& readings,
+                                             std::vector<double>& bearings) {
   const dataset::RunInputs in = dataset::load_run_inputs(dir, config);
   if (!in.files.truth_beams) {
     io::fail_file(dir, "no truth/beams.csv (footprint needs simulated datasets)");
@@ -70,9 +74,48 @@ std::vector<FootprintSample> dataset_samples(const std::string& dir, const std::
   for (const PlacedScan& s : scans) readings += s.scan.points.size();
   std::vector<AxisTruth> beams;
   for (const io::BeamTruthRow& row : io::read_beam_truth(*in.files.truth_beams)) {
-    beams.push_back({row.t_s, row.first_hit_range_m});
+    beams.push_back(
+        {row.t_s, row.first_hit_range_m, row.strongest_range_m, row.strongest_bearing_offset_rad});
   }
+  const std::vector<double> b = bearing_offsets_rad(scans, beams);
+  bearings.insert(bearings.end(), b.begin(), b.end());
   return footprint_samples(scans, beams, line);
+}
+
+/// The horizontal beamwidth of the scenario a dataset was simulated from (its scenario.yaml), deg;
+/// NaN without one.
+double dataset_beamwidth_deg(const std::string& dir) {
+  const std::string path = (std::filesystem::path(dir) / "scenario.yaml").string();
+  if (!std::filesystem::exists(path)) return std::nan("");
+  return settings::read_scenario(path).sonar.horizontal_beamwidth_deg;
+}
+
+/// The comment above the written table: the datasets, the samples, and the bearing errors.
+std::string provenance_comment(const FootprintOptions& options, const FootprintGrid& grid,
+                               const FootprintSummary& summary, const FootprintEstimate& estimate) {
+  std::string comment = "measured on";
+  for (const std::string& dir : options.dataset_dirs) comment += "\n  " + dir;
+  std::ostringstream from;
+  from << "\nfrom " << summary.samples << " readings on lines (" << summary.left_out
+       << " more than " << grid.max_abs_offset_m << " m off their axis left out)";
+  from << "\nreadings' bearing error against truth (the strongest echo's source off the axis): "
+       << summary.bearing_rms_rad * 180.0 / M_PI << " deg rms over " << summary.bearing_samples
+       << " readings";
+  if (std::isfinite(summary.bearing_rms_over_beamwidth)) {
+    from << ", " << summary.bearing_rms_over_beamwidth << " of the "
+         << summary.bearing_rms_rad / summary.bearing_rms_over_beamwidth * 180.0 / M_PI
+         << " deg beamwidth";
+  }
+  from << "\nthe wall readings' bearing toward their wall's normal (mean and rms, deg) by "
+          "incidence:";
+  for (std::size_t j = 0; j < grid.incidences_rad.size(); ++j) {
+    from << "\n  " << grid.incidences_rad[j] * 180.0 / M_PI
+         << " deg: " << estimate.bearing_toward_normal_mean_rad[j] * 180.0 / M_PI << ", "
+         << estimate.bearing_toward_normal_rms_rad[j] * 180.0 / M_PI << " ("
+         << estimate.bearing_samples[j] << ")";
+  }
+  comment += from.str();
+  return comment;
 }
 
 }  // namespace
@@ -96,12 +139,18 @@ FootprintSummary measure_footprint_command(const FootprintOptions& options) {
   }
   FootprintSummary summary;
   std::vector<FootprintSample> samples;
+  std::vector<double> bearings;
+  double beamwidth_deg = dataset_beamwidth_deg(options.dataset_dirs.front());
   for (const std::string& dir : options.dataset_dirs) {
     const std::vector<FootprintSample> s =
-        dataset_samples(dir, options.config_path, base.footprint.line, summary.readings);
+        dataset_samples(dir, options.config_path, base.footprint.line, summary.readings, bearings);
     samples.insert(samples.end(), s.begin(), s.end());
     ++summary.datasets;
+    if (!(dataset_beamwidth_deg(dir) == beamwidth_deg)) beamwidth_deg = std::nan("");
   }
+  summary.bearing_samples = bearings.size();
+  summary.bearing_rms_rad = rms(bearings);
+  summary.bearing_rms_over_beamwidth = summary.bearing_rms_rad / (beamwidth_deg * M_PI / 180.0);
   const FootprintEstimate estimate = estimate_footprint(samples, grid);
   summary.samples = samples.size();
   summary.left_out = estimate.left_out;
@@ -114,12 +163,7 @@ FootprintSummary measure_footprint_command(const FootprintOptions& options) {
             std::to_string(summary.samples) +
             " readings on lines matched a beam's truth): simulate more, or widen the grid");
   }
-  std::string comment = "measured on";
-  for (const std::string& dir : options.dataset_dirs) comment += "\n  " + dir;
-  std::ostringstream from;
-  from << "\nfrom " << summary.samples << " readings on lines (" << summary.left_out
-       << " more than " << grid.max_abs_offset_m << " m off their axis left out)";
-  comment += from.str();
+  const std::string comment = provenance_comment(options, grid, summary, estimate);
   std::string text = std::string(kSignature) + "\n";
   if (!options.config_path.empty()) {
     text += "# Its base, " + options.config_path + ", as it is:\n" + base_text;
@@ -160,7 +204,9 @@ void add_footprint_command(CLI::App& app, CommandLine&) {
     const FootprintSummary s = measure_footprint_command(*options);
     std::cout << "wrote " << options->out_path << ": " << s.cells_with_figure << " of " << s.cells
               << " cells from " << s.samples << " readings on lines of " << s.readings << " in "
-              << s.datasets << " datasets (" << s.left_out << " left out)\n";
+              << s.datasets << " datasets (" << s.left_out << " left out); bearing error "
+              << s.bearing_rms_rad * 180.0 / M_PI << " deg rms over " << s.bearing_samples
+              << " readings (" << s.bearing_rms_over_beamwidth << " of the beamwidth)\n";
   });
 }
 

@@ -28,6 +28,12 @@ struct FootprintSummary {
   std::size_t left_out = 0;  ///< samples beyond max_offset_m
   std::size_t cells = 0;     ///< cells of the grid
   std::size_t cells_with_figure = 0;
+  /// The readings' bearing errors against truth (eval/footprint_calibration's
+  /// bearing_offsets_rad): how many, their root mean square, and that over the datasets'
+  /// horizontal beamwidth (NaN when the datasets' scenarios differ in it or have none).
+  std::size_t bearing_samples = 0;
+  double bearing_rms_rad = 0.0;
+  double bearing_rms_over_beamwidth = 0.0;
 };
 
 /// Throws io::InputError on bad input: a dataset without truth/beams.csv, a base config that

@@ -218,7 +218,7 @@ std::vector<io::BeamTruthRow> beam_truth_rows(const std::vector<sim::RenderedBea
     const sim::BeamTruth& t = b.truth;
     rows.push_back({b.slot.t_s, t.vehicle.x(), t.vehicle.y(), t.vehicle.yaw(),
                     t.bearing_vehicle_rad, t.first_hit_range_m, t.strongest_range_m,
-                    t.strongest_is_multipath, t.strongest_surface});
+                    t.strongest_is_multipath, t.strongest_surface, t.strongest_bearing_offset_rad});
   }
   return rows;
 }

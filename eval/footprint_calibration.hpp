@@ -6,6 +6,7 @@
 // the table slam/beam_footprint.hpp corrects scans with.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -19,12 +20,18 @@ namespace msislab {
 struct AxisTruth {
   double t_s = 0.0;
   std::optional<double> first_hit_range_m;
+  std::optional<double> strongest_range_m;  ///< the strongest noise-free echo's range
+  /// The horizontal angle from the axis to that echo's source (truth/beams.csv).
+  std::optional<double> strongest_bearing_offset_rad;
 };
 
 struct FootprintSample {
   double range_m = 0.0;  ///< as reported, from the head
   double incidence_rad = 0.0;
   double offset_m = 0.0;  ///< reported - the axis's first hit
+  /// The strongest echo's source off the axis, positive toward the line's normal (toward lower
+  /// incidence); NaN when the truth has no bearing or the reading is not that echo.
+  double bearing_toward_normal_rad = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// The samples of a run's scans (built without a footprint table) against its beams' truth,
@@ -33,6 +40,19 @@ struct FootprintSample {
 std::vector<FootprintSample> footprint_samples(const std::vector<PlacedScan>& scans,
                                                const std::vector<AxisTruth>& beams,
                                                const LineNormalConfig& line);
+
+/// The bearing of a run's readings against truth: for every reading (on a line or not) whose range
+/// lies within max_range_gap_m of its beam's strongest noise-free echo, the angle from its beam's
+/// axis to that echo's source (truth/beams.csv's strongest_bearing_offset_rad). The reading is
+/// drawn on the axis, so this is its bearing error: the spread a scan point's bearing sigma
+/// stands for (docs/scan_matching.md, "The bearing spread"). `beams` in time order.
+std::vector<double> bearing_offsets_rad(const std::vector<PlacedScan>& scans,
+                                        const std::vector<AxisTruth>& beams,
+                                        double max_range_gap_m = 1.0);
+
+/// The root mean square of the offsets (their spread about the axis, where a bearing sigma
+/// centres a reading), NaN when there are none.
+double rms(const std::vector<double>& values);
 
 struct FootprintGrid {
   std::vector<double> ranges_m;        ///< the nodes, ascending; a sample goes to the nearest
@@ -48,6 +68,11 @@ struct FootprintEstimate {
   FootprintTable table;
   std::vector<int> samples;  ///< per cell, row-major as the table
   std::size_t left_out = 0;  ///< samples beyond max_abs_offset_m
+  /// Per incidence node (over every range): the mean and the root mean square of the samples'
+  /// bearing toward the normal, and how many had one (NaN under min_samples).
+  std::vector<double> bearing_toward_normal_mean_rad;
+  std::vector<double> bearing_toward_normal_rms_rad;
+  std::vector<int> bearing_samples;
 };
 
 /// The table of the samples' mean and standard deviation (n - 1) per cell.

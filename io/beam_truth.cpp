@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <fstream>
+#include <string>
 #include <string_view>
 
 #include "io/atomic_file.hpp"
@@ -13,16 +15,22 @@ namespace {
 
 constexpr std::string_view kBeamTruthHeader =
     "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
+    "strongest_surface,strongest_bearing_offset_rad";
+/// The header of datasets simulated before the strongest echo's bearing was written (read with
+/// that column empty).
+constexpr std::string_view kBeamTruthHeaderWithoutBearing =
+    "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
     "strongest_surface";
-constexpr std::array<std::string_view, 9> kBeamTruthNames = {"t_s",
-                                                             "x_m",
-                                                             "y_m",
-                                                             "yaw_rad",
-                                                             "bearing_rad",
-                                                             "first_hit_range_m",
-                                                             "strongest_range_m",
-                                                             "strongest_multipath",
-                                                             "strongest_surface"};
+constexpr std::array<std::string_view, 10> kBeamTruthNames = {"t_s",
+                                                              "x_m",
+                                                              "y_m",
+                                                              "yaw_rad",
+                                                              "bearing_rad",
+                                                              "first_hit_range_m",
+                                                              "strongest_range_m",
+                                                              "strongest_multipath",
+                                                              "strongest_surface",
+                                                              "strongest_bearing_offset_rad"};
 using BeamTruthFields = std::array<std::string_view, kBeamTruthNames.size()>;
 
 std::optional<double> parse_optional(std::string_view token, const FieldAt& at) {
@@ -36,8 +44,9 @@ bool parse_flag(std::string_view token, const FieldAt& at) {
 }
 
 BeamTruthRow parse_beam_truth_row(std::string_view line, std::size_t line_number,
-                                  const std::string& path) {
-  const BeamTruthFields f = split_csv<kBeamTruthNames.size()>(line, path, line_number);
+                                  const std::string& path, bool with_bearing) {
+  BeamTruthFields f;
+  split_csv_fields(line, path, line_number, f.data(), with_bearing ? f.size() : f.size() - 1);
   const auto at = [&](std::size_t i) {
     return FieldAt{path, line_number, i + 1, kBeamTruthNames[i]};
   };
@@ -51,6 +60,7 @@ BeamTruthRow parse_beam_truth_row(std::string_view line, std::size_t line_number
   row.strongest_range_m = parse_optional(f[6], at(6));
   row.strongest_multipath = parse_flag(f[7], at(7));
   row.strongest_surface = std::string(f[8]);
+  if (with_bearing) row.strongest_bearing_offset_rad = parse_optional(f[9], at(9));
   return row;
 }
 
@@ -61,7 +71,8 @@ bool BeamTruthRow::operator==(const BeamTruthRow& other) const {
          bearing_rad == other.bearing_rad && first_hit_range_m == other.first_hit_range_m &&
          strongest_range_m == other.strongest_range_m &&
          strongest_multipath == other.strongest_multipath &&
-         strongest_surface == other.strongest_surface;
+         strongest_surface == other.strongest_surface &&
+         strongest_bearing_offset_rad == other.strongest_bearing_offset_rad;
 }
 
 void write_beam_truth(const std::string& path, const std::vector<BeamTruthRow>& rows) {
@@ -76,7 +87,9 @@ void write_beam_truth(const std::string& path, const std::vector<BeamTruthRow>& 
         if (range) text += format_number(*range);
         text += ',';
       }
-      text += std::string(r.strongest_multipath ? "1" : "0") + "," + r.strongest_surface + "\n";
+      text += std::string(r.strongest_multipath ? "1" : "0") + "," + r.strongest_surface + ",";
+      if (r.strongest_bearing_offset_rad) text += format_number(*r.strongest_bearing_offset_rad);
+      text += '\n';
     }
     out << text;
   });
@@ -84,8 +97,16 @@ void write_beam_truth(const std::string& path, const std::vector<BeamTruthRow>& 
 
 std::vector<BeamTruthRow> read_beam_truth(const std::string& path) {
   std::vector<BeamTruthRow> rows;
-  for_each_csv_row(path, kBeamTruthHeader, [&](std::string_view line, std::size_t line_number) {
-    rows.push_back(parse_beam_truth_row(line, line_number, path));
+  // A dataset simulated before the bearing column was written is read without it.
+  std::string first_line;
+  {
+    std::ifstream in(path);
+    std::getline(in, first_line);
+  }
+  const bool with_bearing = first_line != kBeamTruthHeaderWithoutBearing;
+  const std::string_view header = with_bearing ? kBeamTruthHeader : kBeamTruthHeaderWithoutBearing;
+  for_each_csv_row(path, header, [&](std::string_view line, std::size_t line_number) {
+    rows.push_back(parse_beam_truth_row(line, line_number, path, with_bearing));
     if (rows.size() > 1 && rows.back().t_s < rows[rows.size() - 2].t_s) {
       fail_at(path, line_number,
               "t_s goes backwards (" + format_number(rows.back().t_s) + " after " +

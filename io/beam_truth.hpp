@@ -1,7 +1,8 @@
 // The simulator's per-beam truth, truth/beams.csv (docs/formats.md): its rows, reader and writer
 // (dataset/sim_dataset writes a simulation's beams through it). The reader is strict: the exact
-// header, 9 comma-separated fields, finite numbers, an empty field only for the optional ranges,
-// multipath 0 or 1, time never going backwards; any other line is an InputError "file:line: what".
+// header, 10 comma-separated fields (9 in a dataset simulated before the strongest echo's bearing
+// was written), finite numbers, an empty field only for the optional ranges, multipath 0 or 1, time
+// never going backwards; any other line is an InputError "file:line: what".
 #pragma once
 
 #include <optional>
@@ -21,6 +22,10 @@ struct BeamTruthRow {
   std::optional<double> strongest_range_m;  ///< strongest noise-free echo after TVG
   bool strongest_multipath = false;         ///< that echo came by a specular route
   std::string strongest_surface;            ///< material (OBJ group) that returned it
+  /// The horizontal angle from the beam's axis to the first surface of the echo that gave the
+  /// most to the strongest bin, counter-clockwise seen from above (rad); none when there is no
+  /// echo, or in a dataset simulated before this column was written.
+  std::optional<double> strongest_bearing_offset_rad;
   bool operator==(const BeamTruthRow& other) const;
 };
 

@@ -320,6 +320,10 @@ BeamTruth MsisModel::truth_of(const Ping& ping, const EchoProfile& echoes,
     if (c.at(strongest) > largest) {
       largest = c.at(strongest);
       truth.strongest_surface = scene_.materials()[c.material_id].name;
+      const Eigen::Vector3d to_source =
+          c.first_hit_m.cast<double>() - ping.tx.position_m.cast<double>();
+      truth.strongest_bearing_offset_rad = std::remainder(
+          std::atan2(to_source.y(), to_source.x()) - ping.tx.axis_azimuth_rad, 2.0 * kPi);
     }
   }
   return truth;

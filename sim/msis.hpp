@@ -36,6 +36,9 @@ struct BeamTruth {
   std::optional<double> strongest_range_m;  ///< range of the strongest noise-free echo
   bool strongest_is_multipath = false;      ///< that echo came by a specular bounce
   std::string strongest_surface;  ///< material (group) name of the surface that returned it
+  /// The horizontal angle from the transmit axis to that echo's first surface, seen from the
+  /// head, counter-clockwise from above (rad): how far off the axis the reading's source lies.
+  std::optional<double> strongest_bearing_offset_rad;
 };
 
 struct RenderedBeam {

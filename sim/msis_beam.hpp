@@ -55,6 +55,7 @@ struct EchoProfile {
     long first = 0, last = 0;  ///< bins [first, last]
     double at_first = 0.0, at_last = 0.0, between = 0.0;
     std::uint32_t material_id = 0;
+    Eigen::Vector3f first_hit_m = Eigen::Vector3f::Zero();  ///< the echo's first surface
     double at(long j) const {
       if (j == first) return at_first;
       if (j == last) return at_last;

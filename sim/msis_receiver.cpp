@@ -114,7 +114,7 @@ void MsisReceiver::lay_over_bins(const Echo& echo, double range_m, double extent
                       static_cast<long>(sonar_.bins) - 1);
   };
   const long first = bin_of(lo_m), last = bin_of(hi_m);
-  EchoProfile::Contribution c{first, last, 0.0, 0.0, 0.0, echo.material_id};
+  EchoProfile::Contribution c{first, last, 0.0, 0.0, 0.0, echo.material_id, echo.first_hit_m};
   if (extent_m <= 0.0) {
     c.first = c.last = bin_of(range_m);
     c.at_first = c.at_last = received;

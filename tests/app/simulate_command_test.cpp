@@ -163,7 +163,8 @@ struct BeamRow {
   double t_s = 0.0, x_m = 0.0, y_m = 0.0, yaw_rad = 0.0, bearing_rad = 0.0;
   std::optional<double> first_hit_range_m, strongest_range_m;
   bool multipath = false;
-  std::string surface;  ///< strongest_surface
+  std::string surface;                       ///< strongest_surface
+  std::optional<double> bearing_offset_rad;  ///< strongest_bearing_offset_rad
 };
 
 std::vector<std::string> split(const std::string& line, char separator) {
@@ -177,7 +178,7 @@ std::vector<std::string> split(const std::string& line, char separator) {
 
 constexpr const char* kBeamsHeader =
     "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
-    "strongest_surface";
+    "strongest_surface,strongest_bearing_offset_rad";
 
 std::vector<BeamRow> read_beams_csv(const std::string& path) {
   std::stringstream in(read_text(path));
@@ -187,8 +188,8 @@ std::vector<BeamRow> read_beams_csv(const std::string& path) {
   std::vector<BeamRow> rows;
   while (std::getline(in, line)) {
     const std::vector<std::string> f = split(line, ',');
-    if (f.size() != 9) {
-      ADD_FAILURE() << path << ": expected 9 columns: " << line;
+    if (f.size() != 10) {
+      ADD_FAILURE() << path << ": expected 10 columns: " << line;
       continue;
     }
     auto optional = [](const std::string& text) -> std::optional<double> {
@@ -197,7 +198,8 @@ std::vector<BeamRow> read_beams_csv(const std::string& path) {
     };
     EXPECT_TRUE(f[7] == "0" || f[7] == "1") << line;
     rows.push_back({std::stod(f[0]), std::stod(f[1]), std::stod(f[2]), std::stod(f[3]),
-                    std::stod(f[4]), optional(f[5]), optional(f[6]), f[7] == "1", f[8]});
+                    std::stod(f[4]), optional(f[5]), optional(f[6]), f[7] == "1", f[8],
+                    optional(f[9])});
   }
   return rows;
 }
@@ -362,6 +364,12 @@ TEST(SimulateCommand, BeamTruthAgreesWithTheGeometryAndTheEchoes) {
     const bool bottom = row.surface == "bottom";
     bottom_strongest += bottom && !is_close && !row.multipath ? 1 : 0;
     agree += is_close || row.multipath || bottom ? 1 : 0;
+    // The strongest echo's source lies among the rays (+-2 beamwidths, +-6 deg) and is given
+    // whenever there is a strongest echo.
+    EXPECT_EQ(row.bearing_offset_rad.has_value(), row.strongest_range_m.has_value());
+    if (row.bearing_offset_rad) {
+      EXPECT_LE(std::abs(*row.bearing_offset_rad), 6.0 * kPi / 180.0 + 1e-6) << "t = " << row.t_s;
+    }
     // The box's groups, or the water surface the simulator adds.
     if (row.strongest_range_m) {
       EXPECT_TRUE(row.surface == "walls" || row.surface == "bottom" ||

@@ -16,7 +16,7 @@ using testing::TempDir;
 
 constexpr const char* kHeader =
     "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
-    "strongest_surface\n";
+    "strongest_surface,strongest_bearing_offset_rad\n";
 
 std::vector<sim::RenderedBeam> sample_beams() {
   std::vector<sim::RenderedBeam> beams(3);
@@ -26,6 +26,7 @@ std::vector<sim::RenderedBeam> sample_beams() {
   beams[0].truth.first_hit_range_m = 12.345678901234567;
   beams[0].truth.strongest_range_m = 12.4;
   beams[0].truth.strongest_surface = "walls";
+  beams[0].truth.strongest_bearing_offset_rad = -0.0123456789012345;
   beams[1].slot.t_s = 1093455407.069;
   beams[1].truth.vehicle = Pose2(1.26, -3.5, -3.0);
   beams[1].truth.strongest_range_m = 8.1;  // no first hit: the bottom band only
@@ -35,6 +36,7 @@ std::vector<sim::RenderedBeam> sample_beams() {
   beams[2].truth.strongest_range_m = 44.5;
   beams[2].truth.strongest_is_multipath = true;
   beams[2].truth.strongest_surface = "water_surface";
+  beams[2].truth.strongest_bearing_offset_rad = 0.07;
   return beams;
 }
 
@@ -55,8 +57,10 @@ TEST(BeamTruth, RoundTripIsExact) {
     EXPECT_EQ(rows[i].strongest_range_m, t.strongest_range_m);
     EXPECT_EQ(rows[i].strongest_multipath, t.strongest_is_multipath);
     EXPECT_EQ(rows[i].strongest_surface, t.strongest_surface);
+    EXPECT_EQ(rows[i].strongest_bearing_offset_rad, t.strongest_bearing_offset_rad);
   }
   EXPECT_FALSE(rows[1].first_hit_range_m.has_value());
+  EXPECT_FALSE(rows[1].strongest_bearing_offset_rad.has_value());
 }
 
 TEST(BeamTruth, AcceptsCrlfAndBlankLines) {
@@ -64,13 +68,15 @@ TEST(BeamTruth, AcceptsCrlfAndBlankLines) {
   const std::string path = testing::write_text(
       dir.file("beams.csv"),
       "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
-      "strongest_surface\r\n1,2,3,0.5,1.5,,7.5,0,bottom\r\n\r\n2,2,3,0.5,1.5,9,9.1,1,walls\r\n");
+      "strongest_surface,strongest_bearing_offset_rad\r\n1,2,3,0.5,1.5,,7.5,0,bottom,"
+      "\r\n\r\n2,2,3,0.5,1.5,9,9.1,1,walls,0.01\r\n");
   const std::vector<io::BeamTruthRow> rows = io::read_beam_truth(path);
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_FALSE(rows[0].first_hit_range_m);
   EXPECT_EQ(rows[1].first_hit_range_m, 9.0);
   EXPECT_TRUE(rows[1].strongest_multipath);
   EXPECT_EQ(rows[1].strongest_surface, "walls");
+  EXPECT_EQ(rows[1].strongest_bearing_offset_rad, 0.01);
 }
 
 // Reading `body` after the header must fail with a message containing `expected`.
@@ -88,16 +94,34 @@ void expect_rejected(const std::string& body, const std::string& expected,
 }
 
 TEST(BeamTruth, RejectsMalformedFiles) {
-  const std::string good = "1,2,3,0.5,1.5,9,9.1,0,walls\n";
+  const std::string good = "1,2,3,0.5,1.5,9,9.1,0,walls,0.01\n";
   expect_rejected(good, "beams.csv:1: wrong header", "t_s,x_m,y_m\n");
   expect_rejected("", "beams.csv: no data rows");
-  expect_rejected(good + "2,2,3,0.5,1.5,9\n", "beams.csv:3: truncated line: expected 9");
-  expect_rejected(good + "2,2,3,0.5,1.5,9,9.1,0,walls,x\n", "beams.csv:3: too many fields");
-  expect_rejected(good + "2,2,abc,0.5,1.5,9,9.1,0,walls\n", "beams.csv:3: field 3 (y_m) 'abc'");
-  expect_rejected(good + "2,2,3,0.5,,9,9.1,0,walls\n", "beams.csv:3: field 5 (bearing_rad)");
-  expect_rejected(good + "2,2,3,0.5,1.5,nan,9.1,0,walls\n", "field 6 (first_hit_range_m)");
-  expect_rejected(good + "2,2,3,0.5,1.5,9,9.1,2,walls\n", "field 8 (strongest_multipath) '2'");
-  expect_rejected(good + "0.5,2,3,0.5,1.5,9,9.1,0,walls\n", "beams.csv:3: t_s goes backwards");
+  expect_rejected(good + "2,2,3,0.5,1.5,9\n", "beams.csv:3: truncated line: expected 10");
+  expect_rejected(good + "2,2,3,0.5,1.5,9,9.1,0,walls,0,x\n", "beams.csv:3: too many fields");
+  expect_rejected(good + "2,2,abc,0.5,1.5,9,9.1,0,walls,0\n", "beams.csv:3: field 3 (y_m) 'abc'");
+  expect_rejected(good + "2,2,3,0.5,,9,9.1,0,walls,0\n", "beams.csv:3: field 5 (bearing_rad)");
+  expect_rejected(good + "2,2,3,0.5,1.5,nan,9.1,0,walls,0\n", "field 6 (first_hit_range_m)");
+  expect_rejected(good + "2,2,3,0.5,1.5,9,9.1,2,walls,0\n", "field 8 (strongest_multipath) '2'");
+  expect_rejected(good + "2,2,3,0.5,1.5,9,9.1,0,walls,inf\n",
+                  "field 10 (strongest_bearing_offset_rad)");
+  expect_rejected(good + "0.5,2,3,0.5,1.5,9,9.1,0,walls,0\n", "beams.csv:3: t_s goes backwards");
+}
+
+// A dataset simulated before the strongest echo's bearing was written has 9 columns: it is read,
+// with no bearing; a 10th field under that header is too many.
+TEST(BeamTruth, ReadsDatasetsWithoutTheBearingColumn) {
+  const TempDir dir;
+  const std::string old_header =
+      "t_s,x_m,y_m,yaw_rad,bearing_rad,first_hit_range_m,strongest_range_m,strongest_multipath,"
+      "strongest_surface\n";
+  const std::string path =
+      testing::write_text(dir.file("beams.csv"), old_header + "1,2,3,0.5,1.5,9,9.1,0,walls\n");
+  const std::vector<io::BeamTruthRow> rows = io::read_beam_truth(path);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].strongest_range_m, 9.1);
+  EXPECT_FALSE(rows[0].strongest_bearing_offset_rad);
+  expect_rejected("1,2,3,0.5,1.5,9,9.1,0,walls,0.01\n", "beams.csv:2: too many fields", old_header);
 }
 
 TEST(BeamTruth, RejectsMissingAndEmptyFiles) {

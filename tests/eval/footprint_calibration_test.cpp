@@ -69,7 +69,7 @@ PlacedScan wall_scan(std::vector<AxisTruth>& beams) {
     p.p_m =
         p.p_sonar_m + (axis_range_m + 0.4) * Eigen::Vector2d(std::cos(bearing), std::sin(bearing));
     placed.scan.points.push_back(p);
-    beams.push_back({p.t_s, axis_range_m});
+    beams.push_back({p.t_s, axis_range_m, std::nullopt, std::nullopt});
   }
   return placed;
 }
@@ -97,6 +97,65 @@ TEST(FootprintCalibration, SamplesAreWallReadingsAgainstTheirAxisHit) {
   // Nor does a point without a line (the matcher's stricter lines: 1.5 m, 5 points).
   EXPECT_LT(footprint_samples({placed}, beams, LineNormalConfig{}).size(),
             placed.scan.points.size());
+}
+
+// The bearing errors are taken from every reading near its beam's strongest echo (on a line or
+// not), as the truth gives them; a reading more than 1 m from that echo, or whose beam has no
+// strongest echo or no bearing (a dataset simulated before the column), gives none.
+TEST(FootprintCalibration, BearingErrorsAreTheStrongestEchoesSourcesOffTheAxis) {
+  std::vector<AxisTruth> beams;
+  const PlacedScan placed = wall_scan(beams);  // readings 0.4 m beyond the axis hit
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    beams[k].strongest_range_m = *beams[k].first_hit_range_m + 0.4;
+    beams[k].strongest_bearing_offset_rad = (k % 2 == 0 ? 3.0 : -3.0) * kDeg;
+  }
+  const std::vector<double> all = bearing_offsets_rad({placed}, beams);
+  ASSERT_EQ(all.size(), beams.size());
+  EXPECT_NEAR(rms(all), 3.0 * kDeg, 1e-12);
+  std::vector<AxisTruth> fewer = beams;
+  fewer[0].strongest_range_m = *fewer[0].strongest_range_m + 1.5;  // another echo than the reading
+  fewer[1].strongest_bearing_offset_rad.reset();
+  fewer[2].strongest_range_m.reset();
+  fewer.erase(fewer.begin() + 10);
+  EXPECT_EQ(bearing_offsets_rad({placed}, fewer).size(), beams.size() - 4);
+  EXPECT_TRUE(std::isnan(rms({})));
+  EXPECT_NEAR(rms({3.0, -4.0}), std::sqrt(12.5), 1e-12);
+}
+
+// A wall reading's source off its axis is signed toward the wall's normal: on the wall x = 12
+// seen at bearing b, a turn toward b = 0 lowers the incidence. Sources 1 deg from the axis
+// toward the normal give +1 deg at every incidence, and the estimate's mean per incidence
+// node is 1 deg; readings at b = 0 (no side) and those far from their strongest echo give none.
+TEST(FootprintCalibration, WallBearingsAreSignedTowardTheNormal) {
+  std::vector<AxisTruth> beams;
+  const PlacedScan placed = wall_scan(beams);
+  for (std::size_t k = 0; k < beams.size(); ++k) {
+    const int step = static_cast<int>(k) - 20;  // bearing 2 step deg
+    beams[k].strongest_range_m = *beams[k].first_hit_range_m + 0.4;
+    beams[k].strongest_bearing_offset_rad = step > 0 ? -1.0 * kDeg : 1.0 * kDeg;
+  }
+  beams[3].strongest_range_m = *beams[3].strongest_range_m + 1.5;
+  LineNormalConfig line;
+  line.radius_m = 3.0;
+  line.min_points = 3;
+  const std::vector<FootprintSample> samples = footprint_samples({placed}, beams, line);
+  ASSERT_EQ(samples.size(), placed.scan.points.size());
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    if (k == 3) {
+      EXPECT_TRUE(std::isnan(samples[k].bearing_toward_normal_rad));
+    } else if (k != 20) {
+      EXPECT_NEAR(samples[k].bearing_toward_normal_rad, 1.0 * kDeg, 1e-12) << k;
+    }
+  }
+  FootprintGrid grid = grid_10_by_30();
+  grid.min_samples = 5;
+  grid.max_abs_offset_m = 1.0;
+  const FootprintEstimate e = estimate_footprint(samples, grid);
+  // Bearings 0-14 deg go to the 0 node, 16-40 deg to the 30 deg node; none reach 60.
+  EXPECT_EQ(e.bearing_samples[0] + e.bearing_samples[1], 40);
+  EXPECT_NEAR(e.bearing_toward_normal_mean_rad[1], 1.0 * kDeg, 1e-12);
+  EXPECT_NEAR(e.bearing_toward_normal_rms_rad[1], 1.0 * kDeg, 1e-12);
+  EXPECT_TRUE(std::isnan(e.bearing_toward_normal_mean_rad[2]));
 }
 
 }  // namespace

@@ -131,6 +131,37 @@ TEST(Msis, APing360SectorScanSweepsBackAndForth) {
   EXPECT_NEAR(across[44].transducer_angle_rad * 180.0 / M_PI, 9.9, 1e-9);    // the first end
 }
 
+// A reading's source off the beam's axis (truth/beams.csv's strongest_bearing_offset_rad): a
+// 1 m wide post 20 m ahead, 3 deg to the left of a 9 deg beam's axis, is the only surface; the
+// strongest echo's source is on it, so its bearing offset lies within the post's +-1.43 deg of
+// 3 deg, counter-clockwise positive. Not a statistic (no speckle, no roughness, no noise).
+TEST(Msis, TheStrongestEchoKnowsHowFarOffTheAxisItsSourceLies) {
+  for (const double side : {1.0, -1.0}) {
+    const float y0 = static_cast<float>(side * 20.0 * std::tan(3.0 * M_PI / 180.0));
+    TriangleMesh mesh;
+    mesh.vertices_m = {
+        {20, y0 - 0.5f, -50}, {20, y0 + 0.5f, -50}, {20, y0 + 0.5f, 1}, {20, y0 - 0.5f, 1}};
+    mesh.triangles = {{0, 2, 1}, {0, 3, 2}};
+    mesh.material_ids = {0, 0};
+    mesh.materials = {Material{"post", 0.6f, 0.0f}};
+    mesh.group_names = {"post"};
+    const Scene scene(mesh, Material{"surface", 0.001f, 0.9f});
+    SonarConfig sonar = forward_sonar();
+    sonar.vertical_beamwidth_deg = 10.0;
+    sonar.horizontal_beamwidth_deg = 9.0;
+    const MsisModel model(scene, sonar, 10.0);
+    Rng rng(1);
+    const RenderedBeam beam = model.render({0, 0.0, 0.0}, straight(0.0), rng);
+    EXPECT_FALSE(beam.truth.first_hit_range_m);  // the axis misses the post
+    ASSERT_TRUE(beam.truth.strongest_bearing_offset_rad);
+    EXPECT_EQ(beam.truth.strongest_surface, "post");
+    const double half_width_rad = std::atan(0.5 / 20.0);
+    EXPECT_NEAR(*beam.truth.strongest_bearing_offset_rad, side * 3.0 * M_PI / 180.0,
+                half_width_rad + 1e-3)
+        << "side " << side;
+  }
+}
+
 TEST(Msis, WallAtAKnownRangeGivesItsEcho) {
   const Scene scene(wall_mesh(20.0f), Material{"surface", 0.001f, 0.9f});
   SonarConfig sonar = forward_sonar();

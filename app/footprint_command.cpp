@@ -98,10 +98,14 @@ std::string provenance_comment(const FootprintOptions& options, const FootprintG
   std::ostringstream from;
   from << "\nfrom " << summary.samples << " readings on lines (" << summary.left_out
        << " more than " << grid.max_abs_offset_m << " m off their axis left out)";
-  from << "\nreadings' bearing error against truth (the strongest echo's source off the axis): "
-       << summary.bearing_rms_rad * 180.0 / M_PI << " deg rms over " << summary.bearing_samples
-       << " readings";
-  if (std::isfinite(summary.bearing_rms_over_beamwidth)) {
+  from << "\nreadings' bearing error against truth (the strongest echo's source off the axis): ";
+  if (summary.bearing_samples == 0) {
+    from << "none (no bearing in the truth)";
+  } else {
+    from << summary.bearing_rms_rad * 180.0 / M_PI << " deg rms over " << summary.bearing_samples
+         << " readings";
+  }
+  if (summary.bearing_samples > 0 && std::isfinite(summary.bearing_rms_over_beamwidth)) {
     from << ", " << summary.bearing_rms_over_beamwidth << " of the "
          << summary.bearing_rms_rad / summary.bearing_rms_over_beamwidth * 180.0 / M_PI
          << " deg beamwidth";
@@ -204,9 +208,18 @@ void add_footprint_command(CLI::App& app, CommandLine&) {
     const FootprintSummary s = measure_footprint_command(*options);
     std::cout << "wrote " << options->out_path << ": " << s.cells_with_figure << " of " << s.cells
               << " cells from " << s.samples << " readings on lines of " << s.readings << " in "
-              << s.datasets << " datasets (" << s.left_out << " left out); bearing error "
-              << s.bearing_rms_rad * 180.0 / M_PI << " deg rms over " << s.bearing_samples
-              << " readings (" << s.bearing_rms_over_beamwidth << " of the beamwidth)\n";
+              << s.datasets << " datasets (" << s.left_out << " left out); ";
+    if (s.bearing_samples == 0) {
+      std::cout << "no bearing error (no reading lies near its beam's strongest echo with a "
+                   "bearing in the truth: datasets simulated before truth/beams.csv had one?)\n";
+      return;
+    }
+    std::cout << "bearing error " << s.bearing_rms_rad * 180.0 / M_PI << " deg rms over "
+              << s.bearing_samples << " readings";
+    if (std::isfinite(s.bearing_rms_over_beamwidth)) {
+      std::cout << " (" << s.bearing_rms_over_beamwidth << " of the beamwidth)";
+    }
+    std::cout << "\n";
   });
 }
 

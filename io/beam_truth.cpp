@@ -102,6 +102,7 @@ std::vector<BeamTruthRow> read_beam_truth(const std::string& path) {
   {
     std::ifstream in(path);
     std::getline(in, first_line);
+    if (!first_line.empty() && first_line.back() == '\r') first_line.pop_back();
   }
   const bool with_bearing = first_line != kBeamTruthHeaderWithoutBearing;
   const std::string_view header = with_bearing ? kBeamTruthHeader : kBeamTruthHeaderWithoutBearing;

@@ -122,6 +122,11 @@ TEST(BeamTruth, ReadsDatasetsWithoutTheBearingColumn) {
   EXPECT_EQ(rows[0].strongest_range_m, 9.1);
   EXPECT_FALSE(rows[0].strongest_bearing_offset_rad);
   expect_rejected("1,2,3,0.5,1.5,9,9.1,0,walls,0.01\n", "beams.csv:2: too many fields", old_header);
+  // With Windows line ends too.
+  const std::string crlf =
+      testing::write_text(dir.file("crlf.csv"), old_header.substr(0, old_header.size() - 1) +
+                                                    "\r\n1,2,3,0.5,1.5,9,9.1,0,walls\r\n");
+  EXPECT_FALSE(io::read_beam_truth(crlf).at(0).strongest_bearing_offset_rad);
 }
 
 TEST(BeamTruth, RejectsMissingAndEmptyFiles) {

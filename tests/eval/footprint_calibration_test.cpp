@@ -74,12 +74,18 @@ PlacedScan wall_scan(std::vector<AxisTruth>& beams) {
   return placed;
 }
 
-TEST(FootprintCalibration, SamplesAreWallReadingsAgainstTheirAxisHit) {
-  std::vector<AxisTruth> beams;
-  const PlacedScan placed = wall_scan(beams);
+/// Lines as wide as the footprint's (3 m, 3 points): every reading of wall_scan lies on one.
+LineNormalConfig wall_lines() {
   LineNormalConfig line;
   line.radius_m = 3.0;
   line.min_points = 3;
+  return line;
+}
+
+TEST(FootprintCalibration, SamplesAreWallReadingsAgainstTheirAxisHit) {
+  std::vector<AxisTruth> beams;
+  const PlacedScan placed = wall_scan(beams);
+  const LineNormalConfig line = wall_lines();
   const std::vector<FootprintSample> samples = footprint_samples({placed}, beams, line);
   ASSERT_EQ(samples.size(), placed.scan.points.size());
   for (std::size_t k = 0; k < samples.size(); ++k) {
@@ -135,9 +141,7 @@ TEST(FootprintCalibration, WallBearingsAreSignedTowardTheNormal) {
     beams[k].strongest_bearing_offset_rad = step > 0 ? -1.0 * kDeg : 1.0 * kDeg;
   }
   beams[3].strongest_range_m = *beams[3].strongest_range_m + 1.5;
-  LineNormalConfig line;
-  line.radius_m = 3.0;
-  line.min_points = 3;
+  const LineNormalConfig line = wall_lines();
   const std::vector<FootprintSample> samples = footprint_samples({placed}, beams, line);
   ASSERT_EQ(samples.size(), placed.scan.points.size());
   for (std::size_t k = 0; k < samples.size(); ++k) {

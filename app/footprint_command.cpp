@@ -22,6 +22,7 @@
 #include "settings/footprint_yaml.hpp"
 #include "settings/scenario_yaml.hpp"
 #include "slam/scan_slam_pipeline.hpp"
+#include "stats/sample_statistics.hpp"
 
 namespace msislab::app {
 
@@ -144,13 +145,13 @@ FootprintSummary measure_footprint_command(const FootprintOptions& options) {
   FootprintSummary summary;
   std::vector<FootprintSample> samples;
   std::vector<double> bearings;
-  double beamwidth_deg = dataset_beamwidth_deg(options.dataset_dirs.front());
+  double beamwidth_deg = 0.0;  // the datasets' one beamwidth, NaN when they differ or have none
   for (const std::string& dir : options.dataset_dirs) {
     const std::vector<FootprintSample> s =
         dataset_samples(dir, options.config_path, base.footprint.line, summary.readings, bearings);
     samples.insert(samples.end(), s.begin(), s.end());
-    ++summary.datasets;
-    if (!(dataset_beamwidth_deg(dir) == beamwidth_deg)) beamwidth_deg = std::nan("");
+    const double beam_deg = dataset_beamwidth_deg(dir);
+    beamwidth_deg = summary.datasets++ == 0 || beam_deg == beamwidth_deg ? beam_deg : std::nan("");
   }
   summary.bearing_samples = bearings.size();
   summary.bearing_rms_rad = rms(bearings);

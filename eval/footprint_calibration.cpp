@@ -46,13 +46,6 @@ std::vector<double> bearing_offsets_rad(const std::vector<PlacedScan>& scans,
   return offsets;
 }
 
-double rms(const std::vector<double>& values) {
-  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
-  double sum = 0.0;
-  for (const double v : values) sum += v * v;
-  return std::sqrt(sum / static_cast<double>(values.size()));
-}
-
 std::vector<FootprintSample> footprint_samples(const std::vector<PlacedScan>& scans,
                                                const std::vector<AxisTruth>& beams,
                                                const LineNormalConfig& line) {
@@ -71,7 +64,7 @@ std::vector<FootprintSample> footprint_samples(const std::vector<PlacedScan>& sc
       s.incidence_rad = std::acos(std::min(1.0, std::abs(ray.dot(normals[k])) / s.range_m));
       s.offset_m = s.range_m - *beam->first_hit_range_m;
       if (beam->strongest_range_m && beam->strongest_bearing_offset_rad &&
-          std::abs(s.range_m - *beam->strongest_range_m) <= 1.0) {
+          std::abs(s.range_m - *beam->strongest_range_m) <= kSameEchoRange_m) {
         // A turn counter-clockwise by theta moves the axis a by theta perp(a); it turns toward
         // the wall's normal (into the wall) when perp(a) . n_into > 0, n_into the normal
         // pointing away from the head.

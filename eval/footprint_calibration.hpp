@@ -41,6 +41,10 @@ std::vector<FootprintSample> footprint_samples(const std::vector<PlacedScan>& sc
                                                const std::vector<AxisTruth>& beams,
                                                const LineNormalConfig& line);
 
+/// How far a reading's range may lie from its beam's strongest noise-free echo for the reading to
+/// be that echo (and its source's bearing to be the reading's), m.
+inline constexpr double kSameEchoRange_m = 1.0;
+
 /// The bearing of a run's readings against truth: for every reading (on a line or not) whose range
 /// lies within max_range_gap_m of its beam's strongest noise-free echo, the angle from its beam's
 /// axis to that echo's source (truth/beams.csv's strongest_bearing_offset_rad). The reading is
@@ -48,11 +52,7 @@ std::vector<FootprintSample> footprint_samples(const std::vector<PlacedScan>& sc
 /// stands for (docs/scan_matching.md, "The bearing spread"). `beams` in time order.
 std::vector<double> bearing_offsets_rad(const std::vector<PlacedScan>& scans,
                                         const std::vector<AxisTruth>& beams,
-                                        double max_range_gap_m = 1.0);
-
-/// The root mean square of the offsets (their spread about the axis, where a bearing sigma
-/// centres a reading), NaN when there are none.
-double rms(const std::vector<double>& values);
+                                        double max_range_gap_m = kSameEchoRange_m);
 
 struct FootprintGrid {
   std::vector<double> ranges_m;        ///< the nodes, ascending; a sample goes to the nearest

@@ -1,5 +1,5 @@
-// Sample statistics (mean, quantile, median, two-sample KS distance), each with one stated rule:
-// the one definition every library reports them with.
+// Sample statistics (mean, root mean square, quantile, median, two-sample KS distance), each with
+// one stated rule: the one definition every library reports them with.
 #pragma once
 
 #include <vector>
@@ -8,6 +8,10 @@ namespace msislab {
 
 /// The arithmetic mean of a sample (summed in order). NaN for an empty sample.
 double mean(const std::vector<double>& values);
+
+/// The root mean square of a sample, sqrt(sum v^2 / n): its spread about zero. NaN for an empty
+/// sample.
+double rms(const std::vector<double>& values);
 
 /// The p-quantile of a sample (p clamped to [0, 1]) by linear interpolation between order
 /// statistics (Hyndman and Fan's type 7, R's and NumPy's default): with the sample sorted as

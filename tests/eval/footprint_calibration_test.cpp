@@ -117,15 +117,13 @@ TEST(FootprintCalibration, BearingErrorsAreTheStrongestEchoesSourcesOffTheAxis) 
   }
   const std::vector<double> all = bearing_offsets_rad({placed}, beams);
   ASSERT_EQ(all.size(), beams.size());
-  EXPECT_NEAR(rms(all), 3.0 * kDeg, 1e-12);
+  for (const double offset : all) EXPECT_NEAR(std::abs(offset), 3.0 * kDeg, 1e-12);
   std::vector<AxisTruth> fewer = beams;
   fewer[0].strongest_range_m = *fewer[0].strongest_range_m + 1.5;  // another echo than the reading
   fewer[1].strongest_bearing_offset_rad.reset();
   fewer[2].strongest_range_m.reset();
   fewer.erase(fewer.begin() + 10);
   EXPECT_EQ(bearing_offsets_rad({placed}, fewer).size(), beams.size() - 4);
-  EXPECT_TRUE(std::isnan(rms({})));
-  EXPECT_NEAR(rms({3.0, -4.0}), std::sqrt(12.5), 1e-12);
 }
 
 // A wall reading's source off its axis is signed toward the wall's normal: on the wall x = 12

@@ -26,6 +26,12 @@ TEST(Mean, IsTheSumOverTheCount) {
   EXPECT_TRUE(std::isnan(mean({})));
 }
 
+TEST(Rms, IsTheSpreadAboutZero) {
+  EXPECT_NEAR(rms({3.0, -4.0}), std::sqrt(12.5), 1e-12);
+  EXPECT_NEAR(rms({-2.0, -2.0, -2.0}), 2.0, 1e-12);
+  EXPECT_TRUE(std::isnan(rms({})));
+}
+
 TEST(Median, IsTheMiddleValueOrTheMeanOfTheTwoMiddleOnes) {
   EXPECT_DOUBLE_EQ(median({5.0, 1.0, 3.0}), 3.0);
   EXPECT_DOUBLE_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);

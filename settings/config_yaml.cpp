@@ -248,6 +248,18 @@ void read_trajectory_slam(io::YamlMap map, SlamConfig& config) {
   TrajectoryFilterConfig& filter = config.trajectory_slam.filter;
   map.boolean("match_cross_covariance", filter.match_cross_covariance);
   map.boolean("update_whole_state", filter.update_whole_state);
+  if (std::string held; map.text("scan_shared_errors", held)) {
+    if (held == "none") {
+      filter.scan_shared_errors = ScanSharedErrors::kNone;
+    } else if (held == "motion") {
+      filter.scan_shared_errors = ScanSharedErrors::kMotion;
+    } else if (held == "motion_and_points") {
+      filter.scan_shared_errors = ScanSharedErrors::kMotionAndPoints;
+    } else {
+      map.fail("scan_shared_errors",
+               "unknown value '" + held + "' (none, motion, motion_and_points)");
+    }
+  }
   read_count(map, "linearisation_samples", config.linearisation_samples, 0, 1000000);
   read_matching(map.map("matching"), f.matching);
   read_validation(map.map("validation"), f.validation);

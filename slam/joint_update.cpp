@@ -34,11 +34,12 @@ struct StackedObservations {
 };
 
 /// The stacked covariance of the observations, matches[used[i]] giving observation i:
-/// A_i cov(z_i, z_j) A_j^T, cov(z_i, z_i) spIC's own, and between two matches the errors of the
-/// newest scan they share (docs/trajectory_slam.md, "Joint update"), or zero without
-/// cross_covariance.
+/// A_i cov(z_i, z_j) A_j^T, cov(z_i, z_i) = noise[i] (spIC's own, or its part not in the state),
+/// between two matches the errors of the newest scan they share (docs/trajectory_slam.md, "Joint
+/// update"), or zero without cross_covariance.
 void stack_covariance(const std::vector<ValidatedMatch>& matches,
-                      const std::vector<std::size_t>& used, bool cross_covariance,
+                      const std::vector<std::size_t>& used,
+                      const std::vector<Eigen::Matrix3d>& noise, bool cross_covariance,
                       const std::vector<ScanPoint>& newest_points, StackedObservations& stacked) {
   const std::size_t n = used.size();
   std::vector<Eigen::Index>& offset = stacked.offset;
@@ -51,7 +52,7 @@ void stack_covariance(const std::vector<ValidatedMatch>& matches,
     const ValidatedMatch& mi = matches[used[i]];
     for (std::size_t j = i; j < n; ++j) {
       const ValidatedMatch& mj = matches[used[j]];
-      Eigen::Matrix3d C = mi.match.estimate.cov;
+      Eigen::Matrix3d C = noise[i];
       if (j != i) {
         C = cross_covariance ? shared_current_covariance(mi.match, mj.match, newest_points)
                              : Eigen::Matrix3d::Zero();
@@ -105,19 +106,24 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
   std::vector<ValidatedMatch> matches;
   std::vector<GaussianPose2> predictions(candidates.size());
   StackedObservations stacked;
+  std::vector<std::size_t> used;       // indices into matches of the observations
+  std::vector<Eigen::Matrix3d> noise;  // each one's R
   for (std::size_t c = 0; c < candidates.size(); ++c) {
     ValidatedMatch m = match(candidates[c], k, predictions[c]);
     if (m.match.valid) ++stats.matched;
     if (m.rejection == MatchRejection::kNone) {
-      stacked.observations.push_back({candidates[c], m.match.estimate.mean, m.observed});
+      used.push_back(c);
+      stacked.observations.push_back({candidates[c], m.match.estimate.mean, m.observed, {}});
+      // With the scans' shared errors in the state, a match's noise is its own part, and what
+      // the step's matches share is in the state.
+      noise.push_back(match_noise(candidates[c], k, m.match, &stacked.observations.back().shared));
     }
     matches.push_back(std::move(m));
   }
-  std::vector<std::size_t> used;  // indices into matches of the observations
-  for (std::size_t i = 0; i < matches.size(); ++i) {
-    if (matches[i].rejection == MatchRejection::kNone) used.push_back(i);
-  }
-  stack_covariance(matches, used, config_.filter.match_cross_covariance, points_[k], stacked);
+  stack_covariance(matches, used, noise,
+                   config_.filter.match_cross_covariance &&
+                       config_.filter.scan_shared_errors == ScanSharedErrors::kNone,
+                   points_[k], stacked);
   const std::size_t n = used.size();
   std::vector<RelativePoseObservation> z;
   Eigen::MatrixXd R;

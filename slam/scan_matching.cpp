@@ -158,6 +158,9 @@ NormalEquations normal_equations(const std::vector<ScanPoint>& reference,
 struct ErrorPropagation {
   Eigen::Matrix3d cov;
   CurrentScanLoading current_loading;
+  Eigen::Matrix3d current_share = Eigen::Matrix3d::Zero();    ///< H^-1 A_current H^-1
+  Eigen::Matrix3d reference_share = Eigen::Matrix3d::Zero();  ///< H^-1 A_reference H^-1
+  std::array<Eigen::Matrix3d, 2> reference_half{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
 };
 
 /// The estimate as a function of every point's error (first order, at the solution):
@@ -181,7 +184,11 @@ ErrorPropagation propagate_point_errors(const std::vector<ScanPoint>& reference,
   CurrentScanLoading& loading = out.current_loading;
   loading.whole_point_covariance = !shared_point_errors;
   loading.point.assign(current.size(), Eigen::Matrix<double, 3, 2>::Zero());
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+  // A = A_current + A_reference + A_sampling: the joint covariance of the de_j split by whose
+  // error it is.
+  Eigen::Matrix3d A_current = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d A_reference = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d A_sampling = Eigen::Matrix3d::Zero();
   std::vector<Eigen::Matrix<double, 3, 2>> U(reference.size(), Eigen::Matrix<double, 3, 2>::Zero());
   Eigen::Matrix3d B_current[2] = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
   Eigen::Matrix3d B_reference[2] = {Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
@@ -192,26 +199,37 @@ ErrorPropagation propagate_point_errors(const std::vector<ScanPoint>& reference,
     const PairResidual pr = pair_residual(r, p, S, geometry.normals[a.reference], q);
     const Eigen::Matrix<double, 3, 2> G = pr.J_q.transpose() * pr.Omega;
     loading.point[a.current] = -H_inverse * G * pr.J_p;
-    if (!shared_point_errors) continue;
-    A += G * (pr.J_p * p.cov_reading * pr.J_p.transpose() + S) * G.transpose();
+    if (!shared_point_errors) {
+      // Independent residuals, W_j = A_i + J_p C_j J_p^T + S_j: H^-1 = H^-1 (sum G W G^T) H^-1.
+      A_current += G * pr.J_p * p.cov * pr.J_p.transpose() * G.transpose();
+      A_reference += G * r.cov * G.transpose();
+      A_sampling += G * S * G.transpose();
+      continue;
+    }
+    A_current += G * pr.J_p * p.cov_reading * pr.J_p.transpose() * G.transpose();
+    A_sampling += G * S * G.transpose();
     U[a.reference] += G;
     B_current[p.side == 1] += G * pr.J_p * p.distortion;
     B_reference[r.side == 1] -= G * r.distortion;
   }
-  if (!shared_point_errors) {
-    out.cov = H_inverse;
-    return out;
+  if (shared_point_errors) {
+    for (std::size_t i = 0; i < reference.size(); ++i) {
+      A_reference += U[i] * reference[i].cov_reading * U[i].transpose();
+    }
+    for (int side = 0; side < 2; ++side) {
+      A_current += B_current[side] * B_current[side].transpose();
+      A_reference += B_reference[side] * B_reference[side].transpose();
+      loading.half[side] = -H_inverse * B_current[side];
+      out.reference_half[side] = -H_inverse * B_reference[side];
+    }
   }
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    A += U[i] * reference[i].cov_reading * U[i].transpose();
-  }
-  for (int side = 0; side < 2; ++side) {
-    A += B_current[side] * B_current[side].transpose() +
-         B_reference[side] * B_reference[side].transpose();
-    loading.half[side] = -H_inverse * B_current[side];
-  }
-  const Eigen::Matrix3d cov = H_inverse * A * H_inverse;
-  out.cov = 0.5 * (cov + cov.transpose());
+  const auto sandwich = [&](const Eigen::Matrix3d& A) -> Eigen::Matrix3d {
+    const Eigen::Matrix3d C = H_inverse * A * H_inverse;
+    return 0.5 * (C + C.transpose());
+  };
+  out.current_share = sandwich(A_current);
+  out.reference_share = sandwich(A_reference);
+  out.cov = shared_point_errors ? sandwich(A_current + A_reference + A_sampling) : H_inverse;
   return out;
 }
 
@@ -230,6 +248,23 @@ std::vector<Eigen::Matrix2d> sampling_covariances(const std::vector<ScanPoint>& 
     if (std::isfinite(best)) sampling[i] = to_nearest * to_nearest.transpose() / 12.0;
   }
   return sampling;
+}
+
+/// With scale_covariance_by_residual: the covariance, its shares and loadings times the
+/// residual's variance factor chi^2 / (residuals - 3) when above 1.
+void scale_by_residual(const ScanMatchConfig& config, const NormalEquations& eq,
+                       ScanMatchResult& result) {
+  const double dof = eq.residuals - 3.0;
+  if (!config.scale_covariance_by_residual || dof <= 0.0 || eq.chi2 / dof <= 1.0) return;
+  const double variance_factor = eq.chi2 / dof;
+  result.estimate.cov *= variance_factor;
+  result.current_share *= variance_factor;
+  result.reference_share *= variance_factor;
+  // The loadings carry the same scale: their products make covariances.
+  const double scale = std::sqrt(variance_factor);
+  for (auto& L : result.current_loading.point) L *= scale;
+  for (auto& M : result.current_loading.half) M *= scale;
+  for (auto& M : result.reference_half) M *= scale;
 }
 
 }  // namespace
@@ -279,15 +314,10 @@ ScanMatchResult match_scans(const std::vector<ScanPoint>& reference,
                              config.shared_point_errors);
   result.estimate.cov = errors.cov;
   result.current_loading = std::move(errors.current_loading);
-  const double dof = eq.residuals - 3.0;
-  if (config.scale_covariance_by_residual && dof > 0.0 && eq.chi2 / dof > 1.0) {
-    const double variance_factor = eq.chi2 / dof;
-    result.estimate.cov *= variance_factor;
-    // The loadings carry the same scale: their products make covariances.
-    const double scale = std::sqrt(variance_factor);
-    for (auto& L : result.current_loading.point) L *= scale;
-    for (auto& M : result.current_loading.half) M *= scale;
-  }
+  result.current_share = errors.current_share;
+  result.reference_share = errors.reference_share;
+  result.reference_half = errors.reference_half;
+  scale_by_residual(config, eq, result);
   result.valid = true;
   return result;
 }

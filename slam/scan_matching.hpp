@@ -72,6 +72,16 @@ struct ScanMatchResult {
   int inliers = 0;
   double chi2 = 0.0;                   ///< sum e^T W^-1 e at the end
   CurrentScanLoading current_loading;  ///< set when valid
+  /// The parts of estimate.cov each scan's own errors cause (its points' reading noise and its
+  /// half-scans' motion errors), with the same residual scale; the rest of the covariance is the
+  /// pairs' own (the surfaces' sampling). Every match of a scan shares that scan's part
+  /// (docs/trajectory_slam.md, "Scan registration errors"). Set when valid.
+  Eigen::Matrix3d current_share = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d reference_share = Eigen::Matrix3d::Zero();
+  /// The estimate's loading on the reference scan's half-scan motion errors xi_side ~ N(0, I), as
+  /// current_loading.half is on the current scan's (with the residual scale; zero without
+  /// shared point errors).
+  std::array<Eigen::Matrix3d, 2> reference_half{Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()};
 };
 
 /// Matches `current` against `reference` from the guess (its covariance gates the association).

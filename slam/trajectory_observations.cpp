@@ -59,15 +59,17 @@ Pose2 TrajectorySlam::observed_relative_pose_of(const std::vector<Pose2>& elemen
       H->rightCols(H_pose.cols()) = shifted.d_h * H_pose;
     }
   }
-  if (range_scale_row_ < 0) return h;
-  // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
-  // dh_s/ds = (t, 0) and dh_s/d(the rest) = diag(s, s, 1) dh/d(the rest).
-  const double s = calibration_(range_scale_row_);
-  if (H) {
-    H->topRows<2>() *= s;
-    H->block<2, 1>(0, range_scale_row_) = h.translation();
+  if (range_scale_row_ >= 0) {
+    // A match sees the scans' geometry s times the true one: h_s = (s t, yaw), so
+    // dh_s/ds = (t, 0) and dh_s/d(the rest) = diag(s, s, 1) dh/d(the rest).
+    const double s = calibration_(range_scale_row_);
+    if (H) {
+      H->topRows<2>() *= s;
+      H->block<2, 1>(0, range_scale_row_) = h.translation();
+    }
+    h = Pose2(s * h.x(), s * h.y(), h.yaw());
   }
-  return Pose2(s * h.x(), s * h.y(), h.yaw());
+  return with_scan_errors(h, a, b, H);  // slam/scan_registration_errors.cpp
 }
 
 Eigen::VectorXd TrajectorySlam::stacked_residual(const std::vector<Pose2>& elements, std::size_t b,
@@ -84,8 +86,17 @@ Eigen::VectorXd TrajectorySlam::stacked_residual(const std::vector<Pose2>& eleme
     // z observes h(X) = the pose of scan b in scan a (Eq. 5-8), in the directions A = observed:
     // A (z - h(X)) with Jacobian A H on the calibration and the elements a+1..b.
     Eigen::MatrixXd H_o;
-    const Eigen::Vector3d r_o = pose_difference(
-        o.z, observed_relative_pose_of(elements, o.reference, b, H ? &H_o : nullptr));
+    Pose2 h = observed_relative_pose_of(elements, o.reference, b, H ? &H_o : nullptr);
+    if (!o.shared.empty()) {
+      // z = h(X) + sum loading x_row (the errors it shares with other matches, in the state).
+      Eigen::Vector3d v = h.vector();
+      for (const RelativePoseObservation::SharedError& e : o.shared) {
+        v += e.loading * calibration_.segment<3>(e.row);
+        if (H) H_o.middleCols<3>(e.row) += e.loading;
+      }
+      h = Pose2(v);
+    }
+    const Eigen::Vector3d r_o = pose_difference(o.z, h);
     const Eigen::Index d = o.observed.rows();
     r.segment(row, d) = o.observed * r_o;
     if (H) {

@@ -227,8 +227,11 @@ void TrajectorySlam::update_sequentially(std::size_t k, const std::vector<std::s
     if (m.match.valid) ++stats.matched;
     double nis = std::numeric_limits<double>::quiet_NaN();
     if (m.rejection == MatchRejection::kNone) {
-      const Eigen::MatrixXd R = m.observed * m.match.estimate.cov * m.observed.transpose();
-      const std::vector<RelativePoseObservation> z = {{j, m.match.estimate.mean, m.observed}};
+      std::vector<RelativePoseObservation::SharedError> shared;
+      const Eigen::MatrixXd R =
+          m.observed * match_noise(j, k, m.match, &shared) * m.observed.transpose();
+      const std::vector<RelativePoseObservation> z = {
+          {j, m.match.estimate.mean, m.observed, shared}};
       nis = innovation_nis(k, z, R);
       if (const std::optional<std::size_t> window = update_relative_poses(k, z, R)) {
         stats.note_window(*window);

@@ -48,6 +48,13 @@ struct RelativePoseObservation {
   std::size_t reference = 0;
   Pose2 z;
   Eigen::MatrixXd observed = Eigen::MatrixXd::Identity(3, 3);
+  /// Errors in the state that z shares with other matches: z = h(X) + sum loading x_row, x_row the
+  /// three parameters from that row of the calibration (a scan's half-scan motion error).
+  struct SharedError {
+    Eigen::Index row = 0;
+    Eigen::Matrix3d loading = Eigen::Matrix3d::Zero();
+  };
+  std::vector<SharedError> shared = {};
 };
 
 /// The first state element observations of scan b involve: the smallest reference + 1.
@@ -120,6 +127,12 @@ class TrajectorySlam : public ScanFrontEnd {
   Pose2 observed_relative_pose_of(const std::vector<Pose2>& elements, std::size_t a, std::size_t b,
                                   Eigen::MatrixXd* H) const;
 
+  /// The stacked A_i (z_i - h_i(X)) of observations of scan b at the state elements given and,
+  /// with H, its Jacobian with respect to the calibration (its first columns) and the elements
+  /// first..b, first = the smallest reference + 1.
+  Eigen::VectorXd stacked_residual(const std::vector<Pose2>& elements, std::size_t b,
+                                   const std::vector<RelativePoseObservation>& z,
+                                   Eigen::MatrixXd* H) const;
   /// Appends the new motion as the state stores it during the update of its step: the
   /// dead-reckoning motion, its translation divided by the DVL scale when that is estimated
   /// (then correlated with it).
@@ -198,12 +211,6 @@ class TrajectorySlam : public ScanFrontEnd {
   /// spIC of scan k against scan j from the state's prediction, then its validation; the
   /// prediction (h(X), H P H^T) in `predicted`.
   ValidatedMatch match(std::size_t j, std::size_t k, GaussianPose2& predicted) const;
-  /// The stacked A_i (z_i - h_i(X)) of observations of scan b at the state elements given and,
-  /// with H, its Jacobian with respect to the calibration (its first columns) and the elements
-  /// first..b, first = the smallest reference + 1.
-  Eigen::VectorXd stacked_residual(const std::vector<Pose2>& elements, std::size_t b,
-                                   const std::vector<RelativePoseObservation>& z,
-                                   Eigen::MatrixXd* H) const;
   /// The NIS of observations of scan b against the state: r^T (H P H^T + R)^-1 r.
   double innovation_nis(std::size_t b, const std::vector<RelativePoseObservation>& z,
                         const Eigen::MatrixXd& R) const;
@@ -219,7 +226,29 @@ class TrajectorySlam : public ScanFrontEnd {
   /// (3 x c): the DVL scale divides the translation, the deviation's change turns it.
   Pose2 calibrated_motion(const Pose2& m, Eigen::Matrix3d& J_m, Eigen::MatrixXd& J_c) const;
 
+  /// With scan_shared_errors: the noise R of a match of scan k against scan j, its own
+  /// part (spIC's covariance less the scans' shares the state holds), after adding to the state
+  /// what of both scans' errors is not yet in it: each half-scan's motion error (prior N(0, I)),
+  /// whose loadings go to `shared`, and with kMotionAndPoints each scan's rigid error for its
+  /// points' noise (prior: this match's points' share of it, moved into the scan's frame).
+  /// With kNone: the match's covariance.
+  Eigen::Matrix3d match_noise(std::size_t j, std::size_t k, const ScanMatchResult& match,
+                              std::vector<RelativePoseObservation::SharedError>* shared);
+  /// Appends three parameters ~ N(0, cov), uncorrelated, to the calibration rows; their first row.
+  Eigen::Index add_shared_error(const Eigen::Matrix3d& cov);
+  /// A scan's errors in the state (scan_shared_errors): their rows in calibration_ and P_.
+  struct ScanErrors {
+    Eigen::Index rigid_row = -1;  ///< e_s, its points' rigid error; -1: not in the state
+    Eigen::Matrix3d rigid_prior = Eigen::Matrix3d::Zero();
+    std::array<Eigen::Index, 2> half_row{-1, -1};  ///< xi of each half-scan; -1: not in the state
+  };
+  ScanErrors& scan_errors(std::size_t s);
+  /// h with the scans' registration errors: (-)e_a (+) h (+) e_b for those in the state; with H
+  /// (on the calibration and the elements, as observed_relative_pose_of's), its Jacobian.
+  Pose2 with_scan_errors(const Pose2& h, std::size_t a, std::size_t b, Eigen::MatrixXd* H) const;
+
   std::vector<std::size_t> group_start_;  ///< first element of each element's correlated group
+  std::vector<ScanErrors> scan_errors_;   ///< per scan, with scan_shared_errors
   /// (cos psi, sin psi) of the previous scan's heading (the start's, first); none after a scan
   /// without a compass reading.
   std::optional<Eigen::Vector2d> previous_deviation_basis_;

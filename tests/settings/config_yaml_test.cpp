@@ -286,14 +286,24 @@ TEST(SlamConfigYaml, JointUpdateKeys) {
   const SlamConfig defaults = read_slam_config(write_text(dir.file("d.yaml"), "# defaults\n"));
   EXPECT_FALSE(defaults.trajectory_slam.front_end.joint_update);
   EXPECT_TRUE(defaults.trajectory_slam.filter.match_cross_covariance);
+  EXPECT_EQ(defaults.trajectory_slam.filter.scan_shared_errors, ScanSharedErrors::kNone);
   const SlamConfig c = read_slam_config(write_text(dir.file("slam.yaml"),
                                                    "trajectory_slam:\n"
                                                    "  joint_update: true\n"
-                                                   "  match_cross_covariance: false\n"));
+                                                   "  match_cross_covariance: false\n"
+                                                   "  scan_shared_errors: motion\n"));
   EXPECT_TRUE(c.trajectory_slam.front_end.joint_update);
   EXPECT_FALSE(c.trajectory_slam.filter.match_cross_covariance);
+  EXPECT_EQ(c.trajectory_slam.filter.scan_shared_errors, ScanSharedErrors::kMotion);
+  EXPECT_EQ(
+      read_slam_config(write_text(dir.file("both.yaml"),
+                                  "trajectory_slam:\n  scan_shared_errors: motion_and_points\n"))
+          .trajectory_slam.filter.scan_shared_errors,
+      ScanSharedErrors::kMotionAndPoints);
   expect_bad_slam_config("trajectory_slam:\n  joint_update: 3\n", 2,
                          "trajectory_slam.joint_update");
+  expect_bad_slam_config("trajectory_slam:\n  scan_shared_errors: points\n", 2,
+                         "trajectory_slam.scan_shared_errors");
 }
 
 TEST(SlamConfigYaml, LinearisationSamplesIsTheStudysKeyNotTheFilters) {

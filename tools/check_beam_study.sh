@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Whether a study's page (docs/beam_study.md, docs/footprint_study.md, docs/footprint_real.md)
-# still shows what its input files ask for: the script that writes it (named on the page's first
-# line) lists, under its tables, each sweep, scenario or config file it ran with its SHA-256; a
-# file changed since (its beams, runs, methods or scene) makes the page stale, and this names it.
-# Run by the ctests Docs.BeamStudyMatchesItsSweepFiles, Docs.FootprintStudyMatchesItsInputFiles
-# and Docs.FootprintRealMatchesItsInputFiles. (A change to the SLAM or the simulator also makes
-# the page stale; that this cannot see: a study takes far longer than the suite.)
+# Whether a study's page (docs/beam_study.md, docs/footprint_study.md, docs/footprint_real.md,
+# docs/scan_errors_study.md) still shows what its input files ask for: the script that writes it
+# (named on the page's first line) lists, under its tables, each sweep, scenario or config file it
+# ran with its SHA-256; a file changed since (its beams, runs, methods or scene) makes the page
+# stale, and this names it. Run by the ctests Docs.BeamStudyMatchesItsSweepFiles,
+# Docs.FootprintStudyMatchesItsInputFiles, Docs.FootprintRealMatchesItsInputFiles and
+# Docs.ScanErrorsStudyMatchesItsInputFiles. (A change to the SLAM or the simulator also makes the
+# page stale; that this cannot see: a study takes far longer than the suite.)
 # Usage: tools/check_beam_study.sh [PAGE]   (default docs/beam_study.md). Exit 0 when every file
 # matches, 1 when one does not or the page names none, 2 when the page is missing.
 set -euo pipefail

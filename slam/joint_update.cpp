@@ -36,11 +36,12 @@ struct StackedObservations {
 /// The stacked covariance of the observations, matches[used[i]] giving observation i:
 /// A_i cov(z_i, z_j) A_j^T, cov(z_i, z_i) = noise[i] (spIC's own, or its part not in the state),
 /// between two matches the errors of the newest scan they share (docs/trajectory_slam.md, "Joint
-/// update"), or zero without cross_covariance.
+/// update"; its points' alone with halves_in_state), or zero without cross_covariance.
 void stack_covariance(const std::vector<ValidatedMatch>& matches,
                       const std::vector<std::size_t>& used,
                       const std::vector<Eigen::Matrix3d>& noise, bool cross_covariance,
-                      const std::vector<ScanPoint>& newest_points, StackedObservations& stacked) {
+                      bool halves_in_state, const std::vector<ScanPoint>& newest_points,
+                      StackedObservations& stacked) {
   const std::size_t n = used.size();
   std::vector<Eigen::Index>& offset = stacked.offset;
   offset.assign(n + 1, 0);
@@ -54,8 +55,15 @@ void stack_covariance(const std::vector<ValidatedMatch>& matches,
       const ValidatedMatch& mj = matches[used[j]];
       Eigen::Matrix3d C = noise[i];
       if (j != i) {
-        C = cross_covariance ? shared_current_covariance(mi.match, mj.match, newest_points)
-                             : Eigen::Matrix3d::Zero();
+        C = Eigen::Matrix3d::Zero();
+        if (cross_covariance) C = shared_current_covariance(mi.match, mj.match, newest_points);
+        if (cross_covariance && halves_in_state) {
+          // The half-scans' errors are the state's: only the points' noise is shared here.
+          for (std::size_t side = 0; side < 2; ++side) {
+            C -= mi.match.current_loading.half[side] *
+                 mj.match.current_loading.half[side].transpose();
+          }
+        }
       }
       const Eigen::MatrixXd block = mi.observed * C * mj.observed.transpose();
       stacked.R_all.block(offset[i], offset[j], block.rows(), block.cols()) = block;
@@ -120,10 +128,12 @@ void TrajectorySlam::update_jointly(std::size_t k, const std::vector<std::size_t
     }
     matches.push_back(std::move(m));
   }
-  stack_covariance(matches, used, noise,
-                   config_.filter.match_cross_covariance &&
-                       config_.filter.scan_shared_errors == ScanSharedErrors::kNone,
-                   points_[k], stacked);
+  // With the points' rigid errors in the state too, the step's matches share nothing beyond it.
+  const ScanSharedErrors held = config_.filter.scan_shared_errors;
+  stack_covariance(
+      matches, used, noise,
+      config_.filter.match_cross_covariance && held != ScanSharedErrors::kMotionAndPoints,
+      held == ScanSharedErrors::kMotion, points_[k], stacked);
   const std::size_t n = used.size();
   std::vector<RelativePoseObservation> z;
   Eigen::MatrixXd R;

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # The scan-errors study (docs/scan_errors_study.md) in one command: the robocentric filter on the
 # marina loop with none, the motion or the motion and the points of the scans' shared errors in its
-# state (trajectory_slam.scan_shared_errors), at 1.5, 6 and 9 deg beams and with 1 or 3 matches
-# per scan. Builds, runs the sweep studies/scan_errors/marina_loop.yaml into
+# state (trajectory_slam.scan_shared_errors), at 1.5, 3 (the scene's own), 6 and 9 deg beams and
+# with 1 or 3 matches per scan. Builds, runs the sweep studies/scan_errors/marina_loop.yaml into
 # out/scan_errors_study/marina_loop (resumable, as tools/beam_study.sh's) and writes the page's
 # table: per beam and matches per scan, the share of scan steps inside the 95 % NEES bounds, the
 # ANEES (3 when consistent) and the mean error, for each choice of states.
-# Usage: tools/scan_errors_study.sh [--jobs J] [--msislab EXE]   (about a minute on 2 cores)
+# Usage: tools/scan_errors_study.sh [--jobs J] [--msislab EXE]   (about 3 minutes on 2 cores)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

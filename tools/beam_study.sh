@@ -54,11 +54,7 @@ for scene in $scenes; do
 done
 page="$out/beam_study.md"
 [ "$runs" = 20 ] && page=docs/beam_study.md
-marker="<!-- written by tools/beam_study.sh; it replaces this file only when it starts with this line -->"
-if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
-  echo "tools/beam_study.sh: $page was not written by this script; refusing to replace it" >&2
-  exit 2
-fi
+marker=$(page_marker tools/beam_study.sh "$page")
 # The table: a row per scene and method, a column per beamwidth, each cell the share of scan
 # steps inside the 95 % NEES bounds with the ANEES (3 when consistent) and the mean error.
 {

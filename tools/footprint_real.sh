@@ -79,10 +79,7 @@ for arm in without with; do
 done
 
 page=docs/footprint_real.md
-marker="<!-- written by tools/footprint_real.sh; it replaces this file only when it starts with this line -->"
-if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
-  fail "$page was not written by this script; refusing to replace it"
-fi
+marker=$(page_marker tools/footprint_real.sh "$page")
 {
   echo "$marker"
   echo "# The beam's footprint table on the real St. Pere run"

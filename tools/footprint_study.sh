@@ -95,10 +95,7 @@ for beam in $beams; do
 done
 page="$out/footprint_study.md"
 [ "$runs" = 20 ] && page=docs/footprint_study.md
-marker="<!-- written by tools/footprint_study.sh; it replaces this file only when it starts with this line -->"
-if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
-  fail "$page was not written by this script; refusing to replace it"
-fi
+marker=$(page_marker tools/footprint_study.sh "$page")
 # A sweep's row for a method: "in bounds % (ANEES), mean error".
 cell() {
   awk -F, -v m="$2" '

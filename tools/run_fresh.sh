@@ -83,3 +83,16 @@ msislab_or_build() {
     msislab=build/release/tools/msislab
   fi
 }
+
+# page_marker SCRIPT PAGE: the first line SCRIPT writes on PAGE (docs/ pages a study writes),
+# printed; refuses, exit 2, when PAGE exists and does not start with it (a page someone else wrote).
+# Use as marker=$(page_marker SCRIPT PAGE), which set -e ends on refusal.
+page_marker() {
+  local script="$1" page="$2"
+  local marker="<!-- written by $script; it replaces this file only when it starts with this line -->"
+  if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
+    echo "$script: $page was not written by this script; refusing to replace it" >&2
+    exit 2
+  fi
+  echo "$marker"
+}

@@ -28,11 +28,7 @@ sweep=studies/scan_errors/marina_loop.yaml
 out=out/scan_errors_study/marina_loop
 run_fresh "$out" "$msislab" sweep "$sweep" --out "$out" --jobs "$jobs"
 page=docs/scan_errors_study.md
-marker="<!-- written by tools/scan_errors_study.sh; it replaces this file only when it starts with this line -->"
-if [ -f "$page" ] && [ "$(head -n 1 "$page")" != "$marker" ]; then
-  echo "tools/scan_errors_study.sh: $page was not written by this script; refusing to replace it" >&2
-  exit 2
-fi
+marker=$(page_marker tools/scan_errors_study.sh "$page")
 {
   echo "$marker"
   echo "# The scan-errors study"

@@ -35,35 +35,6 @@ TrajectorySlamConfig with_scan_errors() {
   return config;
 }
 
-// Each scan's share and the pairs' own part are covariances (not a statistic: sums of
-// J C J^T); the current scan's share is what its loadings give (shared_current_covariance of a
-// match with itself), and with shared point errors off the parts still sum within the whole.
-TEST(ScanRegistrationErrors, SpicSplitsItsCovarianceByWhoseErrorItIs) {
-  const Loop loop = make_loop(4, false);
-  for (const bool shared : {true, false}) {
-    ScanMatchConfig config;
-    config.shared_point_errors = shared;
-    GaussianPose2 guess{loop.truth[4].between(loop.truth[6]), loop.scans[5].motion.cov * 2.0};
-    const ScanMatchResult m =
-        match_scans(loop.scans[4].points, loop.scans[6].points, guess, config);
-    ASSERT_TRUE(m.valid);
-    const double scale = m.estimate.cov.norm();
-    EXPECT_GT(smallest_eigenvalue(m.current_share), 0.0);
-    EXPECT_GT(smallest_eigenvalue(m.reference_share), 0.0);
-    const Eigen::Matrix3d own = m.estimate.cov - m.current_share - m.reference_share;
-    EXPECT_GT(smallest_eigenvalue(own), -1e-12 * scale) << "shared " << shared;
-    // Each scan carries 38 % of the match's variance here (0.05 m points on both), the surfaces'
-    // sampling every 0.4 m the other 23 %: the bound is half of that (not a statistic: one
-    // fixed pair of scans).
-    EXPECT_GT(m.current_share.trace(), 0.2 * m.estimate.cov.trace());
-    EXPECT_GT(m.reference_share.trace(), 0.2 * m.estimate.cov.trace());
-    if (shared) {
-      const Eigen::Matrix3d from_loadings = shared_current_covariance(m, m, loop.scans[6].points);
-      EXPECT_LT((from_loadings - m.current_share).norm(), 1e-9 * scale);
-    }
-  }
-}
-
 /// The loop's scans as a scanning sonar's: each point displaced by its half-scan's motion error
 /// D xi_side (side 0: the beams before the centre, here the points behind the vehicle), D growing
 /// with the point's angle from the centre as a half-revolution's dead-reckoning error does; the
@@ -81,6 +52,48 @@ Loop distorted(Loop loop) {
     }
   }
   return loop;
+}
+
+// Each scan's share and the pairs' own part are covariances (not a statistic: sums of
+// J C J^T); the current scan's share is what its loadings give (shared_current_covariance of a
+// match with itself, the half-scans' terms among them), each half-scan's loadings M M^T lie
+// within its scan's share, and with shared point errors off the parts still sum within the whole.
+TEST(ScanRegistrationErrors, SpicSplitsItsCovarianceByWhoseErrorItIs) {
+  const Loop plain = make_loop(4, false);
+  for (const bool halves : {false, true}) {
+    const Loop loop = halves ? distorted(plain) : plain;
+    for (const bool shared : {true, false}) {
+      ScanMatchConfig config;
+      config.shared_point_errors = shared;
+      GaussianPose2 guess{loop.truth[4].between(loop.truth[6]), loop.scans[5].motion.cov * 2.0};
+      const ScanMatchResult m =
+          match_scans(loop.scans[4].points, loop.scans[6].points, guess, config);
+      ASSERT_TRUE(m.valid);
+      const double scale = m.estimate.cov.norm();
+      EXPECT_GT(smallest_eigenvalue(m.current_share), 0.0);
+      EXPECT_GT(smallest_eigenvalue(m.reference_share), 0.0);
+      const Eigen::Matrix3d own = m.estimate.cov - m.current_share - m.reference_share;
+      EXPECT_GT(smallest_eigenvalue(own), -1e-12 * scale) << "shared " << shared;
+      // Each scan carries 38 % of the match's variance on the plain loop (0.05 m points on
+      // both), the surfaces' sampling every 0.4 m the other 23 %: the bound is half of that (not
+      // a statistic: one fixed pair of scans).
+      EXPECT_GT(m.current_share.trace(), 0.2 * m.estimate.cov.trace());
+      EXPECT_GT(m.reference_share.trace(), 0.2 * m.estimate.cov.trace());
+      if (!shared) continue;
+      const Eigen::Matrix3d from_loadings = shared_current_covariance(m, m, loop.scans[6].points);
+      EXPECT_LT((from_loadings - m.current_share).norm(), 1e-9 * scale);
+      Eigen::Matrix3d points_k = m.current_share, points_j = m.reference_share;
+      for (std::size_t side = 0; side < 2; ++side) {
+        points_k -= m.current_loading.half[side] * m.current_loading.half[side].transpose();
+        points_j -= m.reference_half[side] * m.reference_half[side].transpose();
+      }
+      EXPECT_GT(smallest_eigenvalue(points_k), -1e-12 * scale);
+      EXPECT_GT(smallest_eigenvalue(points_j), -1e-12 * scale);
+      // The distorted scans' halves carry part of each share; the plain ones' none.
+      EXPECT_EQ(halves, m.current_loading.half[0].norm() > 0.0);
+      EXPECT_EQ(halves, m.reference_half[1].norm() > 0.0);
+    }
+  }
 }
 
 /// distorted(loop) with the distortion drawn: each half-scan's points moved by D xi_side, xi_side
